@@ -1,0 +1,210 @@
+#include <deal.II/base/exceptions.h>
+#include <deal.II/base/timer.h>
+
+#include <fem/cholmod_solver.h>
+
+#include <cholmod.h>
+
+#include <cstring>
+
+namespace dualcontact
+{
+  namespace fem
+  {
+    struct CholmodSolver::Data
+    {
+      cholmod_common   common;
+      cholmod_factor  *factor = nullptr;
+      SuiteSparse_long n      = 0;
+    };
+
+
+    CholmodSolver::CholmodSolver(const Ordering ordering)
+        : ordering_(ordering)
+        , data_(std::make_unique<Data>())
+    {
+      cholmod_l_start(&data_->common);
+      cholmod_common &c = data_->common;
+      c.supernodal      = CHOLMOD_SUPERNODAL;
+      c.print           = 0;
+      // Errors are turned into exceptions after each call; do not let
+      // CHOLMOD print them as well.
+      c.error_handler = nullptr;
+      switch (ordering_)
+      {
+        case Ordering::automatic:
+          break;
+        case Ordering::amd:
+          c.nmethods           = 1;
+          c.method[0].ordering = CHOLMOD_AMD;
+          c.postorder          = 1;
+          break;
+        case Ordering::metis:
+          c.nmethods           = 1;
+          c.method[0].ordering = CHOLMOD_METIS;
+          c.postorder          = 1;
+          break;
+        case Ordering::nested_dissection:
+          c.nmethods           = 1;
+          c.method[0].ordering = CHOLMOD_NESDIS;
+          c.postorder          = 1;
+          break;
+      }
+    }
+
+
+    CholmodSolver::~CholmodSolver()
+    {
+      free_factor();
+      cholmod_l_finish(&data_->common);
+    }
+
+
+    void
+    CholmodSolver::free_factor()
+    {
+      if (data_->factor != nullptr)
+        cholmod_l_free_factor(&data_->factor, &data_->common);
+      data_->factor = nullptr;
+    }
+
+
+    void
+    CholmodSolver::initialize(const dealii::SparseMatrix<double> &matrix)
+    {
+      AssertThrow(matrix.m() == matrix.n(),
+                  dealii::ExcMessage("CHOLMOD: the matrix is not square."));
+      dealii::Timer   timer;
+      cholmod_common &c = data_->common;
+      free_factor();
+      const SuiteSparse_long n = matrix.m();
+      data_->n                 = n;
+
+      // Row i of the symmetric CSR matrix, entries j >= i, is column i of the
+      // lower triangle in CSC form (stype = -1).  Explicit zeros off the
+      // diagonal are dropped: condensed constraints leave many of them.
+      std::size_t nnz = 0;
+      for (SuiteSparse_long i = 0; i < n; ++i)
+        for (auto it = matrix.begin(i); it != matrix.end(i); ++it)
+          if (static_cast<SuiteSparse_long>(it->column()) >= i &&
+              (it->value() != 0. ||
+               static_cast<SuiteSparse_long>(it->column()) == i))
+            ++nnz;
+      cholmod_sparse *A = cholmod_l_allocate_sparse(
+        n, n, nnz, /*sorted=*/0, /*packed=*/1, /*stype=*/-1, CHOLMOD_REAL, &c);
+      AssertThrow(A != nullptr,
+                  dealii::ExcMessage("CHOLMOD: out of memory allocating a " +
+                                     std::to_string(n) + " x " +
+                                     std::to_string(n) + " matrix."));
+      auto       *column_start = static_cast<SuiteSparse_long *>(A->p);
+      auto       *row_index    = static_cast<SuiteSparse_long *>(A->i);
+      auto       *values       = static_cast<double *>(A->x);
+      std::size_t k            = 0;
+      for (SuiteSparse_long i = 0; i < n; ++i)
+      {
+        column_start[i] = k;
+        for (auto it = matrix.begin(i); it != matrix.end(i); ++it)
+        {
+          const auto j = static_cast<SuiteSparse_long>(it->column());
+          if (j >= i && (it->value() != 0. || j == i))
+          {
+            row_index[k] = j;
+            values[k]    = it->value();
+            ++k;
+          }
+        }
+      }
+      column_start[n] = k;
+
+      data_->factor = cholmod_l_analyze(A, &c);
+      if (data_->factor == nullptr || c.status < CHOLMOD_OK)
+      {
+        cholmod_l_free_sparse(&A, &c);
+        AssertThrow(false,
+                    dealii::ExcMessage(
+                      "CHOLMOD: symbolic analysis failed (status " +
+                      std::to_string(c.status) + ")."));
+      }
+      cholmod_l_factorize(A, data_->factor, &c);
+      const int status = c.status;
+      cholmod_l_free_sparse(&A, &c);
+      AssertThrow(status != CHOLMOD_NOT_POSDEF,
+                  dealii::ExcMessage(
+                    "CHOLMOD: the stiffness matrix is not positive definite "
+                    "(column " +
+                    std::to_string(data_->factor->minor) +
+                    "): is a body without enough Dirichlet conditions to "
+                    "prevent rigid-body motions?"));
+      AssertThrow(status >= CHOLMOD_OK,
+                  dealii::ExcMessage("CHOLMOD: numerical factorization failed "
+                                     "(status " +
+                                     std::to_string(status) + ")."));
+
+      statistics_                 = Statistics();
+      statistics_.setup_time      = timer.wall_time();
+      statistics_.factor_nonzeros = c.lnz;
+      statistics_.factor_flops    = c.fl;
+    }
+
+
+    void
+    CholmodSolver::solve(dealii::Vector<double>       &x,
+                         const dealii::Vector<double> &b) const
+    {
+      Assert(data_->factor != nullptr, dealii::ExcNotInitialized());
+      AssertDimension(b.size(), static_cast<std::size_t>(data_->n));
+      dealii::Timer   timer;
+      cholmod_common &c = data_->common;
+
+      // Wrap b without copying: CHOLMOD only reads it.
+      cholmod_dense rhs;
+      std::memset(&rhs, 0, sizeof(rhs));
+      rhs.nrow  = data_->n;
+      rhs.ncol  = 1;
+      rhs.nzmax = data_->n;
+      rhs.d     = data_->n;
+      rhs.x     = const_cast<double *>(b.begin());
+      rhs.xtype = CHOLMOD_REAL;
+      rhs.dtype = CHOLMOD_DOUBLE;
+
+      cholmod_dense *solution =
+        cholmod_l_solve(CHOLMOD_A, data_->factor, &rhs, &c);
+      AssertThrow(solution != nullptr && c.status >= CHOLMOD_OK,
+                  dealii::ExcMessage("CHOLMOD: solve failed (status " +
+                                     std::to_string(c.status) + ")."));
+      x.reinit(data_->n, /*omit_zeroing_entries=*/true);
+      std::memcpy(x.begin(),
+                  solution->x,
+                  sizeof(double) * static_cast<std::size_t>(data_->n));
+      cholmod_l_free_dense(&solution, &c);
+      statistics_.solve_time += timer.wall_time();
+      ++statistics_.n_solves;
+    }
+
+
+    std::string
+    CholmodSolver::name() const
+    {
+      return "cholmod";
+    }
+
+
+    CholmodSolver::Ordering
+    CholmodSolver::parse_ordering(const std::string &name)
+    {
+      if (name == "automatic")
+        return Ordering::automatic;
+      if (name == "amd")
+        return Ordering::amd;
+      if (name == "metis")
+        return Ordering::metis;
+      if (name == "nested dissection")
+        return Ordering::nested_dissection;
+      AssertThrow(false,
+                  dealii::ExcMessage("Unknown CHOLMOD ordering `" + name +
+                                     "' (`set Ordering' in `subsection "
+                                     "Stiffness solver')."));
+      return Ordering::automatic;
+    }
+  } // namespace fem
+} // namespace dualcontact

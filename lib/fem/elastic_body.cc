@@ -1,0 +1,484 @@
+#include <deal.II/base/quadrature_lib.h>
+#include <deal.II/dofs/dof_tools.h>
+#include <deal.II/fe/fe_q.h>
+#include <deal.II/fe/fe_values.h>
+#include <deal.II/grid/grid_tools.h>
+#include <deal.II/lac/dynamic_sparsity_pattern.h>
+#include <deal.II/lac/full_matrix.h>
+#include <deal.II/numerics/vector_tools.h>
+
+#include <fem/elastic_body.h>
+#include <fem/stiffness_solver.h>
+
+#include <algorithm>
+#include <set>
+
+namespace dualcontact
+{
+  namespace fem
+  {
+    using namespace dealii;
+
+    template <int dim>
+    ElasticBody<dim>::ElasticBody(
+      const std::string                                     &name,
+      std::shared_ptr<Triangulation<dim>>                    triangulation,
+      const unsigned int                                     fe_degree,
+      const std::map<types::material_id, IsotropicMaterial> &materials)
+        : name_(name)
+        , triangulation_(std::move(triangulation))
+        , fe_(FE_Q<dim>(fe_degree), dim)
+        , mapping_(fe_degree)
+        , dof_handler_(*triangulation_)
+        , materials_(materials)
+    {
+      AssertThrow(fe_degree == 1 || fe_degree == 2,
+                  ExcMessage(name +
+                             ": the finite element degree must be 1 or "
+                             "2 (got " +
+                             std::to_string(fe_degree) + ")."));
+    }
+
+
+    template <int dim>
+    ElasticBody<dim>::~ElasticBody()
+    {
+      // The DoFHandler refers to the triangulation: release it first.
+      dof_handler_.clear();
+    }
+
+
+    template <int dim>
+    void
+    ElasticBody<dim>::set_dirichlet_conditions(
+      const std::vector<DirichletCondition<dim>> &conditions)
+    {
+      dirichlet_ = conditions;
+    }
+
+
+    template <int dim>
+    void
+    ElasticBody<dim>::set_traction_conditions(
+      const std::vector<TractionCondition<dim>> &conditions)
+    {
+      tractions_ = conditions;
+    }
+
+
+    template <int dim>
+    void
+    ElasticBody<dim>::set_body_force(
+      std::shared_ptr<const Function<dim>> body_force)
+    {
+      body_force_ = std::move(body_force);
+    }
+
+
+    template <int dim>
+    void
+    ElasticBody<dim>::setup()
+    {
+      // Consistency of the scene with the mesh, before anything is built.
+      for (const auto &cell : triangulation_->active_cell_iterators())
+        AssertThrow(materials_.count(cell->material_id()) == 1,
+                    ExcMessage(name_ +
+                               ": the mesh has cells with material id " +
+                               std::to_string(cell->material_id()) +
+                               ", but no material is given for it."));
+      const std::vector<types::boundary_id> ids =
+        triangulation_->get_boundary_ids();
+      const auto check_id =
+        [&](const types::boundary_id id, const std::string &what)
+      {
+        AssertThrow(std::find(ids.begin(), ids.end(), id) != ids.end(),
+                    ExcMessage(name_ + ": " + what + " on boundary id " +
+                               std::to_string(id) +
+                               ", which the mesh does not have."));
+      };
+      for (const auto &condition : dirichlet_)
+      {
+        check_id(condition.boundary_id, "a Dirichlet condition");
+        AssertThrow(condition.components.size() == dim && condition.values &&
+                      condition.values->n_components == dim,
+                    ExcMessage(name_ +
+                               ": a Dirichlet condition needs a "
+                               "component mask and values with " +
+                               std::to_string(dim) + " components."));
+      }
+      for (const auto &condition : tractions_)
+      {
+        check_id(condition.boundary_id, "a traction");
+        AssertThrow(condition.traction &&
+                      condition.traction->n_components == dim,
+                    ExcMessage(name_ + ": a traction needs " +
+                               std::to_string(dim) + " components."));
+      }
+      AssertThrow(!body_force_ || body_force_->n_components == dim,
+                  ExcMessage(name_ + ": the body force needs " +
+                             std::to_string(dim) + " components."));
+
+      dof_handler_.distribute_dofs(fe_);
+
+      constraints_.clear();
+      DoFTools::make_hanging_node_constraints(dof_handler_, constraints_);
+      // Conditions are applied in the order given: where two boundaries meet,
+      // the first condition on a dof wins (AffineConstraints keeps the first).
+      for (const auto &condition : dirichlet_)
+        VectorTools::interpolate_boundary_values(mapping_,
+                                                 dof_handler_,
+                                                 condition.boundary_id,
+                                                 *condition.values,
+                                                 constraints_,
+                                                 condition.components);
+      constraints_.close();
+
+      DynamicSparsityPattern dsp(dof_handler_.n_dofs());
+      DoFTools::make_sparsity_pattern(dof_handler_, dsp, constraints_, false);
+      sparsity_.copy_from(dsp);
+      stiffness_.reinit(sparsity_);
+      load_.reinit(dof_handler_.n_dofs());
+    }
+
+
+    template <int dim>
+    void
+    ElasticBody<dim>::cell_system(
+      const typename DoFHandler<dim>::active_cell_iterator &cell,
+      FullMatrix<double>                                   &cell_matrix,
+      Vector<double>                                       &cell_rhs) const
+    {
+      const QGauss<dim>     quadrature(fe_.degree + 1);
+      const QGauss<dim - 1> face_quadrature(fe_.degree + 1);
+      FEValues<dim>         fe_values(mapping_,
+                              fe_,
+                              quadrature,
+                              update_gradients | update_values |
+                                update_quadrature_points | update_JxW_values);
+      FEFaceValues<dim>     fe_face_values(mapping_,
+                                       fe_,
+                                       face_quadrature,
+                                       update_values |
+                                         update_quadrature_points |
+                                         update_JxW_values);
+      const unsigned int    dofs_per_cell = fe_.n_dofs_per_cell();
+      cell_matrix.reinit(dofs_per_cell, dofs_per_cell);
+      cell_rhs.reinit(dofs_per_cell);
+
+      fe_values.reinit(cell);
+      const FEValuesExtractors::Vector displacement(0);
+      const SymmetricTensor<4, dim>    C =
+        materials_.at(cell->material_id()).template stiffness_tensor<dim>();
+
+      std::vector<SymmetricTensor<2, dim>> eps(dofs_per_cell);
+      Vector<double>                       force(dim);
+      for (unsigned int q = 0; q < quadrature.size(); ++q)
+      {
+        for (unsigned int k = 0; k < dofs_per_cell; ++k)
+          eps[k] = fe_values[displacement].symmetric_gradient(k, q);
+        const double JxW = fe_values.JxW(q);
+        for (unsigned int i = 0; i < dofs_per_cell; ++i)
+        {
+          const SymmetricTensor<2, dim> C_eps_i = C * eps[i];
+          for (unsigned int j = i; j < dofs_per_cell; ++j)
+            cell_matrix(i, j) += (C_eps_i * eps[j]) * JxW;
+        }
+        if (body_force_)
+        {
+          body_force_->vector_value(fe_values.quadrature_point(q), force);
+          for (unsigned int i = 0; i < dofs_per_cell; ++i)
+          {
+            const unsigned int c = fe_.system_to_component_index(i).first;
+            cell_rhs(i) += force(c) * fe_values.shape_value(i, q) * JxW;
+          }
+        }
+      }
+      for (unsigned int i = 0; i < dofs_per_cell; ++i)
+        for (unsigned int j = 0; j < i; ++j)
+          cell_matrix(i, j) = cell_matrix(j, i);
+
+      if (!tractions_.empty() && cell->at_boundary())
+        for (const unsigned int f : cell->face_indices())
+          if (cell->face(f)->at_boundary())
+            for (const auto &condition : tractions_)
+              if (cell->face(f)->boundary_id() == condition.boundary_id)
+              {
+                fe_face_values.reinit(cell, f);
+                for (unsigned int q = 0; q < face_quadrature.size(); ++q)
+                {
+                  condition.traction->vector_value(
+                    fe_face_values.quadrature_point(q), force);
+                  for (unsigned int i = 0; i < dofs_per_cell; ++i)
+                  {
+                    const unsigned int c =
+                      fe_.system_to_component_index(i).first;
+                    cell_rhs(i) += force(c) * fe_face_values.shape_value(i, q) *
+                                   fe_face_values.JxW(q);
+                  }
+                }
+              }
+    }
+
+
+    template <int dim>
+    void
+    ElasticBody<dim>::assemble()
+    {
+      stiffness_ = 0;
+      load_      = 0;
+      FullMatrix<double>                   cell_matrix;
+      Vector<double>                       cell_rhs;
+      std::vector<types::global_dof_index> dof_indices(fe_.n_dofs_per_cell());
+      for (const auto &cell : dof_handler_.active_cell_iterators())
+      {
+        cell_system(cell, cell_matrix, cell_rhs);
+        cell->get_dof_indices(dof_indices);
+        constraints_.distribute_local_to_global(
+          cell_matrix, cell_rhs, dof_indices, stiffness_, load_);
+      }
+    }
+
+
+    template <int dim>
+    void
+    ElasticBody<dim>::solve(StiffnessSolver &solver,
+                            Vector<double>  &displacement) const
+    {
+      solver.initialize(stiffness_);
+      displacement.reinit(n_dofs());
+      solver.solve(displacement, load_);
+      distribute(displacement);
+    }
+
+
+    template <int dim>
+    void
+    ElasticBody<dim>::distribute(Vector<double> &displacement) const
+    {
+      constraints_.distribute(displacement);
+    }
+
+
+    template <int dim>
+    double
+    ElasticBody<dim>::strain_energy(const Vector<double> &displacement) const
+    {
+      const QGauss<dim>                    quadrature(fe_.degree + 1);
+      FEValues<dim>                        fe_values(mapping_,
+                              fe_,
+                              quadrature,
+                              update_gradients | update_JxW_values);
+      const FEValuesExtractors::Vector     u(0);
+      std::vector<SymmetricTensor<2, dim>> eps(quadrature.size());
+      double                               energy = 0;
+      for (const auto &cell : dof_handler_.active_cell_iterators())
+      {
+        fe_values.reinit(cell);
+        fe_values[u].get_function_symmetric_gradients(displacement, eps);
+        const IsotropicMaterial &material = materials_.at(cell->material_id());
+        for (unsigned int q = 0; q < quadrature.size(); ++q)
+          energy += 0.5 * (material.template stress<dim>(eps[q]) * eps[q]) *
+                    fe_values.JxW(q);
+      }
+      return energy;
+    }
+
+
+    template <int dim>
+    double
+    ElasticBody<dim>::external_work(const Vector<double> &displacement) const
+    {
+      // f was assembled with the constraints condensed; rebuild the
+      // unconstrained load cell by cell.
+      FullMatrix<double>                   cell_matrix;
+      Vector<double>                       cell_rhs;
+      std::vector<types::global_dof_index> dof_indices(fe_.n_dofs_per_cell());
+      double                               work = 0;
+      for (const auto &cell : dof_handler_.active_cell_iterators())
+      {
+        cell_system(cell, cell_matrix, cell_rhs);
+        cell->get_dof_indices(dof_indices);
+        for (unsigned int i = 0; i < dof_indices.size(); ++i)
+          work += cell_rhs(i) * displacement(dof_indices[i]);
+      }
+      return work;
+    }
+
+
+    template <int dim>
+    std::map<types::boundary_id, Tensor<1, dim>>
+    ElasticBody<dim>::reaction_forces(const Vector<double> &displacement) const
+    {
+      Vector<double>                       residual(n_dofs());
+      FullMatrix<double>                   cell_matrix;
+      Vector<double>                       cell_rhs;
+      Vector<double>                       local_u(fe_.n_dofs_per_cell());
+      Vector<double>                       local_r(fe_.n_dofs_per_cell());
+      std::vector<types::global_dof_index> dof_indices(fe_.n_dofs_per_cell());
+      for (const auto &cell : dof_handler_.active_cell_iterators())
+      {
+        cell_system(cell, cell_matrix, cell_rhs);
+        cell->get_dof_indices(dof_indices);
+        for (unsigned int i = 0; i < dof_indices.size(); ++i)
+          local_u(i) = displacement(dof_indices[i]);
+        cell_matrix.vmult(local_r, local_u);
+        local_r -= cell_rhs;
+        for (unsigned int i = 0; i < dof_indices.size(); ++i)
+          residual(dof_indices[i]) += local_r(i);
+      }
+
+      // A dof on two supports is counted once, for the first condition that
+      // names it (the one that won in setup()).
+      std::map<types::boundary_id, Tensor<1, dim>> reactions;
+      std::set<types::global_dof_index>            counted;
+      std::vector<types::global_dof_index> face_dofs(fe_.n_dofs_per_face());
+      for (const auto &condition : dirichlet_)
+      {
+        Tensor<1, dim> &reaction = reactions[condition.boundary_id];
+        for (const auto &cell : dof_handler_.active_cell_iterators())
+          if (cell->at_boundary())
+            for (const unsigned int f : cell->face_indices())
+              if (cell->face(f)->at_boundary() &&
+                  cell->face(f)->boundary_id() == condition.boundary_id)
+              {
+                cell->face(f)->get_dof_indices(face_dofs);
+                for (unsigned int i = 0; i < face_dofs.size(); ++i)
+                {
+                  const unsigned int c =
+                    fe_.face_system_to_component_index(i).first;
+                  if (condition.components[c] &&
+                      constraints_.is_constrained(face_dofs[i]) &&
+                      counted.insert(face_dofs[i]).second)
+                    reaction[c] += residual(face_dofs[i]);
+                }
+              }
+      }
+      return reactions;
+    }
+
+
+    template <int dim>
+    Tensor<1, dim>
+    ElasticBody<dim>::applied_force() const
+    {
+      Tensor<1, dim>     force;
+      FullMatrix<double> cell_matrix;
+      Vector<double>     cell_rhs;
+      for (const auto &cell : dof_handler_.active_cell_iterators())
+      {
+        cell_system(cell, cell_matrix, cell_rhs);
+        // Shape functions of one component sum to one, so the resultant is
+        // the sum of the load entries of that component.
+        for (unsigned int i = 0; i < cell_rhs.size(); ++i)
+          force[fe_.system_to_component_index(i).first] += cell_rhs(i);
+      }
+      return force;
+    }
+
+
+    template <int dim>
+    double
+    ElasticBody<dim>::max_displacement(const Vector<double> &displacement) const
+    {
+      // Support points of all components coincide: gather per vertex-like
+      // node through the component-0 dofs of each cell.
+      std::vector<types::global_dof_index> dof_indices(fe_.n_dofs_per_cell());
+      double                               max_norm2 = 0;
+      for (const auto &cell : dof_handler_.active_cell_iterators())
+      {
+        cell->get_dof_indices(dof_indices);
+        const unsigned int n_nodes = fe_.base_element(0).n_dofs_per_cell();
+        for (unsigned int node = 0; node < n_nodes; ++node)
+        {
+          double norm2 = 0;
+          for (unsigned int c = 0; c < dim; ++c)
+          {
+            const double value =
+              displacement(dof_indices[fe_.component_to_system_index(c, node)]);
+            norm2 += value * value;
+          }
+          max_norm2 = std::max(max_norm2, norm2);
+        }
+      }
+      return std::sqrt(max_norm2);
+    }
+
+
+    template <int dim>
+    const std::string &
+    ElasticBody<dim>::name() const
+    {
+      return name_;
+    }
+
+    template <int dim>
+    const Triangulation<dim> &
+    ElasticBody<dim>::triangulation() const
+    {
+      return *triangulation_;
+    }
+
+    template <int dim>
+    const DoFHandler<dim> &
+    ElasticBody<dim>::dof_handler() const
+    {
+      return dof_handler_;
+    }
+
+    template <int dim>
+    const FESystem<dim> &
+    ElasticBody<dim>::fe() const
+    {
+      return fe_;
+    }
+
+    template <int dim>
+    const Mapping<dim> &
+    ElasticBody<dim>::mapping() const
+    {
+      return mapping_;
+    }
+
+    template <int dim>
+    const AffineConstraints<double> &
+    ElasticBody<dim>::constraints() const
+    {
+      return constraints_;
+    }
+
+    template <int dim>
+    const SparseMatrix<double> &
+    ElasticBody<dim>::stiffness_matrix() const
+    {
+      return stiffness_;
+    }
+
+    template <int dim>
+    const Vector<double> &
+    ElasticBody<dim>::load_vector() const
+    {
+      return load_;
+    }
+
+    template <int dim>
+    const IsotropicMaterial &
+    ElasticBody<dim>::material(const types::material_id id) const
+    {
+      const auto it = materials_.find(id);
+      AssertThrow(it != materials_.end(),
+                  ExcMessage(name_ + ": no material with id " +
+                             std::to_string(id) + "."));
+      return it->second;
+    }
+
+    template <int dim>
+    unsigned int
+    ElasticBody<dim>::n_dofs() const
+    {
+      return dof_handler_.n_dofs();
+    }
+
+    template class ElasticBody<2>;
+    template class ElasticBody<3>;
+  } // namespace fem
+} // namespace dualcontact

@@ -1,0 +1,159 @@
+#pragma once
+
+#include <deal.II/base/function.h>
+#include <deal.II/base/tensor.h>
+#include <deal.II/dofs/dof_handler.h>
+#include <deal.II/fe/fe_system.h>
+#include <deal.II/fe/mapping_q.h>
+#include <deal.II/grid/tria.h>
+#include <deal.II/lac/affine_constraints.h>
+#include <deal.II/lac/sparse_matrix.h>
+#include <deal.II/lac/sparsity_pattern.h>
+#include <deal.II/lac/vector.h>
+
+#include <fem/boundary_conditions.h>
+#include <fem/isotropic_material.h>
+
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace dualcontact
+{
+  namespace fem
+  {
+    class StiffnessSolver;
+
+    /**
+     * One linear elastic body: its mesh, finite element space (FE_Q of degree
+     * 1 or 2 in each displacement component, isoparametric mapping), material
+     * regions, boundary conditions and loads, and the assembled stiffness
+     * matrix K and load vector f.
+     *
+     * Dirichlet conditions and hanging nodes are built into K and f through
+     * AffineConstraints (condensed: constrained rows and columns are
+     * decoupled, with the inhomogeneities moved to f), so that K is SPD for a
+     * body that is held, and a solution vector must go through distribute().
+     *
+     * The body knows nothing of contact and of other bodies: a scene holds
+     * several of them, and K of the scene is block diagonal.
+     */
+    template <int dim>
+    class ElasticBody
+    {
+    public:
+      /**
+       * @p name is used in messages ("Body 1").  @p materials maps every
+       * material id present in the mesh to its material.
+       */
+      ElasticBody(const std::string                          &name,
+                  std::shared_ptr<dealii::Triangulation<dim>> triangulation,
+                  const unsigned int                          fe_degree,
+                  const std::map<dealii::types::material_id, IsotropicMaterial>
+                    &materials);
+
+      ~ElasticBody();
+
+      void
+      set_dirichlet_conditions(
+        const std::vector<DirichletCondition<dim>> &conditions);
+      void
+      set_traction_conditions(
+        const std::vector<TractionCondition<dim>> &conditions);
+      /** Body force b [N/m^3] (dim components); none by default. */
+      void
+      set_body_force(std::shared_ptr<const dealii::Function<dim>> body_force);
+
+      /**
+       * Distribute the degrees of freedom, build the constraints and the
+       * sparsity pattern.  Throws if a cell has a material id without a
+       * material, or a boundary condition names a boundary id that the mesh
+       * does not have.
+       */
+      void
+      setup();
+
+      /** Assemble K and f (requires setup()). */
+      void
+      assemble();
+
+      /** Solve K u = f with @p solver (factorizes K) and distribute. */
+      void
+      solve(StiffnessSolver        &solver,
+            dealii::Vector<double> &displacement) const;
+
+      /** Set constrained entries of @p displacement from the constraints. */
+      void
+      distribute(dealii::Vector<double> &displacement) const;
+
+      /** Strain energy 1/2 int eps(u) : C : eps(u) dx [J, J/m in 2D]. */
+      double
+      strain_energy(const dealii::Vector<double> &displacement) const;
+
+      /** Work of the applied loads f(u) = int b.u dx + int t.u ds [J]. */
+      double
+      external_work(const dealii::Vector<double> &displacement) const;
+
+      /**
+       * Reaction force [N, N/m in 2D] on each boundary id carrying a Dirichlet
+       * condition: the sum over its support dofs of the residual
+       * K_full u - f_full of the unconstrained system, i.e. the force that the
+       * support exerts on the body.
+       */
+      std::map<dealii::types::boundary_id, dealii::Tensor<1, dim>>
+      reaction_forces(const dealii::Vector<double> &displacement) const;
+
+      /** Resultant of body forces and tractions [N, N/m in 2D]. */
+      dealii::Tensor<1, dim>
+      applied_force() const;
+
+      /** Largest nodal displacement magnitude [m]. */
+      double
+      max_displacement(const dealii::Vector<double> &displacement) const;
+
+      const std::string &
+      name() const;
+      const dealii::Triangulation<dim> &
+      triangulation() const;
+      const dealii::DoFHandler<dim> &
+      dof_handler() const;
+      const dealii::FESystem<dim> &
+      fe() const;
+      const dealii::Mapping<dim> &
+      mapping() const;
+      const dealii::AffineConstraints<double> &
+      constraints() const;
+      const dealii::SparseMatrix<double> &
+      stiffness_matrix() const;
+      const dealii::Vector<double> &
+      load_vector() const;
+      const IsotropicMaterial &
+      material(const dealii::types::material_id id) const;
+      unsigned int
+      n_dofs() const;
+
+    private:
+      /** Local matrix and load of one cell (both unconstrained). */
+      void
+      cell_system(
+        const typename dealii::DoFHandler<dim>::active_cell_iterator &cell,
+        dealii::FullMatrix<double> &cell_matrix,
+        dealii::Vector<double>     &cell_rhs) const;
+
+      std::string                                             name_;
+      std::shared_ptr<dealii::Triangulation<dim>>             triangulation_;
+      dealii::FESystem<dim>                                   fe_;
+      dealii::MappingQ<dim>                                   mapping_;
+      dealii::DoFHandler<dim>                                 dof_handler_;
+      std::map<dealii::types::material_id, IsotropicMaterial> materials_;
+      std::vector<DirichletCondition<dim>>                    dirichlet_;
+      std::vector<TractionCondition<dim>>                     tractions_;
+      std::shared_ptr<const dealii::Function<dim>>            body_force_;
+      dealii::AffineConstraints<double>                       constraints_;
+      dealii::SparsityPattern                                 sparsity_;
+      dealii::SparseMatrix<double>                            stiffness_;
+      dealii::Vector<double>                                  load_;
+    };
+  } // namespace fem
+} // namespace dualcontact
