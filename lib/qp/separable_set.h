@@ -1,0 +1,322 @@
+/**
+ * @file separable_set.h
+ * The feasible set Omega = Omega_1 x ... x Omega_m of the QP, a product of
+ * small blocks (thesis 1.4.1, 1.6).  Everything an active-set or projection
+ * solver needs from the constraints lives here, so that the solvers never
+ * look at a block's type.
+ */
+#ifndef dualcontact_qp_separable_set_h
+#define dualcontact_qp_separable_set_h
+
+#include <deal.II/base/index_set.h>
+#include <deal.II/base/types.h>
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+namespace dualcontact
+{
+  namespace qp
+  {
+    /// The kinds of blocks a SeparableSet is made of.
+    enum class BlockType
+    {
+      /// x_i >= l
+      bound,
+      /// l <= x_i <= u
+      box,
+      /// ||(x_f, x_{f+1})|| <= r
+      disc,
+      /// (x_f/a)^2 + (x_{f+1}/b)^2 <= 1 in a frame rotated by an angle
+      ellipse,
+      /// ||(x_{f+1}, x_{f+2})|| <= mu x_f  (normal component first)
+      cone
+    };
+
+    /// Number of BlockType values (for arrays indexed by type).
+    constexpr unsigned int n_block_types = 5;
+
+    /// "bound", "box", "disc", "ellipse", "cone".
+    const char *
+    block_type_name(BlockType type);
+
+    /**
+     * Squared norms of the pieces of the gradient, computed in one sweep
+     * without forming any vector (what a solver needs every iteration).
+     */
+    struct GradientNorms
+    {
+      /// ||phi||^2: free gradient (g on free blocks and free unknowns)
+      double free_sq = 0.;
+      /// ||beta||^2: chopped gradient (thesis 1.31)
+      double chopped_sq = 0.;
+      /// ||beta~_alpha||^2: reduced chopped gradient (thesis 1.4.3);
+      /// only filled by reduced_gradient_norms()
+      double reduced_chopped_sq = 0.;
+    };
+
+    /**
+     * A separable convex set, the product of blocks of the BlockType kinds;
+     * unknowns in no block are free (unconstrained).
+     *
+     * Building: call the add_*() functions with GLOBAL indices (every rank
+     * may add all blocks, or only those it owns; blocks that are not locally
+     * owned are dropped), then finalize() with a vector of the layout the
+     * solver will use.  A block must lie entirely on one rank (checked).
+     * After finalize() the set only works on vectors of that layout, and
+     * only on the locally owned entries; scalars (norms, steps, counts) are
+     * reduced over the vector's communicator, so every rank gets the same.
+     *
+     * Active set (thesis 1.30): a block is active when x lies on its
+     * boundary up to the relative tolerance `tol` given to the constructor,
+     * tests that do not depend on the scale of x:
+     * bound/box: x_i - l <= tol |l| (exactly x_i = l when l = 0), likewise
+     * at u, and l = u is always active; disc: r - ||x|| <= tol r; ellipse:
+     * 1 - ||x||_E <= tol (||.||_E the norm whose unit ball is the
+     * ellipse); cone: mu x_f - ||x_t|| <= tol ||x||, the apex when x_f <= 0.
+     * Points produced by project() and feasible_step() pass these tests.
+     *
+     * Gradients (thesis 1.4), for g = Ax - b at a feasible x, n_j the unit
+     * outward normal of an active block (box: -1 at l, +1 at u):
+     *  - free phi:    g on free blocks / free unknowns, 0 on active blocks;
+     *  - chopped beta: 0 on free blocks, g_j - min(n_j'g_j, 0) n_j on active
+     *    blocks, i.e. -g_j with its outward part removed; at a cone apex
+     *    (where the normal is not unique) the exact generalisation
+     *    -P_{T}(-g_j), T the tangent cone (= the cone itself); a box with
+     *    l = u is always active and has beta = 0;
+     *  - projected g^P = phi + beta, zero exactly at the solution;
+     *  - reduced g~_alpha = (x - P(x - alpha g)) / alpha (thesis 1.33);
+     *  - reduced projected g~^P_alpha = phi + beta~_alpha, with beta~_alpha_j
+     *    = g_j on active blocks where n_j'g_j > 0 (the solver would move
+     *    inwards) and (x_j - P_j(x_j - alpha g_j))/alpha where n_j'g_j <= 0.
+     *
+     * Steps: solvers move as x - alpha p (p a gradient-like direction), so
+     * max_feasible_step(x, p) is the largest alpha >= 0 with x - alpha p in
+     * Omega (thesis 2.4, CG half-step), +infinity if there is none.
+     */
+    template <typename VectorType>
+    class SeparableSet
+    {
+    public:
+      using size_type = dealii::types::global_dof_index;
+
+      /// @p active_tolerance: relative tolerance of the active-set test.
+      explicit SeparableSet(const double active_tolerance = 1e-12);
+
+      /// x_first >= lower.
+      void
+      add_bound(size_type first, double lower);
+      /// lower <= x_first <= upper (lower <= upper; lower = upper allowed).
+      void
+      add_box(size_type first, double lower, double upper);
+      /// ||(x_first, x_first+1)|| <= radius (radius >= 0).
+      void
+      add_disc(size_type first, double radius);
+      /// (y_1/a)^2 + (y_2/b)^2 <= 1, y = R(-angle) (x_first, x_first+1):
+      /// semi-axis a along the direction at @p angle (radians) from the
+      /// first unknown's axis, b perpendicular to it.  a, b > 0.
+      void
+      add_ellipse(size_type first, double a, double b, double angle = 0.);
+      /// ||(x_first+1, x_first+2)|| <= mu x_first, mu >= 0.
+      void
+      add_cone(size_type first, double mu);
+
+      /**
+       * Map the blocks to the locally owned part of @p layout; throws if a
+       * block straddles ranks, overlaps another block, or lies outside the
+       * vector.  May be called again for another layout.
+       */
+      void
+      finalize(const VectorType &layout);
+
+      bool
+      is_finalized() const;
+
+      double
+      active_tolerance() const;
+
+      /// Global number of blocks (all types), after finalize().
+      size_type
+      n_blocks() const;
+      /// Global number of blocks of one type, after finalize().
+      size_type
+      n_blocks(BlockType type) const;
+      /// True if every block is a bound or box (what MPRGP accepts).
+      bool
+      only_bounds_and_boxes() const;
+
+      /// x := P_Omega(x), the Euclidean projection, block by block.
+      void
+      project(VectorType &x) const;
+      /// dst := P_Omega(src).
+      void
+      project(const VectorType &src, VectorType &dst) const;
+
+      /// ||x - P(x)||: Euclidean distance of x from Omega.
+      double
+      feasibility_violation(const VectorType &x) const;
+
+      /// Largest alpha >= 0 with x - alpha p in Omega (x feasible);
+      /// +infinity if the ray never leaves Omega.
+      double
+      max_feasible_step(const VectorType &x, const VectorType &p) const;
+
+      /**
+       * x := x - alpha p for 0 <= alpha <= max_feasible_step(x, p) (the CG
+       * half-step), with the blocks that reach their boundary put exactly
+       * on it (rounding would otherwise leave a bound 1e-17 away from l
+       * and the block would not count as active) and any rounding
+       * overshoot projected back.
+       */
+      void
+      feasible_step(VectorType &x, const VectorType &p, double alpha) const;
+
+      /// phi(x), beta(x) for gradient g at x (either output may be the same
+      /// object as @p g only for split into one of them -- do not alias).
+      void
+      split_gradient(const VectorType &x,
+                     const VectorType &g,
+                     VectorType       &free_gradient,
+                     VectorType       &chopped_gradient) const;
+      /// phi(x)
+      void
+      free_gradient(const VectorType &x,
+                    const VectorType &g,
+                    VectorType       &free_gradient) const;
+      /// beta(x)
+      void
+      chopped_gradient(const VectorType &x,
+                       const VectorType &g,
+                       VectorType       &chopped_gradient) const;
+      /// g^P(x) = phi + beta
+      void
+      projected_gradient(const VectorType &x,
+                         const VectorType &g,
+                         VectorType       &projected_gradient) const;
+      /// g~_alpha(x) = (x - P(x - alpha g)) / alpha
+      void
+      reduced_gradient(const VectorType &x,
+                       const VectorType &g,
+                       double            alpha,
+                       VectorType       &reduced_gradient) const;
+      /// g~^P_alpha(x) = phi + beta~_alpha
+      void
+      reduced_projected_gradient(const VectorType &x,
+                                 const VectorType &g,
+                                 double            alpha,
+                                 VectorType       &reduced_projected) const;
+
+      /// ||phi||^2 and ||beta||^2 in one sweep, no vectors written.
+      GradientNorms
+      gradient_norms(const VectorType &x, const VectorType &g) const;
+      /// As gradient_norms(), plus ||beta~_alpha||^2.
+      GradientNorms
+      reduced_gradient_norms(const VectorType &x,
+                             const VectorType &g,
+                             double            alpha) const;
+      /// ||g~_alpha(x)|| without writing a vector.
+      double
+      reduced_gradient_norm(const VectorType &x,
+                            const VectorType &g,
+                            double            alpha) const;
+
+      /// v := 0 on the unknowns of active blocks (keeps v on the free set):
+      /// turns g into phi, or restricts a CG direction to the free set.
+      void
+      zero_active(const VectorType &x, VectorType &v) const;
+
+      /// mask := 1 on unknowns of active blocks, 0 elsewhere.
+      void
+      active_mask(const VectorType &x, VectorType &mask) const;
+
+      /// Global number of active blocks per BlockType (index by
+      /// static_cast<unsigned>(type)).
+      std::array<size_type, n_block_types>
+      n_active_blocks(const VectorType &x) const;
+
+      /// Is the (locally owned) block containing global index @p first
+      /// active at x?  Throws if no local block starts at @p first.
+      bool
+      is_active(const VectorType &x, size_type first) const;
+
+      /**
+       * Complementarity measure sum_j mu_j dist_j: mu_j >= 0 is the
+       * multiplier estimate -n_j'g_j (n_j the outward normal at the point
+       * of the boundary nearest to x_j), dist_j the distance of x_j to that
+       * boundary.  Zero at a KKT point.
+       */
+      double
+      complementarity(const VectorType &x, const VectorType &g) const;
+
+    private:
+      /// One sweep over all blocks computing phi_j, beta_j and (if
+      /// @p reduced) beta~_alpha_j, handed to sink(offset, width, phi,
+      /// beta, reduced_beta); all gradient functions are built on it.
+      template <typename Sink>
+      void
+      sweep(const VectorType &x,
+            const VectorType &g,
+            double            alpha,
+            bool              reduced,
+            Sink             &sink) const;
+
+      GradientNorms
+      norms(const VectorType &x,
+            const VectorType &g,
+            double            alpha,
+            bool              reduced) const;
+
+      struct Bound
+      {
+        size_type global;
+        double    lower;
+      };
+      struct Box
+      {
+        size_type global;
+        double    lower, upper;
+      };
+      struct Disc
+      {
+        size_type global;
+        double    radius;
+      };
+      struct Ellipse
+      {
+        size_type global;
+        double    a, b, cos_angle, sin_angle;
+      };
+      struct Cone
+      {
+        size_type global;
+        double    mu;
+      };
+
+      double tolerance;
+      bool   finalized = false;
+
+      // as added (global indices)
+      std::vector<Bound>   added_bounds;
+      std::vector<Box>     added_boxes;
+      std::vector<Disc>    added_discs;
+      std::vector<Ellipse> added_ellipses;
+      std::vector<Cone>    added_cones;
+
+      // after finalize: locally owned blocks, `global` replaced by the
+      // local offset into v.begin(), stored type by type so that each
+      // operation is a tight loop without dispatch.
+      std::vector<Bound>   bounds;
+      std::vector<Box>     boxes;
+      std::vector<Disc>    discs;
+      std::vector<Ellipse> ellipses;
+      std::vector<Cone>    cones;
+
+      std::array<size_type, n_block_types> global_counts{};
+      dealii::IndexSet                     owned;
+      std::size_t                          local_size = 0;
+    };
+  } // namespace qp
+} // namespace dualcontact
+
+#endif

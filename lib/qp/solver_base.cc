@@ -1,0 +1,222 @@
+#include <qp/kkt_residuals.h>
+#include <qp/power_iteration.h>
+#include <qp/solver_base.h>
+#include <qp/vector_helpers.h>
+
+#include <deal.II/base/exceptions.h>
+
+#include <cmath>
+#include <limits>
+
+namespace dualcontact
+{
+  namespace qp
+  {
+    template <typename VectorType>
+    SolverBase<VectorType>::SolverBase(const std::string      &name,
+                                       const SolverParameters &parameters)
+        : solver_name(name)
+        , prm(parameters)
+    {
+      prm.check();
+    }
+
+
+    template <typename VectorType>
+    const std::string &
+    SolverBase<VectorType>::name() const
+    {
+      return solver_name;
+    }
+
+
+    template <typename VectorType>
+    const SolverParameters &
+    SolverBase<VectorType>::parameters() const
+    {
+      return prm;
+    }
+
+
+    template <typename VectorType>
+    SolverStatistics
+    SolverBase<VectorType>::start(const Problem<VectorType> &problem,
+                                  VectorType                &x)
+    {
+      timer.restart();
+      AssertThrow(static_cast<bool>(problem.hessian),
+                  dealii::ExcMessage(solver_name +
+                                     ": the problem has no Hessian operator"));
+      AssertThrow(x.size() == problem.b.size(),
+                  dealii::ExcMessage(solver_name +
+                                     ": x and b differ in size (" +
+                                     std::to_string(x.size()) + " vs " +
+                                     std::to_string(problem.b.size()) + ")"));
+      AssertThrow(!problem.constraints || problem.constraints->is_finalized(),
+                  dealii::ExcMessage(solver_name +
+                                     ": the constraint set was not finalized"));
+      SolverStatistics stats;
+      stats.solver             = solver_name;
+      stats.stopping_criterion = to_string(prm.stopping_criterion);
+      stats.tolerance          = prm.tolerance;
+      const double norm_b      = problem.b.l2_norm();
+      AssertThrow(std::isfinite(norm_b),
+                  dealii::ExcMessage(solver_name + ": b is not finite"));
+      // b = 0 would make every relative test unreachable; use an absolute
+      // test then.
+      stats.norm_b             = norm_b > 0. ? norm_b : 1.;
+      best_criterion           = std::numeric_limits<double>::infinity();
+      best_criterion_iteration = 0;
+      if (problem.constraints)
+        project(problem, x, stats);
+      return stats;
+    }
+
+
+    template <typename VectorType>
+    void
+    SolverBase<VectorType>::apply_hessian(const Problem<VectorType> &problem,
+                                          VectorType                &dst,
+                                          const VectorType          &src,
+                                          SolverStatistics &stats) const
+    {
+      problem.hessian(dst, src);
+      ++stats.n_hessian_products;
+    }
+
+
+    template <typename VectorType>
+    void
+    SolverBase<VectorType>::project(const Problem<VectorType> &problem,
+                                    VectorType                &x,
+                                    SolverStatistics          &stats) const
+    {
+      if (problem.constraints)
+      {
+        problem.constraints->project(x);
+        ++stats.n_projections;
+      }
+    }
+
+
+    template <typename VectorType>
+    double
+    SolverBase<VectorType>::lambda_max(const Problem<VectorType> &problem,
+                                       SolverStatistics          &stats) const
+    {
+      double value = problem.lambda_max;
+      AssertThrow(value >= 0. && std::isfinite(value),
+                  dealii::ExcMessage(solver_name +
+                                     ": lambda_max must be >= 0 and finite"));
+      if (value == 0.)
+      {
+        const PowerIterationResult r =
+          power_iteration<VectorType>(problem.hessian,
+                                      problem.b,
+                                      prm.power_max_iterations,
+                                      prm.power_tolerance,
+                                      prm.power_safety_factor);
+        stats.n_hessian_products += r.n_products;
+        value = r.lambda_max;
+      }
+      stats.lambda_max = value;
+      stats.alpha_bar  = prm.alpha_bar_factor / value;
+      return value;
+    }
+
+
+    template <typename VectorType>
+    double
+    SolverBase<VectorType>::criterion(const Problem<VectorType> &problem,
+                                      const VectorType          &x,
+                                      const VectorType          &g,
+                                      const SolverStatistics    &stats) const
+    {
+      if (!problem.constraints)
+        return g.l2_norm();
+      const SeparableSet<VectorType> &set = *problem.constraints;
+      switch (prm.stopping_criterion)
+      {
+        case StoppingCriterion::projected:
+        {
+          const GradientNorms n = set.gradient_norms(x, g);
+          return std::sqrt(n.free_sq + n.chopped_sq);
+        }
+        case StoppingCriterion::reduced:
+          Assert(stats.alpha_bar > 0., dealii::ExcInternalError());
+          return set.reduced_gradient_norm(x, g, stats.alpha_bar);
+        case StoppingCriterion::reduced_projected:
+        {
+          Assert(stats.alpha_bar > 0., dealii::ExcInternalError());
+          const GradientNorms n =
+            set.reduced_gradient_norms(x, g, stats.alpha_bar);
+          return std::sqrt(n.free_sq + n.reduced_chopped_sq);
+        }
+      }
+      return 0.;
+    }
+
+
+    template <typename VectorType>
+    bool
+    SolverBase<VectorType>::check_stop(SolverStatistics &stats,
+                                       const double      value)
+    {
+      const double relative = value / stats.norm_b;
+      stats.history.push_back(relative);
+      stats.final_criterion = relative;
+      if (!std::isfinite(relative))
+      {
+        stats.reason = ConvergenceReason::non_finite;
+        stats.message =
+          "the stopping criterion became " + std::to_string(relative);
+        return true;
+      }
+      if (relative <= prm.tolerance)
+      {
+        stats.reason = ConvergenceReason::converged;
+        return true;
+      }
+      if (relative < best_criterion)
+      {
+        best_criterion           = relative;
+        best_criterion_iteration = stats.iterations;
+      }
+      if (stats.iterations >= prm.max_iterations)
+      {
+        stats.reason = ConvergenceReason::max_iterations;
+        stats.message =
+          "iteration limit " + std::to_string(prm.max_iterations) + " reached";
+        return true;
+      }
+      if (prm.stagnation_window > 0 &&
+          stats.iterations - best_criterion_iteration >= prm.stagnation_window)
+      {
+        stats.reason  = ConvergenceReason::stagnation;
+        stats.message = "no new minimum of the criterion for " +
+                        std::to_string(prm.stagnation_window) +
+                        " iterations (best " + std::to_string(best_criterion) +
+                        ")";
+        return true;
+      }
+      return false;
+    }
+
+
+    template <typename VectorType>
+    void
+    SolverBase<VectorType>::finish(const Problem<VectorType> &problem,
+                                   const VectorType          &x,
+                                   SolverStatistics          &stats)
+    {
+      // time first: the KKT report costs a product that is not the
+      // solver's work
+      stats.wall_time = timer.wall_time();
+      stats.kkt       = compute_kkt_residuals(problem, x);
+    }
+
+
+    template class SolverBase<dealii::Vector<double>>;
+    template class SolverBase<dealii::TrilinosWrappers::MPI::Vector>;
+  } // namespace qp
+} // namespace dualcontact

@@ -1,0 +1,121 @@
+/**
+ * @file solver_base.h
+ * Common base of all QP solvers: the solve() interface, and the
+ * bookkeeping every solver shares (counted Hessian products, lambda_max,
+ * the stopping criterion, stagnation / non-finite detection, final KKT
+ * residuals), so that each algorithm's file contains only the algorithm.
+ */
+#ifndef dualcontact_qp_solver_base_h
+#define dualcontact_qp_solver_base_h
+
+#include <deal.II/base/timer.h>
+
+#include <qp/problem.h>
+#include <qp/solver_parameters.h>
+#include <qp/solver_statistics.h>
+
+#include <string>
+
+namespace dualcontact
+{
+  namespace qp
+  {
+    /**
+     * Base class of the QP solvers.
+     *
+     * A derived solve() typically runs
+     * @code
+     *   SolverStatistics stats = start(problem, x);   // projects x, timer
+     *   ...  apply_hessian(problem, dst, src, stats);  // counted
+     *   ...  if (check_stop(stats, criterion_norm)) break;
+     *   finish(problem, x, stats);                     // KKT, time
+     *   return stats;
+     * @endcode
+     * A solver refuses (AssertThrow) problems it cannot handle at the start
+     * of solve().
+     */
+    template <typename VectorType>
+    class SolverBase
+    {
+    public:
+      SolverBase(const std::string &name, const SolverParameters &parameters);
+      virtual ~SolverBase() = default;
+
+      /**
+       * Solve @p problem.  @p x: in the initial guess (projected onto
+       * Omega first if infeasible), out the last iterate.  Never throws
+       * for a failed solve: the reason is in the returned statistics;
+       * throws only for invalid input.
+       */
+      virtual SolverStatistics
+      solve(const Problem<VectorType> &problem, VectorType &x) = 0;
+
+      const std::string &
+      name() const;
+      const SolverParameters &
+      parameters() const;
+
+    protected:
+      /// Initialise the statistics (name, tolerance, ||b||), check the
+      /// problem's consistency, project @p x onto Omega, start the timer.
+      SolverStatistics
+      start(const Problem<VectorType> &problem, VectorType &x);
+
+      /// dst := A src, counted in @p stats.
+      void
+      apply_hessian(const Problem<VectorType> &problem,
+                    VectorType                &dst,
+                    const VectorType          &src,
+                    SolverStatistics          &stats) const;
+
+      /// x := P(x), counted in @p stats (no-op without constraints).
+      void
+      project(const Problem<VectorType> &problem,
+              VectorType                &x,
+              SolverStatistics          &stats) const;
+
+      /// lambda_max from the problem or by power iteration (counted);
+      /// sets stats.lambda_max and stats.alpha_bar = factor / lambda_max.
+      double
+      lambda_max(const Problem<VectorType> &problem,
+                 SolverStatistics          &stats) const;
+
+      /// Absolute value of the selected criterion at x with gradient g
+      /// (alpha = stats.alpha_bar for the reduced ones; needs lambda_max()
+      /// to have been called for those).
+      double
+      criterion(const Problem<VectorType> &problem,
+                const VectorType          &x,
+                const VectorType          &g,
+                const SolverStatistics    &stats) const;
+
+      /**
+       * Record the absolute criterion value @p value (divided by ||b||)
+       * and decide whether to stop.  Returns true and sets stats.reason
+       * when: the value is not finite (non_finite), it is <= tol
+       * (converged), stats.iterations >= max_iterations (max_iterations),
+       * or no new minimum was reached for stagnation_window iterations
+       * (stagnation).  Call once per iteration, after incrementing
+       * stats.iterations, and once before the first iteration.
+       */
+      bool
+      check_stop(SolverStatistics &stats, double value);
+
+      /// Fill KKT residuals and wall time.
+      void
+      finish(const Problem<VectorType> &problem,
+             const VectorType          &x,
+             SolverStatistics          &stats);
+
+      const std::string      solver_name;
+      const SolverParameters prm;
+
+    private:
+      dealii::Timer timer;
+      double        best_criterion           = 0.;
+      unsigned int  best_criterion_iteration = 0;
+    };
+  } // namespace qp
+} // namespace dualcontact
+
+#endif

@@ -1,0 +1,74 @@
+#include <qp/solver_factory.h>
+#include <qp/vector_helpers.h>
+
+#include <deal.II/base/exceptions.h>
+
+// ---- REGISTRATION POINT (1 of 2): include the solver headers here. ----
+// ---- end of registration point 1 ----
+
+namespace dualcontact
+{
+  namespace qp
+  {
+    std::string
+    solver_names()
+    {
+      // The names of the `Solver` selection, implemented or not yet: the
+      // .prm pattern must not change when a solver is added.
+      return "mprgp|mpgp|mpgp-bb|mwpgp|spg-qp|pbbf|apgd";
+    }
+
+
+    namespace
+    {
+      template <typename VectorType>
+      std::unique_ptr<SolverBase<VectorType>>
+      create_solver(const std::string &name, const SolverParameters &prm)
+      {
+        (void)prm;
+        // ---- REGISTRATION POINT (2 of 2): one branch per solver, e.g.
+        //   if (name == "mprgp")
+        //     return std::make_unique<MPRGP<VectorType>>(prm);
+        // ---- end of registration point 2 ----
+        (void)name;
+        return nullptr;
+      }
+    } // namespace
+
+
+    template <typename VectorType>
+    std::unique_ptr<SolverBase<VectorType>>
+    create(const std::string &name, const SolverParameters &parameters)
+    {
+      parameters.check();
+      auto solver = create_solver<VectorType>(name, parameters);
+      AssertThrow(solver != nullptr,
+                  dealii::ExcMessage("Unknown or unavailable QP solver '" +
+                                     name +
+                                     "' (`Solver' in `subsection QP "
+                                     "solver'); valid names: " +
+                                     solver_names() + "."));
+      return solver;
+    }
+
+
+    template <typename VectorType>
+    std::unique_ptr<SolverBase<VectorType>>
+    create(const SolverParameters &parameters)
+    {
+      return create<VectorType>(parameters.solver, parameters);
+    }
+
+
+    template std::unique_ptr<SolverBase<dealii::Vector<double>>>
+    create<dealii::Vector<double>>(const std::string &,
+                                   const SolverParameters &);
+    template std::unique_ptr<SolverBase<dealii::Vector<double>>>
+    create<dealii::Vector<double>>(const SolverParameters &);
+    template std::unique_ptr<SolverBase<dealii::TrilinosWrappers::MPI::Vector>>
+    create<dealii::TrilinosWrappers::MPI::Vector>(const std::string &,
+                                                  const SolverParameters &);
+    template std::unique_ptr<SolverBase<dealii::TrilinosWrappers::MPI::Vector>>
+    create<dealii::TrilinosWrappers::MPI::Vector>(const SolverParameters &);
+  } // namespace qp
+} // namespace dualcontact

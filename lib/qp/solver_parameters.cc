@@ -1,0 +1,223 @@
+#include <qp/solver_factory.h>
+#include <qp/solver_parameters.h>
+
+#include <deal.II/base/exceptions.h>
+
+namespace dualcontact
+{
+  namespace qp
+  {
+    std::string
+    to_string(const StoppingCriterion criterion)
+    {
+      switch (criterion)
+      {
+        case StoppingCriterion::projected:
+          return "projected";
+        case StoppingCriterion::reduced:
+          return "reduced";
+        case StoppingCriterion::reduced_projected:
+          return "reduced_projected";
+      }
+      Assert(false, dealii::ExcInternalError());
+      return "";
+    }
+
+
+    StoppingCriterion
+    parse_stopping_criterion(const std::string &name)
+    {
+      if (name == "projected")
+        return StoppingCriterion::projected;
+      if (name == "reduced")
+        return StoppingCriterion::reduced;
+      if (name == "reduced_projected" || name == "reduced-projected")
+        return StoppingCriterion::reduced_projected;
+      AssertThrow(false,
+                  dealii::ExcMessage(
+                    "Unknown stopping criterion '" + name +
+                    "': expected projected, reduced or reduced-projected."));
+      return StoppingCriterion::projected;
+    }
+
+
+    void
+    SolverParameters::declare_parameters(dealii::ParameterHandler &prm)
+    {
+      using dealii::Patterns::Bool;
+      using dealii::Patterns::Double;
+      using dealii::Patterns::Integer;
+      using dealii::Patterns::Selection;
+      const SolverParameters d;
+
+      prm.enter_subsection("QP solver");
+      prm.declare_entry("Solver",
+                        d.solver,
+                        Selection(solver_names()),
+                        "Algorithm for the QP with separable constraints "
+                        "(thesis chapter 2). mprgp: bound/box constraints "
+                        "only (with the SPS solvability test of MPRGPS); "
+                        "mpgp, mpgp-bb, mwpgp: any separable set; spg-qp, "
+                        "pbbf, apgd: projected-gradient methods. "
+                        "Unit: none.");
+      prm.declare_entry("Tolerance",
+                        "1e-8",
+                        Double(0., 1.),
+                        "Stop when the stopping criterion's gradient norm is "
+                        "at most Tolerance * ||b||. Unit: none (relative).");
+      prm.declare_entry("Stopping criterion",
+                        "projected",
+                        Selection("projected|reduced|reduced-projected"),
+                        "Gradient whose norm is tested (thesis 1.4): "
+                        "projected g^P, reduced g~_alpha or reduced "
+                        "projected g~^P_alpha with alpha = alpha_bar. The "
+                        "reduced ones suit strongly curved sets (ellipses). "
+                        "Unit: none.");
+      prm.declare_entry("Maximum iterations",
+                        std::to_string(d.max_iterations),
+                        Integer(1),
+                        "Iteration limit (all kinds of steps together); "
+                        "reaching it is reported as not converged. "
+                        "Unit: iterations.");
+      prm.declare_entry("Stagnation window",
+                        std::to_string(d.stagnation_window),
+                        Integer(0),
+                        "Report stagnation when the criterion has not "
+                        "reached a new minimum for this many iterations "
+                        "(0: never). Unit: iterations.");
+      prm.declare_entry("Alpha bar factor",
+                        "1.95",
+                        Double(0., 2.),
+                        "Fixed projection step alpha_bar = factor / "
+                        "lambda_max (table 14: 1.95; convergence theory "
+                        "needs (0, 2)). Unit: none.");
+      prm.declare_entry("Gamma",
+                        "1",
+                        Double(0.),
+                        "Proportioning constant Gamma > 0 of MPRGP, MPGP, "
+                        "MPGP-BB: a CG step is taken while ||beta|| <= "
+                        "Gamma ||phi|| (table 14: 1). Unit: none.");
+      prm.declare_entry("MwPGP delta",
+                        "0.25",
+                        Double(0., 0.5),
+                        "delta in (0, 1/2) of the MwPGP proportioning test "
+                        "2 delta ||g~^P||^2 <= ||phi||^2. Unit: none.");
+      prm.declare_entry("PBBf K",
+                        "10",
+                        Integer(1),
+                        "PBBf: number of non-monotone Barzilai-Borwein "
+                        "steps before the fall-back test (table 14: 10). "
+                        "Unit: iterations.");
+      prm.declare_entry("SPG-QP m",
+                        "10",
+                        Integer(1),
+                        "SPG-QP: memory of the non-monotone line search "
+                        "(table 14: 10). Unit: iterations.");
+      prm.declare_entry("SPG-QP gamma",
+                        "0.1",
+                        Double(0., 1.),
+                        "SPG-QP: sufficient-decrease parameter gamma in "
+                        "(0, 1) (table 14: 0.1). Unit: none.");
+      prm.declare_entry("SPG-QP sigma2",
+                        "0.9999",
+                        Double(0., 1.),
+                        "SPG-QP: safeguard sigma_2 in (0, 1) of the step "
+                        "interval (table 14: 0.9999). Unit: none.");
+      prm.declare_entry("SPG-QP alpha0 factor",
+                        "1.95",
+                        Double(0.),
+                        "SPG-QP: first step alpha_0 = factor / lambda_max "
+                        "(table 14: alpha_0 = alpha_bar). Unit: none.");
+      prm.declare_entry("APGD L factor",
+                        "1",
+                        Double(0.),
+                        "APGD: Lipschitz constant L = factor * lambda_max "
+                        "(table 14: 1). Unit: none.");
+      prm.declare_entry("Power iteration safety factor",
+                        "1.05",
+                        Double(1.),
+                        "lambda_max estimated by power iteration is "
+                        "multiplied by this (>= 1) so that alpha_bar stays "
+                        "below 2 / lambda_max. Unit: none.");
+      prm.declare_entry("Power iteration maximum iterations",
+                        "100",
+                        Integer(1),
+                        "Iteration limit of the power iteration for "
+                        "lambda_max. Unit: iterations.");
+      prm.declare_entry("Power iteration tolerance",
+                        "1e-4",
+                        Double(0., 1.),
+                        "Power iteration stops when the relative change of "
+                        "the estimate is below this. Unit: none.");
+      prm.leave_subsection();
+    }
+
+
+    void
+    SolverParameters::parse_parameters(dealii::ParameterHandler &prm)
+    {
+      prm.enter_subsection("QP solver");
+      solver    = prm.get("Solver");
+      tolerance = prm.get_double("Tolerance");
+      stopping_criterion =
+        parse_stopping_criterion(prm.get("Stopping criterion"));
+      max_iterations      = prm.get_integer("Maximum iterations");
+      stagnation_window   = prm.get_integer("Stagnation window");
+      alpha_bar_factor    = prm.get_double("Alpha bar factor");
+      gamma               = prm.get_double("Gamma");
+      mwpgp_delta         = prm.get_double("MwPGP delta");
+      pbbf_k              = prm.get_integer("PBBf K");
+      spg_m               = prm.get_integer("SPG-QP m");
+      spg_gamma           = prm.get_double("SPG-QP gamma");
+      spg_sigma2          = prm.get_double("SPG-QP sigma2");
+      spg_alpha0_factor   = prm.get_double("SPG-QP alpha0 factor");
+      apgd_l_factor       = prm.get_double("APGD L factor");
+      power_safety_factor = prm.get_double("Power iteration safety factor");
+      power_max_iterations =
+        prm.get_integer("Power iteration maximum iterations");
+      power_tolerance = prm.get_double("Power iteration tolerance");
+      prm.leave_subsection();
+      check();
+    }
+
+
+    void
+    SolverParameters::check() const
+    {
+      const auto fail = [](const std::string &name, const std::string &why)
+      {
+        AssertThrow(false,
+                    dealii::ExcMessage("Parameter `" + name +
+                                       "' in `subsection QP solver': " + why));
+      };
+      if (!(tolerance > 0.))
+        fail("Tolerance", "must be positive.");
+      if (max_iterations < 1)
+        fail("Maximum iterations", "must be at least 1.");
+      if (!(alpha_bar_factor > 0. && alpha_bar_factor < 2.))
+        fail("Alpha bar factor", "must lie in (0, 2).");
+      if (!(gamma > 0.))
+        fail("Gamma", "must be positive.");
+      if (!(mwpgp_delta > 0. && mwpgp_delta < 0.5))
+        fail("MwPGP delta", "must lie in (0, 1/2).");
+      if (pbbf_k < 1)
+        fail("PBBf K", "must be at least 1.");
+      if (spg_m < 1)
+        fail("SPG-QP m", "must be at least 1.");
+      if (!(spg_gamma > 0. && spg_gamma < 1.))
+        fail("SPG-QP gamma", "must lie in (0, 1).");
+      if (!(spg_sigma2 > 0. && spg_sigma2 < 1.))
+        fail("SPG-QP sigma2", "must lie in (0, 1).");
+      if (!(spg_alpha0_factor > 0.))
+        fail("SPG-QP alpha0 factor", "must be positive.");
+      if (!(apgd_l_factor > 0.))
+        fail("APGD L factor", "must be positive.");
+      if (!(power_safety_factor >= 1.))
+        fail("Power iteration safety factor", "must be at least 1.");
+      if (power_max_iterations < 1)
+        fail("Power iteration maximum iterations", "must be at least 1.");
+      if (!(power_tolerance > 0.))
+        fail("Power iteration tolerance", "must be positive.");
+    }
+  } // namespace qp
+} // namespace dualcontact

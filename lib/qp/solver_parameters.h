@@ -1,0 +1,98 @@
+/**
+ * @file solver_parameters.h
+ * Every parameter of every QP solver, with the defaults of the thesis'
+ * table 14, declared in the .prm subsection `QP solver`.  One flat struct
+ * because the factory hands the same parameters to whichever solver is
+ * selected, and SMALSE-M passes them on to its inner solver.
+ */
+#ifndef dualcontact_qp_solver_parameters_h
+#define dualcontact_qp_solver_parameters_h
+
+#include <deal.II/base/parameter_handler.h>
+
+#include <string>
+
+namespace dualcontact
+{
+  namespace qp
+  {
+    /// Which gradient norm is compared with tol * ||b|| (thesis 1.4).
+    enum class StoppingCriterion
+    {
+      /// ||g^P(x)||
+      projected,
+      /// ||g~_alpha(x)||, alpha = alpha_bar
+      reduced,
+      /// ||g~^P_alpha(x)||, alpha = alpha_bar
+      reduced_projected
+    };
+
+    /// "projected", "reduced", "reduced_projected".
+    std::string
+    to_string(StoppingCriterion criterion);
+    /// Accepts the names above and "reduced-projected"; throws otherwise.
+    StoppingCriterion
+    parse_stopping_criterion(const std::string &name);
+
+    struct SolverParameters
+    {
+      /// mprgp | mpgp | mpgp-bb | mwpgp | spg-qp | pbbf | apgd
+      std::string solver = "mprgp";
+      /// relative tolerance: stop when criterion <= tolerance * ||b||
+      double            tolerance          = 1e-8;
+      StoppingCriterion stopping_criterion = StoppingCriterion::projected;
+      /// iteration limit (all kinds together); table 14: 1e4
+      unsigned int max_iterations = 10000;
+      /// stop with `stagnation` if the criterion has not reached a new
+      /// minimum for this many iterations (0 = never)
+      unsigned int stagnation_window = 1000;
+
+      /// alpha_bar = alpha_bar_factor / lambda_max (table 14: 1.95); the
+      /// fixed step of gradient projections/expansions
+      double alpha_bar_factor = 1.95;
+      /// Gamma > 0 of the proportioning test ||beta|| <= Gamma ||phi||
+      /// (MPRGP, MPGP, MPGP-BB; table 14: 1)
+      double gamma = 1.;
+      /// delta in (0, 1/2) of the MwPGP proportioning test
+      /// 2 delta ||g~^P||^2 <= ||phi||^2
+      double mwpgp_delta = 0.25;
+
+      /// PBBf: fall-back after K non-monotone steps (table 14: 10)
+      unsigned int pbbf_k = 10;
+      /// SPG-QP: memory m of the non-monotone line search (table 14: 10)
+      unsigned int spg_m = 10;
+      /// SPG-QP: sufficient-decrease gamma (table 14: 0.1)
+      double spg_gamma = 0.1;
+      /// SPG-QP: safeguard sigma_2 (table 14: 0.9999)
+      double spg_sigma2 = 0.9999;
+      /// SPG-QP: alpha_0 = spg_alpha0_factor / lambda_max (table 14:
+      /// alpha_0 = alpha_bar, i.e. 1.95)
+      double spg_alpha0_factor = 1.95;
+      /// APGD: L = apgd_l_factor * lambda_max (table 14: 1)
+      double apgd_l_factor = 1.;
+
+      /// power iteration: returned estimate is safety_factor * estimate,
+      /// so that alpha_bar stays below 2/lambda_max when it converged
+      /// slowly from below
+      double power_safety_factor = 1.05;
+      /// power iteration: iteration limit
+      unsigned int power_max_iterations = 100;
+      /// power iteration: stop when the relative change of the estimate
+      /// is below this
+      double power_tolerance = 1e-4;
+
+      /// Declare all of the above in subsection `QP solver` of @p prm.
+      static void
+      declare_parameters(dealii::ParameterHandler &prm);
+      /// Read them back (enters and leaves the subsection itself);
+      /// checks ranges and throws naming the parameter.
+      void
+      parse_parameters(dealii::ParameterHandler &prm);
+      /// Throws (ExcMessage naming the parameter) on out-of-range values.
+      void
+      check() const;
+    };
+  } // namespace qp
+} // namespace dualcontact
+
+#endif

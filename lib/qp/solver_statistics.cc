@@ -1,0 +1,109 @@
+#include <qp/solver_statistics.h>
+
+#include <deal.II/base/exceptions.h>
+
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <sstream>
+
+namespace dualcontact
+{
+  namespace qp
+  {
+    std::string
+    to_string(const ConvergenceReason reason)
+    {
+      switch (reason)
+      {
+        case ConvergenceReason::converged:
+          return "converged";
+        case ConvergenceReason::max_iterations:
+          return "max_iterations";
+        case ConvergenceReason::stagnation:
+          return "stagnation";
+        case ConvergenceReason::breakdown:
+          return "breakdown";
+        case ConvergenceReason::non_finite:
+          return "non_finite";
+        case ConvergenceReason::unbounded:
+          return "unbounded";
+      }
+      Assert(false, dealii::ExcInternalError());
+      return "unknown";
+    }
+
+
+    bool
+    SolverStatistics::converged() const
+    {
+      return reason == ConvergenceReason::converged &&
+             std::isfinite(final_criterion) && final_criterion <= tolerance;
+    }
+
+
+    namespace
+    {
+      // JSON has no Inf/NaN: write them as strings so nothing is lost.
+      nlohmann::json
+      number(const double value)
+      {
+        if (std::isfinite(value))
+          return value;
+        std::ostringstream s;
+        s << value;
+        return s.str();
+      }
+    } // namespace
+
+
+    void
+    SolverStatistics::write_json(std::ostream &out,
+                                 const bool    with_history) const
+    {
+      nlohmann::json j;
+      j["solver"]             = solver;
+      j["stopping_criterion"] = stopping_criterion;
+      j["tolerance"]          = number(tolerance);
+      j["reason"]             = to_string(reason);
+      j["converged"]          = converged();
+      if (!message.empty())
+        j["message"] = message;
+      j["iterations"]         = iterations;
+      j["iterations_by_kind"] = {{"cg", n_cg},
+                                 {"half_step", n_half_steps},
+                                 {"expansion", n_expansions},
+                                 {"proportioning", n_proportioning},
+                                 {"bb", n_bb},
+                                 {"fall_back", n_fall_back},
+                                 {"outer", n_outer}};
+      j["hessian_products"]   = n_hessian_products;
+      j["projections"]        = n_projections;
+      j["wall_time"]          = number(wall_time);
+      j["norm_b"]             = number(norm_b);
+      j["lambda_max"]         = number(lambda_max);
+      j["alpha_bar"]          = number(alpha_bar);
+      j["final_criterion"]    = number(final_criterion);
+      j["kkt"]                = {{"stationarity", number(kkt.stationarity)},
+                                 {"feasibility", number(kkt.feasibility)},
+                                 {"complementarity", number(kkt.complementarity)}};
+      if (with_history)
+      {
+        nlohmann::json h = nlohmann::json::array();
+        for (const double v : history)
+          h.push_back(number(v));
+        j["history"] = h;
+      }
+      out << j.dump(2);
+    }
+
+
+    std::string
+    SolverStatistics::to_json(const bool with_history) const
+    {
+      std::ostringstream s;
+      write_json(s, with_history);
+      return s.str();
+    }
+  } // namespace qp
+} // namespace dualcontact

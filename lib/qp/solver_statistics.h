@@ -1,0 +1,128 @@
+/**
+ * @file solver_statistics.h
+ * The one record every QP solver fills.  All solvers report through the same
+ * structure so that the driver, qpsolve and the benchmarks can compare them
+ * without knowing which algorithm ran.
+ */
+#ifndef dualcontact_qp_solver_statistics_h
+#define dualcontact_qp_solver_statistics_h
+
+#include <ostream>
+#include <string>
+#include <vector>
+
+namespace dualcontact
+{
+  namespace qp
+  {
+    /**
+     * Why a solver stopped.  Only `converged` means that the stopping
+     * criterion was met; everything else is a failure and must be reported as
+     * such.
+     */
+    enum class ConvergenceReason
+    {
+      /// the chosen criterion fell below tol * ||b||
+      converged,
+      /// the iteration limit was reached first
+      max_iterations,
+      /// the criterion has not improved for a long time (see SolverParameters)
+      stagnation,
+      /// a quantity the algorithm divides by vanished or changed sign
+      /// (e.g. p'Ap <= 0 with an SPD Hessian)
+      breakdown,
+      /// NaN or Inf in the iterate, gradient or criterion
+      non_finite,
+      /// the (SPS) problem has no solution: the cost is unbounded below on
+      /// the feasible set (MPRGPS solvability test, thesis 2.4.5)
+      unbounded
+    };
+
+    /// Lower-case name used in JSON and console output ("max_iterations").
+    std::string
+    to_string(ConvergenceReason reason);
+
+    /**
+     * Final KKT residuals, absolute (divide by SolverStatistics::norm_b for
+     * relative values).  See compute_kkt_residuals() for the definitions.
+     */
+    struct KKTResiduals
+    {
+      /// ||g^P(x)||: the gradient minus the best non-negative combination of
+      /// outward normals of active blocks (and the equality part, if any)
+      double stationarity = 0.;
+      /// ||x - P(x)|| (plus ||Bx - c|| with equality constraints)
+      double feasibility = 0.;
+      /// sum over blocks of (multiplier estimate) * (distance to the block's
+      /// boundary); zero at a KKT point
+      double complementarity = 0.;
+    };
+
+    /**
+     * Work counts, timing and outcome of one solve.
+     *
+     * Iterations are counted once each in `iterations`, and once by kind:
+     * a CG step, a feasible half-step (CG step cut at the boundary followed
+     * by a fixed-step projection), an expansion / gradient projection step,
+     * a proportioning step, a Barzilai-Borwein step, a fall-back step.  A
+     * solver that has no notion of a kind leaves it at zero.
+     */
+    struct SolverStatistics
+    {
+      /// name the solver was created with ("mprgp", ...)
+      std::string solver;
+      /// "projected", "reduced" or "reduced_projected"
+      std::string stopping_criterion;
+      /// relative tolerance the criterion was compared with
+      double tolerance = 0.;
+
+      ConvergenceReason reason = ConvergenceReason::max_iterations;
+      /// free text with details of a failure (empty on success)
+      std::string message;
+
+      unsigned int iterations      = 0;
+      unsigned int n_cg            = 0;
+      unsigned int n_half_steps    = 0;
+      unsigned int n_expansions    = 0;
+      unsigned int n_proportioning = 0;
+      unsigned int n_bb            = 0;
+      unsigned int n_fall_back     = 0;
+      /// outer iterations of an outer loop (SMALSE-M), 0 otherwise
+      unsigned int  n_outer            = 0;
+      unsigned long n_hessian_products = 0;
+      unsigned long n_projections      = 0;
+
+      /// wall time of solve() in seconds
+      double wall_time = 0.;
+      /// ||b|| the relative criterion refers to (1 if b = 0)
+      double norm_b = 0.;
+      /// lambda_max used for the step lengths (0 if none was needed)
+      double lambda_max = 0.;
+      /// fixed projection step length alpha_bar used (0 if none)
+      double alpha_bar = 0.;
+
+      /// relative criterion ||g_*|| / ||b|| at every checked iterate,
+      /// history[0] at the initial guess
+      std::vector<double> history;
+      /// last relative criterion value
+      double final_criterion = 0.;
+      /// absolute KKT residuals at the returned x
+      KKTResiduals kkt;
+
+      /// True only if the reason is `converged` AND the final criterion is
+      /// at most the tolerance: a record cannot claim success otherwise.
+      bool
+      converged() const;
+
+      /// Write the record (without history unless @p with_history) as JSON.
+      void
+      write_json(std::ostream &out, const bool with_history = true) const;
+
+      /// The record as a JSON string.
+      std::string
+      to_json(const bool with_history = true) const;
+    };
+  } // namespace qp
+} // namespace dualcontact
+
+#endif

@@ -1,0 +1,59 @@
+/**
+ * @file vector_helpers.h
+ * The few things the QP library needs to know about a vector type beyond
+ * its arithmetic: its communicator and MPI reductions of local partial
+ * results.  Overloads, not a traits class, so adding a vector type is adding
+ * one function.
+ */
+#ifndef dualcontact_qp_vector_helpers_h
+#define dualcontact_qp_vector_helpers_h
+
+#include <deal.II/base/mpi.h>
+#include <deal.II/lac/trilinos_vector.h>
+#include <deal.II/lac/vector.h>
+
+namespace dualcontact
+{
+  namespace qp
+  {
+    namespace internal
+    {
+      /// A serial vector lives on this process only.
+      inline MPI_Comm
+      communicator(const dealii::Vector<double> &)
+      {
+        return MPI_COMM_SELF;
+      }
+
+      inline MPI_Comm
+      communicator(const dealii::TrilinosWrappers::MPI::Vector &v)
+      {
+        return v.get_mpi_communicator();
+      }
+
+      /// Sum of a local value over the vector's communicator.
+      template <typename VectorType>
+      inline double
+      sum(const double local, const VectorType &v)
+      {
+        return dealii::Utilities::MPI::sum(local, communicator(v));
+      }
+
+      template <typename VectorType>
+      inline double
+      min(const double local, const VectorType &v)
+      {
+        return dealii::Utilities::MPI::min(local, communicator(v));
+      }
+
+      template <typename VectorType>
+      inline double
+      max(const double local, const VectorType &v)
+      {
+        return dealii::Utilities::MPI::max(local, communicator(v));
+      }
+    } // namespace internal
+  }   // namespace qp
+} // namespace dualcontact
+
+#endif
