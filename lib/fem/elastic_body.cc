@@ -142,55 +142,81 @@ namespace dualcontact
 
 
     template <int dim>
+    struct ElasticBody<dim>::CellScratch
+    {
+      CellScratch(const Mapping<dim> &mapping, const FiniteElement<dim> &fe)
+          : quadrature(fe.degree + 1)
+          , face_quadrature(fe.degree + 1)
+          , fe_values(mapping,
+                      fe,
+                      quadrature,
+                      update_gradients | update_values |
+                        update_quadrature_points | update_JxW_values)
+          , fe_face_values(mapping,
+                           fe,
+                           face_quadrature,
+                           update_values | update_quadrature_points |
+                             update_JxW_values)
+          , gradients(fe.n_dofs_per_cell())
+          , component(fe.n_dofs_per_cell())
+          , force(dim)
+      {
+        for (unsigned int i = 0; i < fe.n_dofs_per_cell(); ++i)
+          component[i] = fe.system_to_component_index(i).first;
+      }
+
+      const QGauss<dim>           quadrature;
+      const QGauss<dim - 1>       face_quadrature;
+      FEValues<dim>               fe_values;
+      FEFaceValues<dim>           fe_face_values;
+      std::vector<Tensor<1, dim>> gradients;
+      std::vector<unsigned int>   component;
+      Vector<double>              force;
+    };
+
+
+    template <int dim>
     void
     ElasticBody<dim>::cell_system(
       const typename DoFHandler<dim>::active_cell_iterator &cell,
+      CellScratch                                          &scratch,
       FullMatrix<double>                                   &cell_matrix,
       Vector<double>                                       &cell_rhs) const
     {
-      const QGauss<dim>     quadrature(fe_.degree + 1);
-      const QGauss<dim - 1> face_quadrature(fe_.degree + 1);
-      FEValues<dim>         fe_values(mapping_,
-                              fe_,
-                              quadrature,
-                              update_gradients | update_values |
-                                update_quadrature_points | update_JxW_values);
-      FEFaceValues<dim>     fe_face_values(mapping_,
-                                       fe_,
-                                       face_quadrature,
-                                       update_values |
-                                         update_quadrature_points |
-                                         update_JxW_values);
-      const unsigned int    dofs_per_cell = fe_.n_dofs_per_cell();
+      const unsigned int dofs_per_cell = fe_.n_dofs_per_cell();
       cell_matrix.reinit(dofs_per_cell, dofs_per_cell);
       cell_rhs.reinit(dofs_per_cell);
-
+      FEValues<dim> &fe_values = scratch.fe_values;
       fe_values.reinit(cell);
-      const FEValuesExtractors::Vector displacement(0);
-      const SymmetricTensor<4, dim>    C =
-        materials_.at(cell->material_id()).template stiffness_tensor<dim>();
+      const IsotropicMaterial &material = materials_.at(cell->material_id());
+      const double             lambda   = material.lame_lambda();
+      const double             mu       = material.shear_modulus();
+      const auto              &c        = scratch.component;
+      auto                    &g        = scratch.gradients;
 
-      std::vector<SymmetricTensor<2, dim>> eps(dofs_per_cell);
-      Vector<double>                       force(dim);
-      for (unsigned int q = 0; q < quadrature.size(); ++q)
+      // Each shape function of FESystem(FE_Q, dim) has one nonzero component
+      // c_i, so eps(phi_i) = sym(e_{c_i} (x) grad phi_i) and
+      // C eps_i : eps_j = lambda g_i[c_i] g_j[c_j]
+      //                 + mu (g_i[c_j] g_j[c_i] + delta_{c_i c_j} g_i . g_j),
+      // far cheaper than contracting rank-4 tensors.
+      for (unsigned int q = 0; q < scratch.quadrature.size(); ++q)
       {
         for (unsigned int k = 0; k < dofs_per_cell; ++k)
-          eps[k] = fe_values[displacement].symmetric_gradient(k, q);
+          g[k] = fe_values.shape_grad(k, q);
         const double JxW = fe_values.JxW(q);
         for (unsigned int i = 0; i < dofs_per_cell; ++i)
-        {
-          const SymmetricTensor<2, dim> C_eps_i = C * eps[i];
           for (unsigned int j = i; j < dofs_per_cell; ++j)
-            cell_matrix(i, j) += (C_eps_i * eps[j]) * JxW;
-        }
+            cell_matrix(i, j) += (lambda * g[i][c[i]] * g[j][c[j]] +
+                                  mu * (g[i][c[j]] * g[j][c[i]] +
+                                        (c[i] == c[j] ? g[i] * g[j] : 0.))) *
+                                 JxW;
         if (body_force_)
         {
-          body_force_->vector_value(fe_values.quadrature_point(q), force);
+          body_force_->vector_value(fe_values.quadrature_point(q),
+                                    scratch.force);
           for (unsigned int i = 0; i < dofs_per_cell; ++i)
-          {
-            const unsigned int c = fe_.system_to_component_index(i).first;
-            cell_rhs(i) += force(c) * fe_values.shape_value(i, q) * JxW;
-          }
+            cell_rhs(i) +=
+              scratch.force(c[i]) * fe_values.shape_value(i, q) * JxW;
         }
       }
       for (unsigned int i = 0; i < dofs_per_cell; ++i)
@@ -203,18 +229,17 @@ namespace dualcontact
             for (const auto &condition : tractions_)
               if (cell->face(f)->boundary_id() == condition.boundary_id)
               {
+                FEFaceValues<dim> &fe_face_values = scratch.fe_face_values;
                 fe_face_values.reinit(cell, f);
-                for (unsigned int q = 0; q < face_quadrature.size(); ++q)
+                for (unsigned int q = 0; q < scratch.face_quadrature.size();
+                     ++q)
                 {
                   condition.traction->vector_value(
-                    fe_face_values.quadrature_point(q), force);
+                    fe_face_values.quadrature_point(q), scratch.force);
                   for (unsigned int i = 0; i < dofs_per_cell; ++i)
-                  {
-                    const unsigned int c =
-                      fe_.system_to_component_index(i).first;
-                    cell_rhs(i) += force(c) * fe_face_values.shape_value(i, q) *
+                    cell_rhs(i) += scratch.force(c[i]) *
+                                   fe_face_values.shape_value(i, q) *
                                    fe_face_values.JxW(q);
-                  }
                 }
               }
     }
@@ -226,12 +251,13 @@ namespace dualcontact
     {
       stiffness_ = 0;
       load_      = 0;
+      CellScratch                          scratch(mapping_, fe_);
       FullMatrix<double>                   cell_matrix;
       Vector<double>                       cell_rhs;
       std::vector<types::global_dof_index> dof_indices(fe_.n_dofs_per_cell());
       for (const auto &cell : dof_handler_.active_cell_iterators())
       {
-        cell_system(cell, cell_matrix, cell_rhs);
+        cell_system(cell, scratch, cell_matrix, cell_rhs);
         cell->get_dof_indices(dof_indices);
         constraints_.distribute_local_to_global(
           cell_matrix, cell_rhs, dof_indices, stiffness_, load_);
@@ -290,13 +316,14 @@ namespace dualcontact
     {
       // f was assembled with the constraints condensed; rebuild the
       // unconstrained load cell by cell.
+      CellScratch                          scratch(mapping_, fe_);
       FullMatrix<double>                   cell_matrix;
       Vector<double>                       cell_rhs;
       std::vector<types::global_dof_index> dof_indices(fe_.n_dofs_per_cell());
       double                               work = 0;
       for (const auto &cell : dof_handler_.active_cell_iterators())
       {
-        cell_system(cell, cell_matrix, cell_rhs);
+        cell_system(cell, scratch, cell_matrix, cell_rhs);
         cell->get_dof_indices(dof_indices);
         for (unsigned int i = 0; i < dof_indices.size(); ++i)
           work += cell_rhs(i) * displacement(dof_indices[i]);
@@ -310,6 +337,7 @@ namespace dualcontact
     ElasticBody<dim>::reaction_forces(const Vector<double> &displacement) const
     {
       Vector<double>                       residual(n_dofs());
+      CellScratch                          scratch(mapping_, fe_);
       FullMatrix<double>                   cell_matrix;
       Vector<double>                       cell_rhs;
       Vector<double>                       local_u(fe_.n_dofs_per_cell());
@@ -317,7 +345,7 @@ namespace dualcontact
       std::vector<types::global_dof_index> dof_indices(fe_.n_dofs_per_cell());
       for (const auto &cell : dof_handler_.active_cell_iterators())
       {
-        cell_system(cell, cell_matrix, cell_rhs);
+        cell_system(cell, scratch, cell_matrix, cell_rhs);
         cell->get_dof_indices(dof_indices);
         for (unsigned int i = 0; i < dof_indices.size(); ++i)
           local_u(i) = displacement(dof_indices[i]);
@@ -362,11 +390,12 @@ namespace dualcontact
     ElasticBody<dim>::applied_force() const
     {
       Tensor<1, dim>     force;
+      CellScratch        scratch(mapping_, fe_);
       FullMatrix<double> cell_matrix;
       Vector<double>     cell_rhs;
       for (const auto &cell : dof_handler_.active_cell_iterators())
       {
-        cell_system(cell, cell_matrix, cell_rhs);
+        cell_system(cell, scratch, cell_matrix, cell_rhs);
         // Shape functions of one component sum to one, so the resultant is
         // the sum of the load entries of that component.
         for (unsigned int i = 0; i < cell_rhs.size(); ++i)

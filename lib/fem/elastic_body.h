@@ -134,10 +134,14 @@ namespace dualcontact
       n_dofs() const;
 
     private:
+      /** FEValues and buffers reused over the cells of one loop. */
+      struct CellScratch;
+
       /** Local matrix and load of one cell (both unconstrained). */
       void
       cell_system(
         const typename dealii::DoFHandler<dim>::active_cell_iterator &cell,
+        CellScratch                                                  &scratch,
         dealii::FullMatrix<double> &cell_matrix,
         dealii::Vector<double>     &cell_rhs) const;
 
