@@ -1,0 +1,38 @@
+#pragma once
+
+#include <vector>
+
+namespace dualcontact
+{
+  namespace driver
+  {
+    /** How many subsections of each kind one body has. */
+    struct BodyLayout
+    {
+      unsigned int n_materials  = 1;
+      unsigned int n_dirichlet  = 0;
+      unsigned int n_tractions  = 0;
+
+      bool
+      operator==(const BodyLayout &other) const
+      {
+        return n_materials == other.n_materials &&
+               n_dirichlet == other.n_dirichlet &&
+               n_tractions == other.n_tractions;
+      }
+    };
+
+    /**
+     * The shape of a parameter file: the dimension and, per body, how many
+     * `Material N', `Dirichlet N' and `Traction N' subsections exist.  It is
+     * read from the file itself in passes that ignore everything else (see
+     * SceneParameters::read()), so that a scene has any number of bodies,
+     * materials and boundary conditions.
+     */
+    struct SceneLayout
+    {
+      unsigned int            dimension = 3;
+      std::vector<BodyLayout> bodies    = {BodyLayout()};
+    };
+  } // namespace driver
+} // namespace dualcontact

@@ -1,0 +1,43 @@
+#pragma once
+
+#include <deal.II/base/parameter_handler.h>
+
+#include <driver/scene_layout.h>
+
+#include <memory>
+#include <string>
+
+namespace dualcontact
+{
+  namespace driver
+  {
+    /**
+     * The whole parameter file.  Top level: `Dimension', `Number of bodies';
+     * subsections `Discretization', `Output', `Stiffness solver'
+     * (fem::StiffnessSolver) and `Body 1', `Body 2', ... (BodyParameters).
+     *
+     * Because the number of bodies (and of materials and boundary
+     * conditions per body) is itself a parameter, the file is read in three
+     * passes: the first reads `Dimension' and `Number of bodies' (ignoring
+     * everything else), the second the `Number of ...' entries of every
+     * body, the third everything, with every entry declared and unknown
+     * entries rejected.
+     */
+    class SceneParameters
+    {
+    public:
+      /** Declare every parameter of a scene shaped like @p layout. */
+      static void
+      declare_parameters(dealii::ParameterHandler &prm,
+                         const SceneLayout        &layout);
+
+      /** Read @p file_name in the three passes; the result is complete. */
+      static std::unique_ptr<dealii::ParameterHandler>
+      read(const std::string &file_name, SceneLayout &layout);
+
+    private:
+      static void
+      declare_top_level_entries(dealii::ParameterHandler &prm);
+    };
+  } // namespace driver
+} // namespace dualcontact

@@ -1,0 +1,23 @@
+#pragma once
+
+#include <deal.II/grid/tria.h>
+
+#include <string>
+
+namespace dualcontact
+{
+  namespace io
+  {
+    /**
+     * Throw an ExcMessage naming @p mesh_name if a cell of @p triangulation
+     * (active cells, with the (bi/tri)linear geometry of its vertices) is
+     * inverted or degenerate: if the Jacobian determinant at a vertex or at
+     * a 2^dim-point Gauss point is not positive, relative to the cell's
+     * diameter^dim (tolerance 1e-10).
+     */
+    template <int dim>
+    void
+    check_cells(const dealii::Triangulation<dim> &triangulation,
+                const std::string                &mesh_name);
+  } // namespace io
+} // namespace dualcontact

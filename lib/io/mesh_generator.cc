@@ -1,0 +1,339 @@
+#include <deal.II/base/exceptions.h>
+#include <deal.II/base/patterns.h>
+#include <deal.II/base/utilities.h>
+#include <deal.II/grid/grid_generator.h>
+#include <deal.II/grid/grid_in.h>
+#include <deal.II/grid/grid_tools.h>
+#include <deal.II/grid/manifold_lib.h>
+
+#include <io/file_locator.h>
+#include <io/mesh_check.h>
+#include <io/mesh_generator.h>
+#include <io/parameter_file.h>
+
+#include <fstream>
+#include <memory>
+#include <sstream>
+
+namespace dualcontact
+{
+  namespace io
+  {
+    namespace
+    {
+      template <int dim>
+      dealii::Point<dim>
+      parse_point(const std::string &text)
+      {
+        const std::vector<double> values = dealii::Utilities::string_to_double(
+          dealii::Utilities::split_string_list(text));
+        dealii::Point<dim> point;
+        for (unsigned int d = 0; d < dim; ++d)
+          point[d] = values[d];
+        return point;
+      }
+    } // namespace
+
+
+    template <int dim>
+    void
+    MeshGenerator<dim>::declare_parameters(dealii::ParameterHandler &prm)
+    {
+      prm.enter_subsection("Mesh");
+      prm.declare_entry(
+        "Generator",
+        "box",
+        dealii::Patterns::Selection("box|ball|half ball|cylinder|gmsh"),
+        "How the mesh is made. `box': a rectangle (2D) or box (3D) from "
+        "`Lower corner' to `Upper corner' with `Subdivisions' cells per "
+        "direction; boundary ids 0/1 at x = min/max, 2/3 at y = min/max, 4/5 "
+        "at z = min/max. `ball': a disc (2D) or ball (3D) of `Radius' around "
+        "the origin; boundary id 0. `half ball': the half x >= 0 of that disc "
+        "or ball; boundary id 0 on the curved part, 1 on the cut x = 0. "
+        "`cylinder' (3D): axis along x from -`Half length' to +`Half length', "
+        "`Radius'; boundary id 0 on the hull, 1 at x = -L, 2 at x = +L (2D: "
+        "the rectangle [-L, L] x [-R, R], id 0 at y = +-R). `gmsh': read "
+        "`Gmsh file'; boundary ids are the physical tags of boundary "
+        "lines/faces, material ids the physical tags of the cells. Generated "
+        "meshes have material id 0. Ids refer to the mesh before placement.");
+      prm.declare_entry("Lower corner",
+                        dim == 2 ? "0, 0" : "0, 0, 0",
+                        dealii::Patterns::List(dealii::Patterns::Double(),
+                                               dim,
+                                               dim),
+                        "box: the corner with the smallest coordinates [m] "
+                        "(dim numbers).");
+      prm.declare_entry("Upper corner",
+                        dim == 2 ? "1, 1" : "1, 1, 1",
+                        dealii::Patterns::List(dealii::Patterns::Double(),
+                                               dim,
+                                               dim),
+                        "box: the corner with the largest coordinates [m] "
+                        "(dim numbers).");
+      prm.declare_entry("Subdivisions",
+                        dim == 2 ? "1, 1" : "1, 1, 1",
+                        dealii::Patterns::List(dealii::Patterns::Integer(1),
+                                               dim,
+                                               dim),
+                        "box: number of cells per coordinate direction "
+                        "(dim numbers) before global refinement.");
+      prm.declare_entry("Radius",
+                        "1",
+                        dealii::Patterns::Double(0),
+                        "ball, half ball, cylinder: radius [m] (> 0).");
+      prm.declare_entry("Half length",
+                        "1",
+                        dealii::Patterns::Double(0),
+                        "cylinder: half the length [m] along the axis (> 0).");
+      prm.declare_entry(
+        "Gmsh file",
+        "",
+        dealii::Patterns::Anything(),
+        "gmsh: the mesh file (Gmsh format 2.2 or 4.1, ASCII, "
+        "quadrilaterals/hexahedra). A relative name is looked up relative to "
+        "the working directory, then to the folder of this parameter file, "
+        "then to the dualcontact source folder.");
+      prm.declare_entry("Global refinements",
+                        "0",
+                        dealii::Patterns::Integer(0, 12),
+                        "Number of times every cell is refined (each "
+                        "refinement splits a cell into 2^dim children).");
+      prm.leave_subsection();
+    }
+
+
+    template <int dim>
+    void
+    MeshGenerator<dim>::parse_parameters(
+      dealii::ParameterHandler &prm,
+      const std::string        &parent_path,
+      const std::string        &parameter_file_folder)
+    {
+      path_ = join_path(parent_path, "Mesh");
+      prm.enter_subsection("Mesh");
+      const std::string generator = prm.get("Generator");
+      if (generator == "box")
+        kind_ = Kind::box;
+      else if (generator == "ball")
+        kind_ = Kind::ball;
+      else if (generator == "half ball")
+        kind_ = Kind::half_ball;
+      else if (generator == "cylinder")
+        kind_ = Kind::cylinder;
+      else
+        kind_ = Kind::gmsh;
+
+      lower_corner_ = parse_point<dim>(prm.get("Lower corner"));
+      upper_corner_ = parse_point<dim>(prm.get("Upper corner"));
+      subdivisions_ = {};
+      for (const int n : dealii::Utilities::string_to_int(
+             dealii::Utilities::split_string_list(prm.get("Subdivisions"))))
+        subdivisions_.push_back(n);
+      radius_        = prm.get_double("Radius");
+      half_length_   = prm.get_double("Half length");
+      n_refinements_ = prm.get_integer("Global refinements");
+
+      if (kind_ == Kind::box)
+        for (unsigned int d = 0; d < dim; ++d)
+          AssertThrow(upper_corner_[d] > lower_corner_[d],
+                      dealii::ExcMessage(
+                        "The upper corner of the box must be larger than "
+                        "the lower corner in every coordinate " +
+                        parameter_location(path_, "Upper corner") + "."));
+      if (kind_ == Kind::ball || kind_ == Kind::half_ball ||
+          kind_ == Kind::cylinder)
+        AssertThrow(radius_ > 0,
+                    dealii::ExcMessage("The radius must be positive " +
+                                       parameter_location(path_, "Radius") +
+                                       "."));
+      if (kind_ == Kind::cylinder)
+        AssertThrow(half_length_ > 0,
+                    dealii::ExcMessage(
+                      "The half length must be positive " +
+                      parameter_location(path_, "Half length") + "."));
+      if (kind_ == Kind::gmsh)
+        gmsh_file_ = locate_file(prm.get("Gmsh file"),
+                                 parameter_file_folder,
+                                 parameter_location(path_, "Gmsh file"));
+      prm.leave_subsection();
+    }
+
+
+    template <int dim>
+    void
+    MeshGenerator<dim>::generate(dealii::Triangulation<dim> &triangulation,
+                                 const std::string          &mesh_name) const
+    {
+      switch (kind_)
+        {
+          case Kind::box:
+            dealii::GridGenerator::subdivided_hyper_rectangle(
+              triangulation, subdivisions_, lower_corner_, upper_corner_, true);
+            break;
+          case Kind::ball:
+            dealii::GridGenerator::hyper_ball(triangulation,
+                                              dealii::Point<dim>(),
+                                              radius_);
+            break;
+          case Kind::half_ball:
+            dealii::GridGenerator::half_hyper_ball(triangulation,
+                                                   dealii::Point<dim>(),
+                                                   radius_);
+            break;
+          case Kind::cylinder:
+            dealii::GridGenerator::cylinder(triangulation,
+                                            radius_,
+                                            half_length_);
+            break;
+          case Kind::gmsh:
+            {
+              std::ifstream in(gmsh_file_);
+              AssertThrow(in,
+                          dealii::ExcMessage(
+                            "Cannot open the mesh file `" + gmsh_file_ + "' " +
+                            parameter_location(path_, "Gmsh file") + "."));
+              dealii::GridIn<dim> grid_in;
+              grid_in.attach_triangulation(triangulation);
+              try
+                {
+                  grid_in.read_msh(in);
+                }
+              catch (const dealii::ExceptionBase &exception)
+                {
+                  std::ostringstream info;
+                  exception.print_info(info);
+                  AssertThrow(false,
+                              dealii::ExcMessage(
+                                "Cannot read the mesh file `" + gmsh_file_ +
+                                "' of " + mesh_name + " " +
+                                parameter_location(path_, "Gmsh file") + ": " +
+                                dealii::Utilities::trim(info.str())));
+                }
+              AssertThrow(triangulation.n_active_cells() > 0,
+                          dealii::ExcMessage("The mesh file `" + gmsh_file_ +
+                                             "' of " + mesh_name +
+                                             " has no cells."));
+              break;
+            }
+        }
+    }
+
+
+    template <int dim>
+    void
+    MeshGenerator<dim>::place(dealii::Triangulation<dim> &triangulation,
+                              const Placement<dim>       &placement) const
+    {
+      if (placement.is_identity())
+        return;
+      dealii::GridTools::transform(
+        [&placement](const dealii::Point<dim> &point) {
+          return placement(point);
+        },
+        triangulation);
+
+      // The generators attach manifolds in the unplaced coordinates; replace
+      // them by placed ones.  Curved ones first: a transfinite interpolation
+      // is built from the manifolds of the boundary.
+      const dealii::Point<dim> center = placement(dealii::Point<dim>());
+      std::vector<dealii::types::manifold_id> transfinite;
+      for (const auto id : triangulation.get_manifold_ids())
+        {
+          if (id == dealii::numbers::flat_manifold_id)
+            continue;
+          const auto &manifold = triangulation.get_manifold(id);
+          if (dynamic_cast<const dealii::SphericalManifold<dim> *>(&manifold))
+            triangulation.set_manifold(id,
+                                       dealii::SphericalManifold<dim>(center));
+          else if (dynamic_cast<
+                     const dealii::TransfiniteInterpolationManifold<dim> *>(
+                     &manifold))
+            transfinite.push_back(id);
+          else if constexpr (dim == 3)
+            {
+              if (dynamic_cast<const dealii::CylindricalManifold<dim> *>(
+                    &manifold))
+                {
+                  dealii::Tensor<1, dim> axis;
+                  axis[0] = 1;
+                  triangulation.set_manifold(
+                    id,
+                    dealii::CylindricalManifold<dim>(placement.rotate(axis),
+                                                     center));
+                }
+              else
+                AssertThrow(false, dealii::ExcInternalError());
+            }
+          else
+            AssertThrow(false, dealii::ExcInternalError());
+        }
+      for (const auto id : transfinite)
+        {
+          dealii::TransfiniteInterpolationManifold<dim> manifold;
+          manifold.initialize(triangulation);
+          triangulation.set_manifold(id, manifold);
+        }
+    }
+
+
+    template <int dim>
+    void
+    MeshGenerator<dim>::create(dealii::Triangulation<dim> &triangulation,
+                               const Placement<dim>       &placement,
+                               const std::string          &mesh_name) const
+    {
+      generate(triangulation, mesh_name);
+      check_cells(triangulation,
+                  mesh_name + (kind_ == Kind::gmsh ?
+                                 " (file `" + gmsh_file_ + "')" :
+                                 std::string()));
+      place(triangulation, placement);
+      triangulation.refine_global(n_refinements_);
+    }
+
+
+    template <int dim>
+    std::string
+    MeshGenerator<dim>::description() const
+    {
+      std::ostringstream text;
+      switch (kind_)
+        {
+          case Kind::box:
+            text << (dim == 2 ? "rectangle " : "box ");
+            for (unsigned int d = 0; d < dim; ++d)
+              text << (d == 0 ? "" : " x ") << subdivisions_[d];
+            break;
+          case Kind::ball:
+            text << (dim == 2 ? "disc" : "ball") << " of radius " << radius_;
+            break;
+          case Kind::half_ball:
+            text << (dim == 2 ? "half disc" : "half ball") << " of radius "
+                 << radius_;
+            break;
+          case Kind::cylinder:
+            text << "cylinder of radius " << radius_ << ", length "
+                 << 2 * half_length_;
+            break;
+          case Kind::gmsh:
+            text << "Gmsh file " << gmsh_file_;
+            break;
+        }
+      text << ", " << n_refinements_ << " global refinement"
+           << (n_refinements_ == 1 ? "" : "s");
+      return text.str();
+    }
+
+
+    template <int dim>
+    const std::string &
+    MeshGenerator<dim>::parameter_path() const
+    {
+      return path_;
+    }
+
+
+    template class MeshGenerator<2>;
+    template class MeshGenerator<3>;
+  } // namespace io
+} // namespace dualcontact

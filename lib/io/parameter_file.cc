@@ -1,0 +1,104 @@
+#include <deal.II/base/exceptions.h>
+#include <deal.II/base/utilities.h>
+
+#include <io/parameter_file.h>
+
+#include <filesystem>
+#include <fstream>
+#include <regex>
+#include <sstream>
+#include <vector>
+
+namespace dualcontact
+{
+  namespace io
+  {
+    std::string
+    parameter_location(const std::string &subsection_path,
+                       const std::string &entry)
+    {
+      if (subsection_path.empty())
+        return "(`set " + entry + "' at the top level)";
+      return "(`set " + entry + "' in `subsection " + subsection_path + "')";
+    }
+
+
+    std::string
+    join_path(const std::string &path, const std::string &subsection)
+    {
+      return path.empty() ? subsection : path + "/" + subsection;
+    }
+
+
+    std::string
+    subsection_path_at_line(const std::string &file_name,
+                            const unsigned int line_number)
+    {
+      std::ifstream            in(file_name);
+      std::vector<std::string> stack;
+      std::string              line;
+      for (unsigned int n = 1; n < line_number && std::getline(in, line); ++n)
+        {
+          // strip comments and surrounding blanks, as ParameterHandler does
+          const auto comment = line.find('#');
+          if (comment != std::string::npos)
+            line.erase(comment);
+          line = dealii::Utilities::trim(line);
+          if (line.rfind("subsection ", 0) == 0)
+            stack.push_back(dealii::Utilities::trim(line.substr(11)));
+          else if ((line == "end") && !stack.empty())
+            stack.pop_back();
+        }
+      std::string path;
+      for (const auto &name : stack)
+        path = join_path(path, name);
+      return path;
+    }
+
+
+    void
+    parse_parameter_file(dealii::ParameterHandler &prm,
+                         const std::string        &file_name,
+                         const bool                skip_undefined)
+    {
+      {
+        std::error_code error;
+        AssertThrow(std::filesystem::is_regular_file(file_name, error) &&
+                      std::ifstream(file_name),
+                    dealii::ExcMessage("Cannot open the input file `" +
+                                       file_name + "'."));
+      }
+      try
+        {
+          prm.parse_input(file_name, "", skip_undefined);
+        }
+      catch (const dealii::ExceptionBase &exception)
+        {
+          std::ostringstream info;
+          exception.print_info(info);
+          std::string text = info.str();
+          // deal.II indents its messages; make them one tidy block
+          text = std::regex_replace(text, std::regex("[ \t]*\n[ \t]*"), " ");
+          text = dealii::Utilities::trim(text);
+
+          std::smatch match;
+          std::string where = "in the input file `" + file_name + "'";
+          if (std::regex_search(text,
+                                match,
+                                std::regex("Line <([0-9]+)> of file <[^>]*>: *")))
+            {
+              const unsigned int line_number = std::stoul(match[1].str());
+              const std::string  path =
+                subsection_path_at_line(file_name, line_number);
+              where = "in line " + std::to_string(line_number) +
+                      " of the input file `" + file_name + "' (" +
+                      (path.empty() ? std::string("top level") :
+                                      "in `subsection " + path + "'") +
+                      ")";
+              text = match.suffix().str();
+            }
+          throw dealii::ExcMessage("Error " + where + ": " + text);
+        }
+    }
+  } // namespace io
+} // namespace dualcontact

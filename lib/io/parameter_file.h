@@ -1,0 +1,47 @@
+#pragma once
+
+#include <deal.II/base/parameter_handler.h>
+
+#include <string>
+
+namespace dualcontact
+{
+  namespace io
+  {
+    /**
+     * "(`set Young's modulus' in `subsection Body 1/Material 2')": where a
+     * parameter lives, for error messages (ASPECT style).  An empty
+     * @p subsection_path means the top level.
+     */
+    std::string
+    parameter_location(const std::string &subsection_path,
+                       const std::string &entry);
+
+    /** "Body 1" + "Material 2" -> "Body 1/Material 2". */
+    std::string
+    join_path(const std::string &path, const std::string &subsection);
+
+    /**
+     * Read @p file_name into @p prm.  With @p skip_undefined, entries and
+     * subsections that are not declared are ignored (used by the passes that
+     * only read how many bodies, materials, ... a scene has).
+     *
+     * A missing file and every parse error of deal.II's ParameterHandler
+     * (unknown entry or subsection, value outside its pattern, unbalanced
+     * `end') are rethrown as an ExcMessage that names the file, the line and
+     * the subsection the line is in.
+     */
+    void
+    parse_parameter_file(dealii::ParameterHandler &prm,
+                         const std::string        &file_name,
+                         const bool                skip_undefined);
+
+    /**
+     * The subsection path ("Body 1/Mesh") in effect at line @p line_number
+     * (1-based) of the parameter file @p file_name.
+     */
+    std::string
+    subsection_path_at_line(const std::string &file_name,
+                            const unsigned int line_number);
+  } // namespace io
+} // namespace dualcontact

@@ -1,0 +1,32 @@
+#pragma once
+
+#include <deal.II/lac/vector.h>
+
+#include <fem/elastic_body.h>
+#include <io/output_folder.h>
+
+#include <string>
+#include <vector>
+
+namespace dualcontact
+{
+  namespace io
+  {
+    /**
+     * Write the displacement solutions of the bodies of a scene for
+     * ParaView into @p folder:
+     *  - `body_N.vtu' per body (N = 1, 2, ...): `displacement_m' (vector)
+     *    and the fields of io::ElasticityPostprocessor; cells are subdivided
+     *    p times for FE_Q(p) and curved with the body's mapping;
+     *  - `solution.pvtu': all bodies as the pieces of one data set;
+     *  - `solution.pvd': the PVD record (time 0) of solution.pvtu: the file
+     *    to open in ParaView.
+     */
+    template <int dim>
+    void
+    write_solution(
+      OutputFolder                                               &folder,
+      const std::vector<std::unique_ptr<fem::ElasticBody<dim>>> &bodies,
+      const std::vector<dealii::Vector<double>>                  &displacements);
+  } // namespace io
+} // namespace dualcontact
