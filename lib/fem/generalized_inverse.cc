@@ -1,0 +1,69 @@
+#include <fem/generalized_inverse.h>
+
+namespace dualcontact
+{
+  namespace fem
+  {
+    GeneralizedInverse::GeneralizedInverse(
+      std::unique_ptr<StiffnessSolver>                    solver,
+      const std::vector<dealii::types::global_dof_index> &fixing_dofs)
+        : solver_(std::move(solver))
+        , fixing_dofs_(fixing_dofs)
+    {
+    }
+
+
+    void
+    GeneralizedInverse::initialize(const dealii::SparseMatrix<double> &matrix)
+    {
+      if (fixing_dofs_.empty())
+      {
+        solver_->initialize(matrix);
+        statistics_ = solver_->statistics();
+        return;
+      }
+      std::vector<bool> fixed(matrix.m(), false);
+      for (const auto dof : fixing_dofs_)
+        fixed[dof] = true;
+      reduced_.reinit(matrix.get_sparsity_pattern());
+      reduced_.copy_from(matrix);
+      // Decouple the fixing dofs (rows and columns), keeping their diagonal
+      // so that the scale of the matrix is unchanged.
+      for (unsigned int i = 0; i < reduced_.m(); ++i)
+        for (auto it = reduced_.begin(i); it != reduced_.end(i); ++it)
+          if ((fixed[i] || fixed[it->column()]) && it->column() != i)
+            it->value() = 0.;
+      solver_->initialize(reduced_);
+      statistics_ = solver_->statistics();
+    }
+
+
+    void
+    GeneralizedInverse::solve(dealii::Vector<double>       &x,
+                              const dealii::Vector<double> &b) const
+    {
+      if (fixing_dofs_.empty())
+        solver_->solve(x, b);
+      else
+      {
+        rhs_ = b;
+        for (const auto dof : fixing_dofs_)
+          rhs_(dof) = 0.;
+        solver_->solve(x, rhs_);
+        for (const auto dof : fixing_dofs_)
+          x(dof) = 0.;
+      }
+      const double setup     = statistics_.setup_time;
+      statistics_            = solver_->statistics();
+      statistics_.setup_time = setup;
+    }
+
+
+    std::string
+    GeneralizedInverse::name() const
+    {
+      return solver_->name() + " (generalized inverse, " +
+             std::to_string(fixing_dofs_.size()) + " fixing dofs)";
+    }
+  } // namespace fem
+} // namespace dualcontact

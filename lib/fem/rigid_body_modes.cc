@@ -1,0 +1,188 @@
+#include <deal.II/base/exceptions.h>
+#include <deal.II/dofs/dof_tools.h>
+#include <deal.II/lac/full_matrix.h>
+
+#include <fem/rigid_body_modes.h>
+
+#include <cmath>
+
+namespace dualcontact
+{
+  namespace fem
+  {
+    using namespace dealii;
+
+    template <int dim>
+    RigidBodyModes<dim>::RigidBodyModes(const ElasticBody<dim> &body)
+    {
+      const unsigned int      n_dofs = body.n_dofs();
+      std::vector<Point<dim>> points(n_dofs);
+      DoFTools::map_dofs_to_support_points(body.mapping(),
+                                           body.dof_handler(),
+                                           points);
+      std::vector<unsigned int> component(n_dofs);
+      {
+        std::vector<types::global_dof_index> dofs(body.fe().n_dofs_per_cell());
+        for (const auto &cell : body.dof_handler().active_cell_iterators())
+        {
+          cell->get_dof_indices(dofs);
+          for (unsigned int i = 0; i < dofs.size(); ++i)
+            component[dofs[i]] = body.fe().system_to_component_index(i).first;
+        }
+      }
+      Point<dim>   centroid;
+      unsigned int n_nodes = 0;
+      for (unsigned int i = 0; i < n_dofs; ++i)
+        if (component[i] == 0)
+        {
+          centroid += points[i];
+          ++n_nodes;
+        }
+      centroid /= n_nodes;
+
+      // Rigid motion k at x, component c.
+      const auto mode_value = [&](const unsigned int k,
+                                  const Point<dim>  &x,
+                                  const unsigned int c) -> double
+      {
+        if (k < dim)
+          return c == k ? 1. : 0.;
+        const Tensor<1, dim> r = x - centroid;
+        if (dim == 2)
+          return c == 0 ? -r[1] : r[0];
+        // 3D: rotation about axis a = k - 3: (e_a x r)_c
+        const unsigned int a = k - dim;
+        const unsigned int b = (a + 1) % 3, d = (a + 2) % 3;
+        if (c == b)
+          return -r[d];
+        if (c == d)
+          return r[b];
+        return 0.;
+      };
+
+      const AffineConstraints<double> &constraints = body.constraints();
+      modes_.assign(n_modes, Vector<double>(n_dofs));
+      for (unsigned int k = 0; k < n_modes; ++k)
+        for (unsigned int i = 0; i < n_dofs; ++i)
+          if (!constraints.is_constrained(i))
+            modes_[k](i) = mode_value(k, points[i], component[i]);
+
+      // Modified Gram-Schmidt, twice for round-off.
+      for (unsigned int pass = 0; pass < 2; ++pass)
+        for (unsigned int k = 0; k < n_modes; ++k)
+        {
+          for (unsigned int j = 0; j < k; ++j)
+            modes_[k].add(-(modes_[k] * modes_[j]), modes_[j]);
+          const double norm = modes_[k].l2_norm();
+          AssertThrow(norm > 0,
+                      ExcMessage(body.name() +
+                                 ": the rigid-body modes are degenerate."));
+          modes_[k] /= norm;
+        }
+
+      // Fixing dofs: node A farthest from the centroid, B farthest from A,
+      // C (3D) farthest from the line AB; only unconstrained nodes.
+      std::vector<unsigned int> node_dof0;
+      for (unsigned int i = 0; i < n_dofs; ++i)
+        if (component[i] == 0 && !constraints.is_constrained(i))
+          node_dof0.push_back(i);
+      const auto farthest = [&](const auto &distance)
+      {
+        unsigned int best = node_dof0[0];
+        double       max  = -1;
+        for (const unsigned int i : node_dof0)
+          if (distance(points[i]) > max)
+          {
+            max  = distance(points[i]);
+            best = i;
+          }
+        return best;
+      };
+      const unsigned int a =
+        farthest([&](const Point<dim> &x) { return x.distance(centroid); });
+      const unsigned int b =
+        farthest([&](const Point<dim> &x) { return x.distance(points[a]); });
+      const Tensor<1, dim> ab =
+        (points[b] - points[a]) / points[b].distance(points[a]);
+      const unsigned int c = farthest(
+        [&](const Point<dim> &x)
+        {
+          const Tensor<1, dim> ax = x - points[a];
+          return (ax - (ax * ab) * ab).norm();
+        });
+
+      // The dofs of a node: those with the same support point, found through
+      // the cells (dofs of one node are not consecutive in general).
+      const auto dofs_of_node = [&](const unsigned int dof0)
+      {
+        std::vector<types::global_dof_index> result(dim);
+        std::vector<types::global_dof_index> dofs(body.fe().n_dofs_per_cell());
+        for (const auto &cell : body.dof_handler().active_cell_iterators())
+        {
+          cell->get_dof_indices(dofs);
+          for (unsigned int i = 0; i < dofs.size(); ++i)
+            if (dofs[i] == dof0)
+            {
+              const unsigned int node =
+                body.fe().system_to_component_index(i).second;
+              for (unsigned int comp = 0; comp < dim; ++comp)
+                result[comp] =
+                  dofs[body.fe().component_to_system_index(comp, node)];
+              return result;
+            }
+        }
+        Assert(false, ExcInternalError());
+        return result;
+      };
+
+      // Choose greedily the dofs that keep R restricted to them of full
+      // rank, candidates in the order A (all), B, C.
+      std::vector<types::global_dof_index> candidates;
+      for (const unsigned int node : {a, b, c})
+        for (const auto dof : dofs_of_node(node))
+          candidates.push_back(dof);
+      std::vector<Vector<double>> rows; // orthonormalized rows of R(fixed, :)
+      for (const auto dof : candidates)
+      {
+        if (fixing_dofs_.size() == n_modes)
+          break;
+        Vector<double> row(n_modes);
+        for (unsigned int k = 0; k < n_modes; ++k)
+          row(k) = modes_[k](dof);
+        const double original = row.l2_norm();
+        for (const auto &q : rows)
+          row.add(-(row * q), q);
+        if (row.l2_norm() > 1e-3 * original && original > 0)
+        {
+          row /= row.l2_norm();
+          rows.push_back(row);
+          fixing_dofs_.push_back(dof);
+        }
+      }
+      AssertThrow(fixing_dofs_.size() == n_modes,
+                  ExcMessage(body.name() +
+                             ": could not choose fixing nodes for the "
+                             "generalized inverse (degenerate mesh?)."));
+    }
+
+
+    template <int dim>
+    const std::vector<Vector<double>> &
+    RigidBodyModes<dim>::modes() const
+    {
+      return modes_;
+    }
+
+
+    template <int dim>
+    const std::vector<types::global_dof_index> &
+    RigidBodyModes<dim>::fixing_dofs() const
+    {
+      return fixing_dofs_;
+    }
+
+
+    template class RigidBodyModes<2>;
+    template class RigidBodyModes<3>;
+  } // namespace fem
+} // namespace dualcontact

@@ -1,0 +1,134 @@
+// A floating body (no Dirichlet condition) pulled by equal and opposite
+// tractions sigma on its end faces x = 0 and x = L: the stiffness matrix is
+// singular with the rigid-body motions as kernel.  Checks: the modes are
+// orthonormal and K R = 0; the fixing-dof generalized inverse gives u with
+// K u = f (f is balanced, so in the range of K); the strain energy equals the
+// closed form of uniaxial stress sigma^2 V / (2 E') (E' = E in 3D,
+// E / (1 - nu^2) in plane strain); K K^# K v = K v for a random v.
+
+#include <deal.II/base/function.h>
+#include <deal.II/grid/grid_generator.h>
+#include <deal.II/grid/grid_tools.h>
+
+#include <fem/cholmod_solver.h>
+#include <fem/elastic_body.h>
+#include <fem/generalized_inverse.h>
+#include <fem/rigid_body_modes.h>
+
+#include <iostream>
+#include <random>
+
+using namespace dealii;
+using namespace dualcontact;
+
+int failures = 0;
+
+void
+check(const bool ok, const std::string &what, const double value)
+{
+  std::cout << (ok ? "  ok   " : "  FAIL ") << what << ": " << value
+            << std::endl;
+  failures += ok ? 0 : 1;
+}
+
+template <int dim>
+void
+run(const unsigned int degree)
+{
+  std::cout << dim << "D Q" << degree << std::endl;
+  auto       tria = std::make_shared<Triangulation<dim>>();
+  Point<dim> p2;
+  p2[0] = 3;
+  for (unsigned int d = 1; d < dim; ++d)
+    p2[d] = 1;
+  std::vector<unsigned int> subdivisions(dim, 2);
+  subdivisions[0] = 6;
+  GridGenerator::subdivided_hyper_rectangle(
+    *tria, subdivisions, Point<dim>(), p2, true);
+  for (const auto &cell : tria->active_cell_iterators())
+    cell->set_material_id(0);
+  // Refine one corner so that hanging nodes are present too.
+  tria->begin_active()->set_refine_flag();
+  tria->execute_coarsening_and_refinement();
+
+  const double                 E = 7e10, nu = 0.33, sigma = 2e7;
+  const fem::IsotropicMaterial material(E, nu);
+  fem::ElasticBody<dim>        body("floating", tria, degree, {{0, material}});
+  std::vector<double>          t0(dim, 0.), t1(dim, 0.);
+  t0[0] = -sigma;
+  t1[0] = sigma;
+  body.set_traction_conditions(
+    {{0, std::make_shared<Functions::ConstantFunction<dim>>(t0)},
+     {1, std::make_shared<Functions::ConstantFunction<dim>>(t1)}});
+  body.setup();
+  body.assemble();
+  const SparseMatrix<double> &K = body.stiffness_matrix();
+
+  const fem::RigidBodyModes<dim> rbm(body);
+  double                         max_orth = 0, max_kernel = 0;
+  Vector<double>                 Kr(body.n_dofs());
+  for (unsigned int k = 0; k < rbm.n_modes; ++k)
+  {
+    for (unsigned int j = 0; j < rbm.n_modes; ++j)
+      max_orth = std::max(max_orth,
+                          std::abs(rbm.modes()[k] * rbm.modes()[j] -
+                                   (k == j ? 1. : 0.)));
+    K.vmult(Kr, rbm.modes()[k]);
+    max_kernel = std::max(max_kernel, Kr.l2_norm() / K.linfty_norm());
+  }
+  check(max_orth < 1e-12, "R'R = I, max deviation", max_orth);
+  check(max_kernel < 1e-10, "||K r_k|| / ||K||_inf", max_kernel);
+
+  fem::GeneralizedInverse solver(std::make_unique<fem::CholmodSolver>(),
+                                 rbm.fixing_dofs());
+  solver.initialize(K);
+  Vector<double> u, residual(body.n_dofs());
+  solver.solve(u, body.load_vector());
+  K.vmult(residual, u);
+  residual -= body.load_vector();
+  check(residual.l2_norm() < 1e-10 * body.load_vector().l2_norm(),
+        "||K K^# f - f|| / ||f||",
+        residual.l2_norm() / body.load_vector().l2_norm());
+
+  body.distribute(u);
+  const double volume   = GridTools::volume(*tria);
+  const double modulus  = dim == 3 ? E : E / (1 - nu * nu);
+  const double expected = sigma * sigma * volume / (2 * modulus);
+  const double energy   = body.strain_energy(u);
+  check(std::abs(energy - expected) < 1e-10 * expected,
+        "strain energy / closed form - 1",
+        energy / expected - 1);
+
+  std::mt19937                           rng(3);
+  std::uniform_real_distribution<double> uniform(-1, 1);
+  Vector<double> v(body.n_dofs()), Kv(body.n_dofs()), w(body.n_dofs()),
+    Kw(body.n_dofs());
+  for (auto &entry : v)
+    entry = uniform(rng);
+  K.vmult(Kv, v);
+  solver.solve(w, Kv);
+  K.vmult(Kw, w);
+  Kw -= Kv;
+  check(Kw.l2_norm() < 1e-9 * Kv.l2_norm(),
+        "||K K^# K v - K v|| / ||K v||",
+        Kw.l2_norm() / Kv.l2_norm());
+}
+
+int
+main()
+{
+  try
+  {
+    run<2>(1);
+    run<2>(2);
+    run<3>(1);
+    run<3>(2);
+  }
+  catch (const std::exception &e)
+  {
+    std::cerr << "exception: " << e.what() << std::endl;
+    return 1;
+  }
+  std::cout << (failures == 0 ? "all checks passed" : "FAILED") << std::endl;
+  return failures == 0 ? 0 : 1;
+}
