@@ -3,10 +3,11 @@
 // loaded by a traction at x = 2: dof set-up, assembly, factorization, one
 // solve, and the peak resident memory of the process.
 //
-//   bench_fem_elasticity_solve DIM N [DEGREE=1] [SOLVER=cholmod|umfpack]
+//   bench_fem_elasticity_solve DIM N [DEGREE=1]
+//                          [SOLVER=cholmod|cholmod-amd|cholmod-metis|umfpack]
 //
 // Prints one line: dim degree cells dofs setup assembly factorize solve
-// nnz(L) peak_MB.  scripts/bench_elasticity runs it over a range of sizes,
+// nnz(L) GFlop(factorization) peak_MB.  scripts/bench_elasticity runs it over a range of sizes,
 // one process per size so that the peak memory is that size's.
 
 #include <deal.II/base/timer.h>
@@ -56,8 +57,11 @@ run(const unsigned int n, const unsigned int degree, const std::string &name)
   std::unique_ptr<fem::StiffnessSolver> solver;
   if (name == "umfpack")
     solver = std::make_unique<fem::UmfpackSolver>();
-  else
+  else if (name == "cholmod")
     solver = std::make_unique<fem::CholmodSolver>();
+  else // cholmod-<ordering>
+    solver = std::make_unique<fem::CholmodSolver>(
+      fem::CholmodSolver::parse_ordering(name.substr(8)));
   timer.restart();
   solver->initialize(body.stiffness_matrix());
   const double t_factorize = timer.wall_time();
@@ -72,7 +76,8 @@ run(const unsigned int n, const unsigned int degree, const std::string &name)
             << body.n_dofs() << std::fixed << std::setprecision(3) << ' '
             << t_setup << ' ' << t_assemble << ' ' << t_factorize << ' '
             << t_solve << ' ' << std::setprecision(0)
-            << solver->statistics().factor_nonzeros << ' '
+            << solver->statistics().factor_nonzeros << ' ' << std::setprecision(1)
+            << solver->statistics().factor_flops / 1e9 << ' '
             << usage.ru_maxrss / 1024. << std::endl;
 }
 
