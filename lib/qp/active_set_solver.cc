@@ -1,0 +1,285 @@
+#include <qp/active_set_solver.h>
+#include <qp/vector_helpers.h>
+
+#include <deal.II/base/exceptions.h>
+
+#include <cmath>
+#include <limits>
+
+namespace dualcontact
+{
+  namespace qp
+  {
+    namespace
+    {
+      constexpr double infinity = std::numeric_limits<double>::infinity();
+
+      // Curvature p'Ap below this fraction of lambda_max ||p||^2 counts as
+      // zero: exact zeros of a singular A come out of a product as
+      // rounding noise of that size.
+      constexpr double curvature_threshold = 1e-13;
+    } // namespace
+
+
+    template <typename VectorType>
+    ActiveSetSolver<VectorType>::ActiveSetSolver(
+      const std::string      &name,
+      const SolverParameters &parameters,
+      const ActiveSetVariant &variant)
+        : SolverBase<VectorType>(name, parameters)
+        , variant(variant)
+    {
+    }
+
+
+    template <typename VectorType>
+    SolverStatistics
+    ActiveSetSolver<VectorType>::solve(const Problem<VectorType> &problem,
+                                       VectorType                &x)
+    {
+      const SolverParameters &prm  = this->prm;
+      const std::string      &name = this->solver_name;
+      AssertThrow(!problem.equality,
+                  dealii::ExcMessage(
+                    name + " does not handle equality constraints; wrap it "
+                           "in SMALSE-M"));
+      AssertThrow(!variant.bounds_only || !problem.constraints ||
+                    problem.constraints->only_bounds_and_boxes(),
+                  dealii::ExcMessage(
+                    name + " accepts only bound and box constraints; use "
+                           "mpgp, mpgp-bb or mwpgp for discs, ellipses and "
+                           "cones"));
+
+      SolverStatistics stats = this->start(problem, x);
+
+      // Without constraints everything below still works with an empty set.
+      std::shared_ptr<const SeparableSet<VectorType>> set_ptr =
+        problem.constraints;
+      if (!set_ptr)
+      {
+        auto empty = std::make_shared<SeparableSet<VectorType>>();
+        empty->finalize(problem.b);
+        set_ptr = empty;
+      }
+      const SeparableSet<VectorType> &set = *set_ptr;
+
+      const double lambda_max = this->lambda_max(problem, stats);
+      const double alpha_bar  = stats.alpha_bar;
+      const bool   weak = variant.test == ActiveSetVariant::Test::weak_reduced;
+
+      VectorType g(x), p(x), Ap(x), phi(x), work(x);
+      VectorType x_prev, g_prev; // MPGP-BB only
+      if (variant.barzilai_borwein)
+      {
+        x_prev.reinit(x);
+        g_prev.reinit(x);
+      }
+
+      // g := A x - b
+      const auto recompute_gradient = [&]()
+      {
+        this->apply_hessian(problem, g, x, stats);
+        g -= problem.b;
+      };
+      // 1/2 x'Ax - b'x from the gradient: 1/2 x'(g - b)
+      const auto cost = [&]() { return 0.5 * (x * g - x * problem.b); };
+
+      double        bb_alpha = alpha_bar;
+      GradientNorms norms;
+      const auto    evaluate = [&]() -> double
+      {
+        norms = weak ? set.reduced_gradient_norms(x, g, alpha_bar) :
+                       set.gradient_norms(x, g);
+        switch (prm.stopping_criterion)
+        {
+          case StoppingCriterion::projected:
+            if (!weak)
+              return std::sqrt(norms.free_sq + norms.chopped_sq);
+            break;
+          case StoppingCriterion::reduced_projected:
+            if (weak)
+              return std::sqrt(norms.free_sq + norms.reduced_chopped_sq);
+            break;
+          case StoppingCriterion::reduced:
+            break;
+        }
+        return this->criterion(problem, x, g, stats);
+      };
+      const auto proportional = [&]() -> bool
+      {
+        if (weak)
+          return 2. * prm.mwpgp_delta *
+                   (norms.free_sq + norms.reduced_chopped_sq) <=
+                 norms.free_sq;
+        return norms.chopped_sq <= prm.gamma * prm.gamma * norms.free_sq;
+      };
+
+      // Gradient projection x := P(x - alpha d), d = g or phi; new g.
+      const auto projection_step = [&](const double alpha)
+      {
+        if (variant.expand_with_free_gradient)
+        {
+          set.free_gradient(x, g, phi);
+          x.add(-alpha, phi);
+        }
+        else
+          x.add(-alpha, g);
+        this->project(problem, x, stats);
+        recompute_gradient();
+        ++stats.n_expansions;
+      };
+
+      // The expansion (after a half-step, or MPGP's non-proportional
+      // step): fixed length alpha_bar, or Barzilai-Borwein with fall-back.
+      const auto expansion = [&]()
+      {
+        if (!variant.barzilai_borwein)
+        {
+          projection_step(alpha_bar);
+          return;
+        }
+        const double alpha = bb_alpha;
+        if (alpha == alpha_bar)
+        {
+          projection_step(alpha_bar);
+          return;
+        }
+        const double f_old = cost();
+        work.equ(1., x);
+        phi.equ(1., g); // keep g; phi is free here
+        projection_step(alpha);
+        if (cost() <= f_old)
+        {
+          ++stats.n_bb;
+          return;
+        }
+        // fall back: redo from the saved point with alpha_bar
+        x.equ(1., work);
+        g.equ(1., phi);
+        --stats.n_expansions;
+        projection_step(alpha_bar);
+        ++stats.n_fall_back;
+      };
+
+      recompute_gradient();
+      bool stop = this->check_stop(stats, evaluate());
+      set.free_gradient(x, g, p);
+
+      while (!stop)
+      {
+        ++stats.iterations;
+        if (variant.barzilai_borwein)
+        {
+          // BB length from the last iterate difference s = x_k -
+          // x_{k-1}, y = g_k - g_{k-1} = A s (no extra product)
+          bb_alpha = alpha_bar;
+          if (stats.iterations > 1)
+          {
+            work.equ(1., x);
+            work.add(-1., x_prev);
+            phi.equ(1., g);
+            phi.add(-1., g_prev);
+            const double ss = work * work, sy = work * phi;
+            if (sy > 0. && std::isfinite(ss / sy))
+              bb_alpha = ss / sy;
+          }
+          x_prev.equ(1., x);
+          g_prev.equ(1., g);
+        }
+        if (proportional())
+        {
+          this->apply_hessian(problem, Ap, p, stats);
+          const double pAp = p * Ap;
+          const double pp  = p * p;
+          const double gp  = g * p; // = phi'p, p lives on the free set
+          if (pAp < -curvature_threshold * lambda_max * pp)
+          {
+            stats.reason  = ConvergenceReason::breakdown;
+            stats.message = "negative curvature p'Ap = " + std::to_string(pAp) +
+                            ": the Hessian is not positive "
+                            "semidefinite";
+            break;
+          }
+          const double alpha_cg =
+            pAp > curvature_threshold * lambda_max * pp ? gp / pAp : infinity;
+          const double alpha_f = set.max_feasible_step(x, p);
+          if (alpha_cg == infinity && alpha_f == infinity && gp > 0.)
+          {
+            stats.reason  = ConvergenceReason::unbounded;
+            stats.message = "zero curvature along a feasible descent "
+                            "ray (MPRGPS test): the cost is unbounded "
+                            "below";
+            break;
+          }
+          if (alpha_cg <= alpha_f)
+          {
+            // CG step
+            x.add(-alpha_cg, p);
+            g.add(-alpha_cg, Ap);
+            set.free_gradient(x, g, phi);
+            const double beta_cg = (phi * Ap) / pAp;
+            p.sadd(-beta_cg, 1., phi);
+            ++stats.n_cg;
+          }
+          else
+          {
+            // feasible half-step, then expansion; restart CG
+            set.feasible_step(x, p, alpha_f);
+            g.add(-alpha_f, Ap);
+            ++stats.n_half_steps;
+            expansion();
+            set.free_gradient(x, g, p);
+          }
+        }
+        else if (variant.step == ActiveSetVariant::Step::proportioning)
+        {
+          // steepest descent along beta, cut at the boundary (boxes)
+          set.chopped_gradient(x, g, p);
+          this->apply_hessian(problem, Ap, p, stats);
+          const double bAb = p * Ap;
+          const double bb  = p * p;
+          const double gb  = g * p;
+          if (bAb < -curvature_threshold * lambda_max * bb)
+          {
+            stats.reason = ConvergenceReason::breakdown;
+            stats.message =
+              "negative curvature beta'A beta = " + std::to_string(bAb) +
+              ": the Hessian is not positive "
+              "semidefinite";
+            break;
+          }
+          const double alpha_sd =
+            bAb > curvature_threshold * lambda_max * bb ? gb / bAb : infinity;
+          const double alpha_f = set.max_feasible_step(x, p);
+          if (alpha_sd == infinity && alpha_f == infinity && gb > 0.)
+          {
+            stats.reason  = ConvergenceReason::unbounded;
+            stats.message = "zero curvature along the chopped "
+                            "gradient, which leaves every bound "
+                            "(MPRGPS test): the cost is unbounded "
+                            "below";
+            break;
+          }
+          const double alpha = std::min(alpha_sd, alpha_f);
+          set.feasible_step(x, p, alpha);
+          g.add(-alpha, Ap);
+          ++stats.n_proportioning;
+          set.free_gradient(x, g, p);
+        }
+        else
+        {
+          expansion();
+          set.free_gradient(x, g, p);
+        }
+        stop = this->check_stop(stats, evaluate());
+      }
+
+      this->finish(problem, x, stats);
+      return stats;
+    }
+
+
+    template class ActiveSetSolver<dealii::Vector<double>>;
+    template class ActiveSetSolver<dealii::TrilinosWrappers::MPI::Vector>;
+  } // namespace qp
+} // namespace dualcontact

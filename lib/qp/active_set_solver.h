@@ -1,0 +1,82 @@
+/**
+ * @file active_set_solver.h
+ * The common engine of the thesis' active-set algorithms (algorithm 7,
+ * section 2.4): conjugate gradients on the free set while the
+ * proportioning test holds, feasible half-steps when CG would leave Omega,
+ * and a "non-proportional" step otherwise.  MPRGP, MPGP, MPGP-BB and MwPGP
+ * differ only in the proportioning test, the non-proportional step and the
+ * step length of the expansion, so they are one loop with a Variant rather
+ * than four copies of it.
+ */
+#ifndef dualcontact_qp_active_set_solver_h
+#define dualcontact_qp_active_set_solver_h
+
+#include <qp/solver_base.h>
+
+namespace dualcontact
+{
+  namespace qp
+  {
+    /// What distinguishes the members of the MPGP family.
+    struct ActiveSetVariant
+    {
+      /// How to decide between a CG step and a non-proportional step.
+      enum class Test
+      {
+        /// ||beta|| <= Gamma ||phi|| (MPRGP, MPGP, MPGP-BB; thesis 2.28)
+        gamma,
+        /// 2 delta ||g~^P_alpha||^2 <= ||phi||^2 (MwPGP; thesis 2.32)
+        weak_reduced
+      };
+      /// What to do when the test fails.
+      enum class Step
+      {
+        /// steepest descent along the chopped gradient, cut at the
+        /// boundary (MPRGP's proportioning step, thesis 2.35)
+        proportioning,
+        /// gradient projection P(x - alpha g) (MPGP family, thesis 2.29)
+        projection
+      };
+
+      Test test = Test::gamma;
+      Step step = Step::projection;
+      /// expansion after a half-step along the free gradient phi (MPRGP)
+      /// instead of the full gradient g (MPGP)
+      bool expand_with_free_gradient = false;
+      /// Barzilai-Borwein step lengths in projections (MPGP-BB), with a
+      /// monotone fall-back to alpha_bar when the cost increases
+      bool barzilai_borwein = false;
+      /// accept only bound and box blocks (MPRGP)
+      bool bounds_only = false;
+    };
+
+    /**
+     * Engine of the active-set solvers; see the derived classes MPRGP,
+     * MPGP, MPGPBB, MwPGP for the published algorithms.  With every
+     * variant:
+     *  - a CG step whose curvature p'Ap is zero (relative to lambda_max
+     *    ||p||^2) has alpha_cg = infinity; if the feasible step is
+     *    infinite too the cost is unbounded below (the MPRGPS solvability
+     *    test, thesis 2.4.5) and the solve stops with `unbounded`;
+     *  - negative curvature (A not positive semidefinite) stops with
+     *    `breakdown`;
+     *  - equality constraints are refused (wrap in SMALSE-M).
+     */
+    template <typename VectorType>
+    class ActiveSetSolver : public SolverBase<VectorType>
+    {
+    public:
+      ActiveSetSolver(const std::string      &name,
+                      const SolverParameters &parameters,
+                      const ActiveSetVariant &variant);
+
+      SolverStatistics
+      solve(const Problem<VectorType> &problem, VectorType &x) override;
+
+    private:
+      const ActiveSetVariant variant;
+    };
+  } // namespace qp
+} // namespace dualcontact
+
+#endif

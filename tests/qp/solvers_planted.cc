@@ -1,0 +1,95 @@
+// Every core solver (mprgp, mpgp, mpgp-bb, mwpgp) on every set type it
+// accepts (bound, box, disc, ellipse, cone, a mix), on random strictly
+// convex QPs with a planted solution: x*, the active blocks and positive
+// multipliers are chosen, b = A x* + sum mu_j n_j(x*).  Solved from x0 = 0
+// to ||g^P|| <= 1e-10 ||b||; checks: converged, ||x - x*|| <= 1e-8 (1 +
+// ||x*||), KKT residuals small, statistics consistent (iterations = sum of
+// kinds, products counted).
+#include "test_tools.h"
+
+#include <qp/solver_factory.h>
+
+#include <iomanip>
+
+using namespace qptest;
+using namespace dualcontact::qp;
+using Vec = dealii::Vector<double>;
+
+int
+main()
+{
+  Checker check;
+  struct Case
+  {
+    std::string            name;
+    std::vector<BlockType> types;
+  };
+  const std::vector<Case> all_sets   = {{"bound", {BlockType::bound}},
+                                        {"box", {BlockType::box}},
+                                        {"disc", {BlockType::disc}},
+                                        {"ellipse", {BlockType::ellipse}},
+                                        {"cone", {BlockType::cone}},
+                                        {"mixed",
+                                         {BlockType::bound,
+                                          BlockType::box,
+                                          BlockType::disc,
+                                          BlockType::ellipse,
+                                          BlockType::cone}}};
+  const std::vector<Case> bound_sets = {all_sets[0],
+                                        all_sets[1],
+                                        {"bound+box",
+                                         {BlockType::bound, BlockType::box}}};
+
+  std::cout << std::setw(8) << "solver" << std::setw(10) << "set"
+            << std::setw(6) << "seed" << std::setw(5) << "n" << std::setw(7)
+            << "active" << std::setw(7) << "iter" << std::setw(6) << "cg"
+            << std::setw(6) << "half" << std::setw(6) << "exp" << std::setw(6)
+            << "prop" << std::setw(6) << "A*x" << std::setw(11) << "|x-x*|"
+            << std::setw(11) << "crit" << std::endl;
+  for (const std::string solver : {"mprgp", "mpgp", "mpgp-bb", "mwpgp"})
+    for (const Case &c : (solver == "mprgp" ? bound_sets : all_sets))
+      for (const unsigned int seed : {1u, 2u, 3u})
+      {
+        const Planted      P = make_planted(c.types, 30, 8, 100 * seed + 7);
+        const unsigned int n = P.x_star.size();
+        Vec                layout(n);
+        auto               problem = make_problem(P.A, P.b, P.blocks, layout);
+        SolverParameters   prm;
+        prm.tolerance      = 1e-10;
+        prm.max_iterations = 5000;
+        auto           qp  = create<Vec>(solver, prm);
+        Vec            x(n);
+        const auto     stats = qp->solve(problem, x);
+        const double   err   = distance(x, P.x_star);
+        const unsigned kinds = stats.n_cg + stats.n_half_steps +
+                               stats.n_proportioning +
+                               (stats.n_expansions - stats.n_half_steps);
+        std::cout << std::setw(8) << solver << std::setw(10) << c.name
+                  << std::setw(6) << seed << std::setw(5) << n << std::setw(7)
+                  << P.n_active << std::setw(7) << stats.iterations
+                  << std::setw(6) << stats.n_cg << std::setw(6)
+                  << stats.n_half_steps << std::setw(6) << stats.n_expansions
+                  << std::setw(6) << stats.n_proportioning << std::setw(6)
+                  << stats.n_hessian_products << std::setw(11) << sci(err)
+                  << std::setw(11) << sci(stats.final_criterion) << "  "
+                  << to_string(stats.reason) << std::endl;
+        const std::string tag =
+          solver + "/" + c.name + "/" + std::to_string(seed) + ": ";
+        check.verbose = false;
+        check.check(stats.converged(),
+                    tag + "converged (" + to_string(stats.reason) + ")");
+        check.check(err <= 1e-8 * (1. + norm(P.x_star)),
+                    tag + "||x - x*|| = " + sci(err));
+        check.check(stats.kkt.stationarity <= 1e-9 * stats.norm_b &&
+                      stats.kkt.feasibility <= 1e-12 &&
+                      stats.kkt.complementarity <= 1e-8 * stats.norm_b,
+                    tag + "KKT " + sci(stats.kkt.stationarity) + " " +
+                      sci(stats.kkt.feasibility) + " " +
+                      sci(stats.kkt.complementarity));
+        check.check(kinds == stats.iterations &&
+                      stats.n_hessian_products >= stats.iterations &&
+                      stats.history.size() == stats.iterations + 1,
+                    tag + "statistics consistent");
+      }
+  return check.finish("solvers_planted");
+}
