@@ -1,0 +1,125 @@
+#include <qp/pbbf.h>
+
+#include <deal.II/base/exceptions.h>
+#include <deal.II/lac/trilinos_vector.h>
+#include <deal.II/lac/vector.h>
+
+#include <cmath>
+
+namespace dualcontact
+{
+  namespace qp
+  {
+    template <typename VectorType>
+    PBBf<VectorType>::PBBf(const SolverParameters &parameters)
+        : SolverBase<VectorType>("pbbf", parameters)
+    {
+    }
+
+
+    template <typename VectorType>
+    SolverStatistics
+    PBBf<VectorType>::solve(const Problem<VectorType> &problem, VectorType &x)
+    {
+      const SolverParameters &prm   = this->prm;
+      SolverStatistics        stats = this->start(problem, x);
+      this->lambda_max(problem, stats);
+      const double alpha_bar = stats.alpha_bar;
+
+      VectorType g(x), x_old(x), g_old(x), s(x), y(x), x_min(x), g_min(x),
+        work(x);
+      const auto cost = [&](const VectorType &point, const VectorType &gradient)
+      {
+        work = gradient;
+        work -= problem.b;
+        return 0.5 * (work * point);
+      };
+      // dst = P(src - alpha g_src), g_dst = A dst - b
+      const auto projected_step = [&](VectorType       &dst,
+                                      VectorType       &g_dst,
+                                      const VectorType &src,
+                                      const VectorType &g_src,
+                                      const double      alpha)
+      {
+        work = src;
+        work.add(-alpha, g_src);
+        dst = work;
+        this->project(problem, dst, stats);
+        this->apply_hessian(problem, g_dst, dst, stats);
+        g_dst -= problem.b;
+      };
+
+      this->apply_hessian(problem, g, x, stats);
+      g -= problem.b;
+      bool stop =
+        this->check_stop(stats, this->criterion(problem, x, g, stats));
+      if (!stop)
+      {
+        // table 14: x^1 = P(x^0 - alpha_bar g^0)
+        x_old = x;
+        g_old = g;
+        projected_step(x, g, x_old, g_old, alpha_bar);
+        ++stats.iterations;
+        ++stats.n_expansions;
+        stop = this->check_stop(stats, this->criterion(problem, x, g, stats));
+      }
+      x_min              = x;
+      g_min              = g;
+      double       f_min = cost(x_min, g_min);
+      unsigned int k_hat = 0;
+
+      while (!stop)
+      {
+        // BB step length from s = x^k - x^{k-1}, As = g^k - g^{k-1}:
+        // no extra product
+        s = x;
+        s -= x_old;
+        y = g;
+        y -= g_old;
+        const double ss       = s * s;
+        const double sAs      = s * y;
+        const double alpha_bb = (sAs > 0. && ss > 0.) ? ss / sAs : alpha_bar;
+        if (!std::isfinite(alpha_bb))
+        {
+          stats.reason  = ConvergenceReason::non_finite;
+          stats.message = "BB step length is not finite";
+          break;
+        }
+        x_old = x;
+        g_old = g;
+        projected_step(x, g, x_old, g_old, alpha_bb);
+        ++stats.iterations;
+        ++stats.n_bb;
+
+        // fall-back update: remember a point of sufficient decrease
+        const double f = cost(x, g);
+        if (f < f_min)
+        {
+          projected_step(x_min, g_min, x, g, alpha_bar);
+          f_min = cost(x_min, g_min);
+          k_hat = 0;
+        }
+        else
+          ++k_hat;
+
+        // fall-back application: K steps without improvement
+        if (k_hat >= prm.pbbf_k)
+        {
+          projected_step(x, g, x_min, g_min, alpha_bar);
+          x_min = x;
+          g_min = g;
+          f_min = cost(x_min, g_min);
+          k_hat = 0;
+          ++stats.n_fall_back;
+        }
+        stop = this->check_stop(stats, this->criterion(problem, x, g, stats));
+      }
+      this->finish(problem, x, stats);
+      return stats;
+    }
+
+
+    template class PBBf<dealii::Vector<double>>;
+    template class PBBf<dealii::TrilinosWrappers::MPI::Vector>;
+  } // namespace qp
+} // namespace dualcontact
