@@ -4,6 +4,10 @@
 #include <deal.II/base/exceptions.h>
 
 // ---- REGISTRATION POINT (1 of 2): include the solver headers here. ----
+#include <qp/mpgp.h>
+#include <qp/mpgp_bb.h>
+#include <qp/mprgp.h>
+#include <qp/mwpgp.h>
 #include <qp/apgd.h>
 #include <qp/pbbf.h>
 #include <qp/spg_qp.h>
@@ -28,10 +32,17 @@ namespace dualcontact
       std::unique_ptr<SolverBase<VectorType>>
       create_solver(const std::string &name, const SolverParameters &prm)
       {
-        (void)prm;
         // ---- REGISTRATION POINT (2 of 2): one branch per solver, e.g.
         //   if (name == "mprgp")
         //     return std::make_unique<MPRGP<VectorType>>(prm);
+        if (name == "mprgp")
+          return std::make_unique<MPRGP<VectorType>>(prm);
+        if (name == "mpgp")
+          return std::make_unique<MPGP<VectorType>>(prm);
+        if (name == "mpgp-bb")
+          return std::make_unique<MPGPBB<VectorType>>(prm);
+        if (name == "mwpgp")
+          return std::make_unique<MwPGP<VectorType>>(prm);
         if (name == "spg-qp")
           return std::make_unique<SPGQP<VectorType>>(prm);
         if (name == "pbbf")
@@ -39,7 +50,6 @@ namespace dualcontact
         if (name == "apgd")
           return std::make_unique<APGD<VectorType>>(prm);
         // ---- end of registration point 2 ----
-        (void)name;
         return nullptr;
       }
     } // namespace
