@@ -1,0 +1,24 @@
+// qpsolve: solve a QP given as PROBLEM.json (see lib/qp/README.md and
+// issue 3).  Thin: everything is in qp::QPSolveDriver.
+#include <qp/qpsolve_driver.h>
+
+#include <iostream>
+#include <string>
+#include <vector>
+
+int
+main(int argc, char **argv)
+{
+  try
+  {
+    const std::vector<std::string> arguments(argv + 1, argv + argc);
+    return dualcontact::qp::QPSolveDriver().run(arguments,
+                                                std::cout,
+                                                std::cerr);
+  }
+  catch (const std::exception &e)
+  {
+    std::cerr << "qpsolve: " << e.what() << std::endl;
+    return 1;
+  }
+}

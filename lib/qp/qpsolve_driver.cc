@@ -1,0 +1,447 @@
+#include <qp/cgc.h>
+#include <qp/kkt_residuals.h>
+#include <qp/membrane_generator.h>
+#include <qp/problem_io.h>
+#include <qp/qpsolve_driver.h>
+#include <qp/smalse_m.h>
+#include <qp/solver_factory.h>
+
+#include <deal.II/base/exceptions.h>
+#include <deal.II/base/timer.h>
+#include <deal.II/lac/vector.h>
+
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <fstream>
+#include <map>
+#include <sstream>
+
+namespace dualcontact
+{
+  namespace qp
+  {
+    namespace
+    {
+      using Vec = dealii::Vector<double>;
+
+      /// command-line usage error (exit code 1)
+      struct UsageError : std::runtime_error
+      {
+        using std::runtime_error::runtime_error;
+      };
+
+      struct Options
+      {
+        std::string problem_file;
+        std::string solver    = "mprgp";
+        double      tolerance = -1.;
+        std::string criterion;
+        long        max_iterations = -1;
+        std::string x_out;
+        std::string json_out;
+      };
+
+      Options
+      parse(const std::vector<std::string> &args)
+      {
+        Options o;
+        for (std::size_t i = 0; i < args.size(); ++i)
+        {
+          const std::string &a     = args[i];
+          const auto         value = [&]() -> std::string
+          {
+            if (i + 1 >= args.size())
+              throw UsageError("option " + a + " needs a value");
+            return args[++i];
+          };
+          if (a == "--solver")
+            o.solver = value();
+          else if (a == "--tol")
+          {
+            const std::string v = value();
+            try
+            {
+              std::size_t used = 0;
+              o.tolerance      = std::stod(v, &used);
+              if (used != v.size())
+                throw std::invalid_argument(v);
+            }
+            catch (const std::exception &)
+            {
+              throw UsageError("--tol: '" + v + "' is not a number");
+            }
+            if (!(o.tolerance > 0.) || !std::isfinite(o.tolerance))
+              throw UsageError("--tol must be > 0 (got " + v + ")");
+          }
+          else if (a == "--criterion")
+            o.criterion = value();
+          else if (a == "--max-iter")
+          {
+            const std::string v = value();
+            try
+            {
+              std::size_t used = 0;
+              o.max_iterations = std::stol(v, &used);
+              if (used != v.size())
+                throw std::invalid_argument(v);
+            }
+            catch (const std::exception &)
+            {
+              throw UsageError("--max-iter: '" + v + "' is not an integer");
+            }
+            if (o.max_iterations < 1)
+              throw UsageError("--max-iter must be >= 1");
+          }
+          else if (a == "--x-out")
+            o.x_out = value();
+          else if (a == "--json-out")
+            o.json_out = value();
+          else if (a == "-h" || a == "--help")
+            throw UsageError("");
+          else if (!a.empty() && a[0] == '-')
+            throw UsageError("unknown option '" + a + "'");
+          else if (o.problem_file.empty())
+            o.problem_file = a;
+          else
+            throw UsageError("more than one problem file ('" + o.problem_file +
+                             "', '" + a + "')");
+        }
+        if (o.problem_file.empty())
+          throw UsageError("no PROBLEM.json given");
+        const std::string names = solver_names() + "|cgc";
+        if (("|" + names + "|").find("|" + o.solver + "|") == std::string::npos)
+          throw UsageError("--solver: unknown solver '" + o.solver +
+                           "' (valid: " + names + ")");
+        return o;
+      }
+
+
+      nlohmann::json
+      number(const double value)
+      {
+        if (std::isfinite(value))
+          return value;
+        std::ostringstream s;
+        s << value;
+        return s.str();
+      }
+    } // namespace
+
+
+    std::string
+    QPSolveDriver::usage()
+    {
+      return "usage: qpsolve PROBLEM.json --solver " + solver_names() +
+             "|cgc [--tol T] [--criterion "
+             "projected|reduced|reduced-projected] [--max-iter N] "
+             "[--x-out FILE] [--json-out FILE]\n"
+             "Exit code 0: converged, 2: not converged, 1: bad input.";
+    }
+
+
+    int
+    QPSolveDriver::make_membrane(const std::vector<std::string> &arguments,
+                                 std::ostream                   &out,
+                                 std::ostream                   &err) const
+    {
+      try
+      {
+        MembraneGenerator::Parameters prm;
+        std::string                   directory;
+        bool                          scale_given = false;
+        for (std::size_t i = 1; i < arguments.size(); ++i)
+        {
+          const std::string &a = arguments[i];
+          if (i + 1 >= arguments.size())
+            throw UsageError(a + " needs a value");
+          const std::string v = arguments[++i];
+          if (a == "--dir")
+            directory = v;
+          else if (a == "--variant")
+            prm.variant = MembraneGenerator::parse_variant(v);
+          else if (a == "--h")
+            prm.h = std::stoul(v);
+          else if (a == "--p")
+            prm.p = std::stod(v);
+          else if (a == "--load-scale")
+          {
+            prm.load_scale = std::stod(v);
+            scale_given    = true;
+          }
+          else
+            throw UsageError("unknown option '" + a + "'");
+        }
+        if (directory.empty())
+          throw UsageError("--make-membrane needs --dir DIR");
+        if (!scale_given && prm.variant == MembraneGenerator::Variant::permon)
+          prm.load_scale = 1.;
+        const MembraneGenerator generator(prm);
+        const auto              problem = generator.generate();
+        const std::string file = write_problem(*problem, directory, "membrane");
+        const auto        eig  = generator.exact_extreme_eigenvalues();
+        nlohmann::json    j;
+        j["problem"]    = file;
+        j["n"]          = problem->size();
+        j["norm_b"]     = problem->rhs.l2_norm();
+        j["lambda_min"] = eig.first;
+        j["lambda_max"] = eig.second;
+        j["kappa"]      = eig.first > 0. ? eig.second / eig.first : 0.;
+        out << j.dump(2) << std::endl;
+        return 0;
+      }
+      catch (const std::exception &e)
+      {
+        err << "qpsolve: " << plain_message(e) << std::endl;
+        return 1;
+      }
+    }
+
+
+    int
+    QPSolveDriver::run(const std::vector<std::string> &arguments,
+                       std::ostream                   &out,
+                       std::ostream                   &err) const
+    {
+      if (!arguments.empty() && arguments[0] == "--make-membrane")
+        return make_membrane(arguments, out, err);
+      Options options;
+      try
+      {
+        options = parse(arguments);
+      }
+      catch (const UsageError &e)
+      {
+        if (std::string(e.what()).size() > 0)
+          err << "qpsolve: " << e.what() << '\n';
+        err << usage() << std::endl;
+        return 1;
+      }
+
+      // ---- read and build (every failure here is bad input: exit 1)
+      dealii::Timer                             read_timer;
+      std::unique_ptr<ProblemData>              data;
+      Problem<Vec>                              problem;
+      SolverParameters                          prm;
+      std::shared_ptr<SeparableSet<Vec>>        set;
+      std::shared_ptr<EqualityConstraints<Vec>> equality;
+      try
+      {
+        data       = read_problem(options.problem_file);
+        prm.solver = options.solver == "cgc" ? "mprgp" : options.solver;
+        if (options.tolerance > 0.)
+          prm.tolerance = options.tolerance;
+        if (!options.criterion.empty())
+          prm.stopping_criterion = parse_stopping_criterion(options.criterion);
+        if (options.max_iterations > 0)
+          prm.max_iterations = options.max_iterations;
+        prm.check();
+
+        const ProblemData &d = *data;
+        problem.hessian      = [&d](Vec &dst, const Vec &src)
+        { d.hessian.vmult(dst, src); };
+        problem.b     = d.rhs;
+        auto diagonal = std::make_shared<Vec>(d.size());
+        for (unsigned int i = 0; i < d.size(); ++i)
+          (*diagonal)[i] = d.hessian.diag_element(i);
+        problem.diagonal = diagonal;
+
+        set = std::make_shared<SeparableSet<Vec>>();
+        for (const auto &block : d.constraints)
+          for (unsigned int k = 0; k < block.count; ++k)
+          {
+            if (block.type == "bound")
+              set->add_bound(block.first + k, block.lower[k]);
+            else if (block.type == "box")
+              set->add_box(block.first + k, block.lower[k], block.upper[k]);
+            else if (block.type == "disc")
+              set->add_disc(block.first + 2 * k, block.radius[k]);
+            else if (block.type == "ellipse")
+              set->add_ellipse(block.first + 2 * k,
+                               block.axes[2 * k],
+                               block.axes[2 * k + 1],
+                               block.rotation.empty() ? 0. : block.rotation[k]);
+            else if (block.type == "cone")
+              set->add_cone(block.first + 3 * k, block.mu[k]);
+          }
+        set->finalize(problem.b);
+        problem.constraints = set;
+
+        if (d.has_equality())
+        {
+          equality        = std::make_shared<EqualityConstraints<Vec>>();
+          equality->vmult = [&d](Vec &dst, const Vec &src)
+          { d.equality_matrix.vmult(dst, src); };
+          equality->Tvmult = [&d](Vec &dst, const Vec &src)
+          { d.equality_matrix.Tvmult(dst, src); };
+          equality->c             = d.equality_rhs;
+          equality->n_constraints = d.equality_rhs.size();
+          problem.equality        = equality;
+        }
+        if (options.solver == "cgc")
+        {
+          for (const auto &block : d.constraints)
+            AssertThrow(block.type == "bound" || block.type == "box",
+                        dealii::ExcMessage(
+                          options.problem_file +
+                          ": --solver cgc accepts only bound and box "
+                          "constraints (linear inequalities), the "
+                          "problem has a '" +
+                          block.type + "' block"));
+          AssertThrow(!d.has_equality(),
+                      dealii::ExcMessage(
+                        options.problem_file +
+                        ": --solver cgc does not take equality "
+                        "constraints (field 'equality')"));
+          AssertThrow(prm.stopping_criterion == StoppingCriterion::projected,
+                      dealii::ExcMessage(
+                        "--solver cgc supports only --criterion "
+                        "projected"));
+        }
+      }
+      catch (const std::exception &e)
+      {
+        err << "qpsolve: " << plain_message(e) << std::endl;
+        return 1;
+      }
+      const double read_time = read_timer.wall_time();
+
+      // ---- solve
+      Vec x(data->size());
+      if (data->x0.size() > 0)
+        x = data->x0;
+      SolverStatistics stats;
+      double           equality_residual = -1.;
+      try
+      {
+        if (options.solver == "cgc")
+        {
+          auto rows = std::make_shared<LinearInequalities>();
+          for (const auto &block : data->constraints)
+            for (unsigned int k = 0; k < block.count; ++k)
+            {
+              rows->add_lower_bound(block.first + k, block.lower[k]);
+              if (block.type == "box")
+                rows->add_upper_bound(block.first + k, block.upper[k]);
+            }
+          CGCProblem<Vec> cgc_problem;
+          cgc_problem.hessian     = problem.hessian;
+          cgc_problem.b           = problem.b;
+          cgc_problem.constraints = rows;
+          CGC<Vec>::AdditionalData cgc_data;
+          cgc_data.tolerance         = prm.tolerance;
+          cgc_data.max_iterations    = prm.max_iterations;
+          cgc_data.stagnation_window = prm.stagnation_window;
+          CGC<Vec> cgc(cgc_data);
+          stats = cgc.solve(cgc_problem, x);
+          // the same KKT report as every other solver
+          const double stationarity = stats.kkt.stationarity;
+          stats.kkt                 = compute_kkt_residuals(problem, x);
+          stats.kkt.stationarity =
+            std::min(stationarity, stats.kkt.stationarity);
+        }
+        else if (problem.equality)
+        {
+          SMALSEM<Vec> smalse(prm);
+          stats             = smalse.solve(problem, x);
+          equality_residual = smalse.equality_residual();
+        }
+        else
+        {
+          auto solver = create<Vec>(prm);
+          stats       = solver->solve(problem, x);
+        }
+      }
+      catch (const std::exception &e)
+      {
+        err << "qpsolve: " << plain_message(e) << std::endl;
+        return 1;
+      }
+
+      // ---- report
+      nlohmann::json j;
+      j["problem"]          = options.problem_file;
+      j["n"]                = data->size();
+      j["nonzeros"]         = data->hessian.n_nonzero_elements();
+      nlohmann::json blocks = nlohmann::json::object();
+      for (const char *type : {"bound", "box", "disc", "ellipse", "cone"})
+        blocks[type] = 0;
+      unsigned int n_constrained = 0;
+      for (const auto &block : data->constraints)
+      {
+        blocks[block.type] =
+          blocks[block.type].get<unsigned int>() + block.count;
+        n_constrained += block.n_unknowns();
+      }
+      blocks["free_unknowns"] = data->size() - n_constrained;
+      j["blocks"]             = blocks;
+      if (data->has_equality())
+        j["equality_constraints"] = data->equality_rhs.size();
+      j["read_time"] = number(read_time);
+      {
+        std::ostringstream s;
+        stats.write_json(s, false);
+        j["statistics"] = nlohmann::json::parse(s.str());
+      }
+      // the headline figures also at the top level
+      j["solver"]           = stats.solver;
+      j["reason"]           = to_string(stats.reason);
+      j["converged"]        = stats.converged();
+      j["iterations"]       = stats.iterations;
+      j["hessian_products"] = stats.n_hessian_products;
+      j["time"]             = number(stats.wall_time);
+      j["final_criterion"]  = number(stats.final_criterion);
+      j["kkt"]              = j["statistics"]["kkt"];
+      if (equality_residual >= 0.)
+      {
+        j["equality_residual"] = number(equality_residual);
+        j["outer_iterations"]  = stats.n_outer;
+      }
+      {
+        const auto     active = set->n_active_blocks(x);
+        nlohmann::json a;
+        for (unsigned int t = 0; t < n_block_types; ++t)
+          a[block_type_name(static_cast<BlockType>(t))] = active[t];
+        j["active_blocks"] = a;
+      }
+      {
+        // one sparse mat-vec, for the cost per Hessian product
+        Vec           y(x.size());
+        dealii::Timer timer;
+        unsigned int  n_products = 0;
+        do
+        {
+          data->hessian.vmult(y, x);
+          ++n_products;
+        } while (timer.wall_time() < 0.2 && n_products < 1000);
+        j["matvec_time"] = number(timer.wall_time() / n_products);
+      }
+      const std::string text = j.dump(2);
+      out << text << std::endl;
+
+      try
+      {
+        if (!options.x_out.empty())
+          write_vector_file(options.x_out, x);
+        if (!options.json_out.empty())
+        {
+          std::ofstream file(options.json_out);
+          AssertThrow(file,
+                      dealii::ExcMessage("cannot write --json-out file '" +
+                                         options.json_out + "'"));
+          file << text << '\n';
+        }
+      }
+      catch (const std::exception &e)
+      {
+        err << "qpsolve: " << plain_message(e) << std::endl;
+        return 1;
+      }
+      if (!stats.converged())
+        err << "qpsolve: not converged: " << to_string(stats.reason)
+            << (stats.message.empty() ? "" : " (" + stats.message + ")")
+            << std::endl;
+      return stats.converged() ? 0 : 2;
+    }
+  } // namespace qp
+} // namespace dualcontact

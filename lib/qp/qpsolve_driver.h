@@ -1,0 +1,54 @@
+/**
+ * @file qpsolve_driver.h
+ * Everything behind the `qpsolve` command: argument parsing, reading
+ * PROBLEM.json, building the Problem (and SeparableSet, equality
+ * constraints) from it, choosing the solver (SMALSE-M around it when the
+ * problem has equalities; CGC with the bounds as linear inequalities), and
+ * the JSON summary.  app/qpsolve.cc only calls run().
+ *
+ * Why in the library: the same code path is what the tests and the
+ * membrane benchmark exercise, and app/ stays thin.
+ */
+#ifndef dualcontact_qp_qpsolve_driver_h
+#define dualcontact_qp_qpsolve_driver_h
+
+#include <ostream>
+#include <string>
+#include <vector>
+
+namespace dualcontact
+{
+  namespace qp
+  {
+    /**
+     * The qpsolve program.  Returns the exit code: 0 converged, 2 not
+     * converged (any other reason), 1 bad input or usage (message on
+     * @p err naming the file / field / option).
+     */
+    class QPSolveDriver
+    {
+    public:
+      int
+      run(const std::vector<std::string> &arguments,
+          std::ostream                   &out,
+          std::ostream                   &err) const;
+
+      /**
+       * `qpsolve --make-membrane --dir DIR [--variant thesis|permon]
+       * [--h H] [--p P] [--load-scale S]`: write the membrane QP of
+       * benchmark B4 as DIR/membrane.json (+ .mtx, .txt) and print n,
+       * ||b|| and the closed-form extreme eigenvalues.
+       */
+      int
+      make_membrane(const std::vector<std::string> &arguments,
+                    std::ostream                   &out,
+                    std::ostream                   &err) const;
+
+      /// The usage text.
+      static std::string
+      usage();
+    };
+  } // namespace qp
+} // namespace dualcontact
+
+#endif

@@ -1,0 +1,354 @@
+#include <qp/kkt_residuals.h>
+#include <qp/power_iteration.h>
+#include <qp/smalse_m.h>
+#include <qp/solver_factory.h>
+
+#include <deal.II/base/exceptions.h>
+#include <deal.II/lac/trilinos_vector.h>
+#include <deal.II/lac/vector.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace dualcontact
+{
+  namespace qp
+  {
+    void
+    SMALSEMParameters::declare_parameters(dealii::ParameterHandler &prm)
+    {
+      prm.enter_subsection("QP solver");
+      prm.enter_subsection("SMALSE-M");
+      prm.declare_entry("Penalty factor",
+                        "1",
+                        dealii::Patterns::Double(0.),
+                        "rho = factor * lambda_max(A) (thesis 2.5).");
+      prm.declare_entry("M0",
+                        "100",
+                        dealii::Patterns::Double(0.),
+                        "Initial M of the inner precision control "
+                        "||g^P|| <= min(M ||Bx - c||, eta).");
+      prm.declare_entry("Eta factor",
+                        "0.1",
+                        dealii::Patterns::Double(0.),
+                        "eta = factor * ||b||.");
+      prm.declare_entry("Beta",
+                        "0.2",
+                        dealii::Patterns::Double(0., 1.),
+                        "M := beta M when the augmented Lagrangian did not "
+                        "increase enough (in (0, 1)).");
+      prm.declare_entry("Maximum outer iterations",
+                        "100",
+                        dealii::Patterns::Integer(1),
+                        "Limit on SMALSE-M outer iterations.");
+      prm.declare_entry("Equality tolerance factor",
+                        "1",
+                        dealii::Patterns::Double(0.),
+                        "Converged needs ||Bx - c|| <= factor * Tolerance * "
+                        "||b||.");
+      prm.leave_subsection();
+      prm.leave_subsection();
+    }
+
+
+    void
+    SMALSEMParameters::parse_parameters(dealii::ParameterHandler &prm)
+    {
+      prm.enter_subsection("QP solver");
+      prm.enter_subsection("SMALSE-M");
+      rho_factor                = prm.get_double("Penalty factor");
+      m0                        = prm.get_double("M0");
+      eta_factor                = prm.get_double("Eta factor");
+      beta                      = prm.get_double("Beta");
+      max_outer_iterations      = prm.get_integer("Maximum outer iterations");
+      equality_tolerance_factor = prm.get_double("Equality tolerance factor");
+      prm.leave_subsection();
+      prm.leave_subsection();
+      check();
+    }
+
+
+    void
+    SMALSEMParameters::check() const
+    {
+      const auto fail = [](const std::string &name, const std::string &what)
+      {
+        AssertThrow(false,
+                    dealii::ExcMessage("`" + name +
+                                       "' in `subsection QP solver / "
+                                       "subsection SMALSE-M' " +
+                                       what));
+      };
+      if (!(rho_factor > 0.))
+        fail("Penalty factor", "must be > 0");
+      if (!(m0 > 0.))
+        fail("M0", "must be > 0");
+      if (!(eta_factor > 0.))
+        fail("Eta factor", "must be > 0");
+      if (!(beta > 0. && beta < 1.))
+        fail("Beta", "must be in (0, 1)");
+      if (max_outer_iterations < 1)
+        fail("Maximum outer iterations", "must be >= 1");
+      if (!(equality_tolerance_factor > 0.))
+        fail("Equality tolerance factor", "must be > 0");
+    }
+
+
+    template <typename VectorType>
+    SMALSEM<VectorType>::SMALSEM(const SolverParameters  &parameters,
+                                 const SMALSEMParameters &smalse_parameters)
+        : SolverBase<VectorType>("smalse-m(" + parameters.solver + ")",
+                                 parameters)
+        , smalse_prm(smalse_parameters)
+    {
+      smalse_prm.check();
+    }
+
+
+    template <typename VectorType>
+    double
+    SMALSEM<VectorType>::equality_residual() const
+    {
+      return last_equality_residual;
+    }
+
+
+    template <typename VectorType>
+    const VectorType &
+    SMALSEM<VectorType>::multipliers() const
+    {
+      return lambda;
+    }
+
+
+    template <typename VectorType>
+    SolverStatistics
+    SMALSEM<VectorType>::solve(const Problem<VectorType> &problem,
+                               VectorType                &x)
+    {
+      const SolverParameters &prm   = this->prm;
+      SolverStatistics        stats = this->start(problem, x);
+      AssertThrow(problem.equality != nullptr,
+                  dealii::ExcMessage("SMALSE-M: the problem has no equality "
+                                     "constraints; use the inner solver '" +
+                                     prm.solver + "' directly"));
+      const EqualityConstraints<VectorType> &eq = *problem.equality;
+      AssertThrow(eq.vmult && eq.Tvmult,
+                  dealii::ExcMessage("SMALSE-M: B and B' products needed"));
+
+      // lambda_max(A) sets rho; lambda_max(A + rho B'B) is given to the
+      // inner solver once, so it does not run a power iteration per outer
+      // iteration
+      const double lmax_A = this->lambda_max(problem, stats);
+      const double rho    = smalse_prm.rho_factor * lmax_A;
+
+      VectorType Bx(eq.c), residual(eq.c), mu(eq.c);
+      VectorType Ax(x), BtBx(x), work(x), g(x);
+      lambda = eq.c;
+      lambda = 0.;
+
+      Problem<VectorType> inner;
+      inner.constraints  = problem.constraints;
+      inner.diagonal     = nullptr;
+      inner.semidefinite = problem.semidefinite;
+      inner.hessian      = [&](VectorType &dst, const VectorType &src)
+      {
+        problem.hessian(dst, src);
+        ++stats.n_hessian_products;
+        eq.vmult(Bx, src);
+        eq.Tvmult(BtBx, Bx);
+        dst.add(rho, BtBx);
+      };
+      {
+        const PowerIterationResult r =
+          power_iteration<VectorType>(inner.hessian,
+                                      problem.b,
+                                      prm.power_max_iterations,
+                                      prm.power_tolerance,
+                                      prm.power_safety_factor);
+        inner.lambda_max = r.lambda_max;
+      }
+
+      // the Lagrangian L(x, lambda, rho) = f(x) + lambda'(Bx - c)
+      // + rho/2 ||Bx - c||^2, and the equality residual Bx - c
+      const auto equality_residual = [&](const VectorType &point)
+      {
+        eq.vmult(residual, point);
+        residual -= eq.c;
+        return residual.l2_norm();
+      };
+      const auto lagrangian =
+        [&](const VectorType &point, const VectorType &multiplier)
+      {
+        problem.hessian(Ax, point);
+        ++stats.n_hessian_products;
+        const double f    = 0.5 * (Ax * point) - problem.b * point;
+        const double norm = equality_residual(point);
+        return f + (multiplier * residual) + 0.5 * rho * norm * norm;
+      };
+      // gradient of L(., lambda, rho) at x: Ax - b + B'(lambda + rho(Bx-c))
+      const auto lagrangian_gradient = [&](const VectorType &point)
+      {
+        problem.hessian(g, point);
+        ++stats.n_hessian_products;
+        g -= problem.b;
+        equality_residual(point);
+        mu = lambda;
+        mu.add(rho, residual);
+        eq.Tvmult(work, mu);
+        g += work;
+      };
+
+      const double eta       = smalse_prm.eta_factor * stats.norm_b;
+      const double tolerance = prm.tolerance * stats.norm_b;
+      const double equality_tolerance =
+        smalse_prm.equality_tolerance_factor * tolerance;
+      double M             = smalse_prm.m0;
+      double previous_L    = 0.;
+      double norm_residual = equality_residual(x);
+      bool   have_previous = false;
+      stats.reason         = ConvergenceReason::max_iterations;
+
+      SolverParameters inner_prm = prm;
+      for (unsigned int outer = 0;; ++outer)
+      {
+        // inner right-hand side b - B'lambda + rho B'c
+        inner.b = problem.b;
+        eq.Tvmult(work, lambda);
+        inner.b -= work;
+        eq.Tvmult(work, eq.c);
+        inner.b.add(rho, work);
+        const double norm_inner_b = std::max(inner.b.l2_norm(), 1e-300);
+
+        // Step 1: inner solve with adaptive precision
+        double inner_tolerance = std::min(M * norm_residual, eta);
+        inner_tolerance        = std::max(inner_tolerance, 0.1 * tolerance);
+        double g_norm          = 0.;
+        for (unsigned int attempt = 0; attempt < 3; ++attempt)
+        {
+          inner_prm.tolerance = std::min(0.5, inner_tolerance / norm_inner_b);
+          inner_prm.max_iterations = prm.max_iterations > stats.iterations ?
+                                       prm.max_iterations - stats.iterations :
+                                       1;
+          auto inner_solver        = create<VectorType>(prm.solver, inner_prm);
+          const SolverStatistics s = inner_solver->solve(inner, x);
+          stats.iterations += s.iterations;
+          stats.n_cg += s.n_cg;
+          stats.n_half_steps += s.n_half_steps;
+          stats.n_expansions += s.n_expansions;
+          stats.n_proportioning += s.n_proportioning;
+          stats.n_bb += s.n_bb;
+          stats.n_fall_back += s.n_fall_back;
+          stats.n_projections += s.n_projections;
+          if (s.reason == ConvergenceReason::non_finite ||
+              s.reason == ConvergenceReason::unbounded ||
+              s.reason == ConvergenceReason::breakdown)
+          {
+            stats.reason  = s.reason;
+            stats.message = "inner solver (" + prm.solver +
+                            "): " + to_string(s.reason) + " " + s.message;
+            break;
+          }
+          norm_residual = equality_residual(x);
+          g_norm        = s.final_criterion * s.norm_b;
+          // condition (2.36) at the new iterate
+          const double wanted = std::min(M * norm_residual, eta);
+          if (g_norm <= std::max(wanted, 0.1 * tolerance) ||
+              stats.iterations >= prm.max_iterations ||
+              s.reason != ConvergenceReason::converged)
+            break;
+          inner_tolerance = std::max(wanted, 0.1 * tolerance);
+        }
+        if (stats.reason != ConvergenceReason::max_iterations)
+          break;
+        ++stats.n_outer;
+
+        // outer stopping test: projected gradient of the Lagrangian at
+        // (x, lambda + rho (Bx - c)) and the equality residual
+        lagrangian_gradient(x);
+        const double criterion =
+          problem.constraints ? std::sqrt(
+                                  [&]
+                                  {
+                                    const GradientNorms n =
+                                      problem.constraints->gradient_norms(x, g);
+                                    return n.free_sq + n.chopped_sq;
+                                  }()) :
+                                g.l2_norm();
+        stats.history.push_back(criterion / stats.norm_b);
+        stats.final_criterion =
+          std::max(criterion,
+                   norm_residual * tolerance /
+                     std::max(equality_tolerance, 1e-300)) /
+          stats.norm_b;
+        if (!std::isfinite(criterion) || !std::isfinite(norm_residual))
+        {
+          stats.reason  = ConvergenceReason::non_finite;
+          stats.message = "non-finite gradient or equality residual";
+          break;
+        }
+        if (criterion <= tolerance && norm_residual <= equality_tolerance)
+        {
+          stats.reason = ConvergenceReason::converged;
+          break;
+        }
+        if (stats.iterations >= prm.max_iterations)
+        {
+          stats.reason  = ConvergenceReason::max_iterations;
+          stats.message = "iteration limit " +
+                          std::to_string(prm.max_iterations) +
+                          " reached (inner iterations)";
+          break;
+        }
+        if (outer + 1 >= smalse_prm.max_outer_iterations)
+        {
+          stats.reason  = ConvergenceReason::max_iterations;
+          stats.message = "outer iteration limit " +
+                          std::to_string(smalse_prm.max_outer_iterations) +
+                          " reached";
+          break;
+        }
+
+        // Step 3 (before step 2, it needs lambda^k): M update
+        const double L = lagrangian(x, lambda);
+        if (have_previous &&
+            L < previous_L + 0.5 * rho * norm_residual * norm_residual)
+          M *= smalse_prm.beta;
+        // Step 2: multipliers
+        equality_residual(x);
+        lambda.add(rho, residual);
+        previous_L    = L;
+        have_previous = true;
+      }
+
+      last_equality_residual = equality_residual(x);
+      stats.message += (stats.message.empty() ? "" : "; ") +
+                       std::string("equality residual ||Bx - c|| = ") +
+                       std::to_string(last_equality_residual) +
+                       ", outer iterations " + std::to_string(stats.n_outer) +
+                       ", rho = " + std::to_string(rho);
+      this->finish(problem, x, stats);
+      // stationarity of the Lagrangian, not of the plain gradient
+      lagrangian_gradient(x);
+      --stats.n_hessian_products; // the report's product is not work
+      // g here uses lambda + rho(Bx - c) = the updated multiplier
+      stats.kkt.stationarity =
+        problem.constraints ?
+          std::sqrt(
+            [&]
+            {
+              const GradientNorms n = problem.constraints->gradient_norms(x, g);
+              return n.free_sq + n.chopped_sq;
+            }()) :
+          g.l2_norm();
+      if (stats.reason == ConvergenceReason::converged &&
+          !(stats.final_criterion <= prm.tolerance))
+        stats.reason = ConvergenceReason::stagnation;
+      return stats;
+    }
+
+
+    template class SMALSEM<dealii::Vector<double>>;
+    template class SMALSEM<dealii::TrilinosWrappers::MPI::Vector>;
+  } // namespace qp
+} // namespace dualcontact

@@ -1,0 +1,103 @@
+/**
+ * @file smalse_m.h
+ * SMALSE-M (thesis 2.5, algorithm 8): semimonotonic augmented Lagrangians
+ * for separable and equality constrained QPs.  The equality constraints
+ * Bx = c (the G lambda = e of a floating body) are enforced by an outer
+ * loop over their multipliers; every outer iteration solves a QP with the
+ * separable constraints only, by any solver of the factory.
+ *
+ * Why this structure: the inner QPs keep the separable structure the fast
+ * solvers need, and the adaptive precision control (inner tolerance
+ * proportional to the equality residual) and the update of M (not of the
+ * penalty) give a feasibility error bounded independently of the
+ * conditioning of B (thesis 2.5 and the references there).
+ */
+#ifndef dualcontact_qp_smalse_m_h
+#define dualcontact_qp_smalse_m_h
+
+#include <deal.II/base/parameter_handler.h>
+
+#include <qp/solver_base.h>
+
+#include <string>
+
+namespace dualcontact
+{
+  namespace qp
+  {
+    /// Parameters of the SMALSE-M outer loop, subsection `QP solver` /
+    /// `SMALSE-M` of the .prm.
+    struct SMALSEMParameters
+    {
+      /// penalty rho = rho_factor * lambda_max(A) (Dostal: rho ~ ||A||)
+      double rho_factor = 1.;
+      /// initial M_0 of the inner precision control
+      /// ||g^P|| <= min(M ||Bx - c||, eta)
+      double m0 = 100.;
+      /// eta = eta_factor * ||b||
+      double eta_factor = 0.1;
+      /// beta in (0, 1): M := beta M when the Lagrangian did not increase
+      /// enough
+      double beta = 0.2;
+      /// limit on outer iterations
+      unsigned int max_outer_iterations = 100;
+      /// the equality residual must satisfy ||Bx - c|| <=
+      /// equality_tolerance_factor * tolerance * ||b||
+      double equality_tolerance_factor = 1.;
+
+      static void
+      declare_parameters(dealii::ParameterHandler &prm);
+      /// enters `QP solver` / `SMALSE-M` itself
+      void
+      parse_parameters(dealii::ParameterHandler &prm);
+      void
+      check() const;
+    };
+
+
+    /**
+     * SMALSE-M with an inner solver chosen by name (parameters.solver).
+     *
+     * Statistics: `iterations` and the counts by kind are the sums over
+     * the inner solves, `n_outer` the outer iterations, `n_hessian_products`
+     * counts products with A (one per product with A + rho B'B, plus one per
+     * outer iteration for the Lagrangian).  Converged when the projected
+     * gradient of the Lagrangian is below tolerance * ||b|| AND
+     * ||Bx - c|| <= equality_tolerance_factor * tolerance * ||b||; the
+     * equality residual is also stored in equality_residual().  KKT:
+     * stationarity is ||g^P|| of the Lagrangian gradient
+     * Ax - b + B'lambda, feasibility ||x - P(x)|| + ||Bx - c||.
+     *
+     * Deviation from algorithm 8, for a black-box inner solver: the inner
+     * tolerance min(M_k ||Bx - c||, eta) is evaluated with the equality
+     * residual of the previous outer iterate (the inner solver's stopping
+     * test is a fixed tolerance); the outer loop then checks the condition
+     * at the new iterate and, if it fails, continues the inner solve from
+     * there with the tighter tolerance.
+     */
+    template <typename VectorType>
+    class SMALSEM : public SolverBase<VectorType>
+    {
+    public:
+      SMALSEM(const SolverParameters  &parameters,
+              const SMALSEMParameters &smalse_parameters = SMALSEMParameters());
+
+      SolverStatistics
+      solve(const Problem<VectorType> &problem, VectorType &x) override;
+
+      /// ||Bx - c|| at the returned x
+      double
+      equality_residual() const;
+      /// the equality multipliers at the returned x
+      const VectorType &
+      multipliers() const;
+
+    private:
+      SMALSEMParameters smalse_prm;
+      double            last_equality_residual = 0.;
+      VectorType        lambda;
+    };
+  } // namespace qp
+} // namespace dualcontact
+
+#endif
