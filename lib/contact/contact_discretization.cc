@@ -1,0 +1,478 @@
+#include <deal.II/base/quadrature_lib.h>
+#include <deal.II/dofs/dof_tools.h>
+#include <deal.II/fe/fe_values.h>
+#include <deal.II/fe/mapping.h>
+#include <deal.II/lac/dynamic_sparsity_pattern.h>
+
+#include <contact/contact_discretization.h>
+
+#include <algorithm>
+#include <limits>
+#include <map>
+
+namespace dualcontact
+{
+  namespace contact
+  {
+    using namespace dealii;
+
+    namespace
+    {
+      /** A row of B before condensation: (body, body dof, coefficient). */
+      struct RowEntry
+      {
+        unsigned int            body;
+        types::global_dof_index dof;
+        double                  value;
+      };
+
+      /** Unit tangents completing n to an orthonormal frame. */
+      template <int dim>
+      std::array<Tensor<1, dim>, dim - 1>
+      make_tangents(const Tensor<1, dim> &n, const Tensor<1, dim> &hint)
+      {
+        std::array<Tensor<1, dim>, dim - 1> t;
+        if constexpr (dim == 2)
+        {
+          t[0][0] = -n[1];
+          t[0][1] = n[0];
+        }
+        else
+        {
+          Tensor<1, dim> a = hint - (hint * n) * n;
+          if (a.norm() < 1e-3 * std::max(hint.norm(), 1e-300))
+          {
+            // the coordinate axis least aligned with n
+            unsigned int axis = 0;
+            for (unsigned int d = 1; d < dim; ++d)
+              if (std::abs(n[d]) < std::abs(n[axis]))
+                axis = d;
+            Tensor<1, dim> e;
+            e[axis] = 1;
+            a       = e - (e * n) * n;
+          }
+          t[0] = a / a.norm();
+          t[1] = cross_product_3d(n, t[0]);
+        }
+        return t;
+      }
+
+      /**
+       * Closest point to x on a boundary face given by its vertices
+       * (segment in 2D, bilinear quadrilateral in 3D), and the unit normal
+       * there (orientation not fixed).  Returns the squared distance.
+       */
+      template <int dim>
+      double
+      project_on_face(const std::vector<Point<dim>> &v,
+                      const Point<dim>              &x,
+                      Point<dim>                    &closest,
+                      Tensor<1, dim>                &normal)
+      {
+        if constexpr (dim == 2)
+        {
+          const Tensor<1, dim> e = v[1] - v[0];
+          const double s = std::clamp(((x - v[0]) * e) / (e * e), 0., 1.);
+          closest        = v[0] + s * e;
+          normal[0]      = e[1];
+          normal[1]      = -e[0];
+          normal /= normal.norm();
+        }
+        else
+        {
+          // X(s, r) = v0 (1-s)(1-r) + v1 s (1-r) + v2 (1-s) r + v3 s r,
+          // Gauss-Newton with clamping to the unit square.
+          double     s = 0.5, r = 0.5;
+          const auto X = [&](const double s_, const double r_)
+          {
+            return Point<dim>(v[0] * ((1 - s_) * (1 - r_)) +
+                              v[1] * (s_ * (1 - r_)) + v[2] * ((1 - s_) * r_) +
+                              v[3] * (s_ * r_));
+          };
+          for (unsigned int it = 0; it < 20; ++it)
+          {
+            const Tensor<1, dim> Xs =
+              (v[1] - v[0]) * (1 - r) + (v[3] - v[2]) * r;
+            const Tensor<1, dim> Xr =
+              (v[2] - v[0]) * (1 - s) + (v[3] - v[1]) * s;
+            const Tensor<1, dim> d = X(s, r) - x;
+            const double         a = Xs * Xs, b = Xs * Xr, c = Xr * Xr;
+            const double         gs = Xs * d, gr = Xr * d;
+            const double         det = a * c - b * b;
+            if (det <= 0)
+              break;
+            const double ds    = -(c * gs - b * gr) / det;
+            const double dr    = -(a * gr - b * gs) / det;
+            const double s_new = std::clamp(s + ds, 0., 1.);
+            const double r_new = std::clamp(r + dr, 0., 1.);
+            const bool done = std::abs(s_new - s) + std::abs(r_new - r) < 1e-14;
+            s               = s_new;
+            r               = r_new;
+            if (done)
+              break;
+          }
+          closest                 = X(s, r);
+          const Tensor<1, dim> Xs = (v[1] - v[0]) * (1 - r) + (v[3] - v[2]) * r;
+          const Tensor<1, dim> Xr = (v[2] - v[0]) * (1 - s) + (v[3] - v[1]) * s;
+          normal                  = cross_product_3d(Xs, Xr);
+          normal /= normal.norm();
+        }
+        return (closest - x).norm_square();
+      }
+    } // namespace
+
+
+    template <int dim>
+    ContactDiscretization<dim>::ContactDiscretization(
+      const std::vector<const fem::ElasticBody<dim> *> &bodies,
+      const std::vector<ContactPair<dim>>              &pairs)
+        : pairs_(pairs)
+    {
+      offsets_.resize(bodies.size() + 1, 0);
+      for (unsigned int b = 0; b < bodies.size(); ++b)
+        offsets_[b + 1] = offsets_[b] + bodies[b]->n_dofs();
+
+      std::vector<std::vector<RowEntry>> rows_n, rows_t;
+
+      for (unsigned int p = 0; p < pairs_.size(); ++p)
+      {
+        const ContactPair<dim> &pair = pairs_[p];
+        AssertThrow(pair.slave_body < bodies.size() &&
+                      (pair.obstacle || pair.master_body < bodies.size()),
+                    ExcMessage("Contact pair `" + pair.name +
+                               "' names a body that does not exist."));
+        AssertThrow(pair.obstacle || pair.master_body != pair.slave_body,
+                    ExcMessage("Contact pair `" + pair.name +
+                               "': self-contact is not supported."));
+        const fem::ElasticBody<dim> &slave = *bodies[pair.slave_body];
+        const FiniteElement<dim>    &fe    = slave.fe();
+
+        // 1. Slave nodes with weights and weighted normals.
+        struct Accumulated
+        {
+          std::array<types::global_dof_index, dim> dofs;
+          double                                   weight = 0;
+          Tensor<1, dim>                           normal;
+        };
+        std::map<types::global_dof_index, Accumulated> accumulated;
+        const QGauss<dim - 1>                quadrature(fe.degree + 1);
+        FEFaceValues<dim>                    fe_face(slave.mapping(),
+                                  fe,
+                                  quadrature,
+                                  update_values | update_normal_vectors |
+                                    update_JxW_values);
+        std::vector<types::global_dof_index> cell_dofs(fe.n_dofs_per_cell());
+        bool                                 found_boundary = false;
+        for (const auto &cell : slave.dof_handler().active_cell_iterators())
+          for (const unsigned int f : cell->face_indices())
+            if (cell->face(f)->at_boundary() &&
+                cell->face(f)->boundary_id() == pair.slave_boundary)
+            {
+              found_boundary = true;
+              fe_face.reinit(cell, f);
+              cell->get_dof_indices(cell_dofs);
+              for (unsigned int k = 0; k < fe.n_dofs_per_cell(); ++k)
+                if (fe.system_to_component_index(k).first == 0 &&
+                    fe.has_support_on_face(k, f))
+                {
+                  const unsigned int node =
+                    fe.system_to_component_index(k).second;
+                  Accumulated &a = accumulated[cell_dofs[k]];
+                  for (unsigned int c = 0; c < dim; ++c)
+                    a.dofs[c] =
+                      cell_dofs[fe.component_to_system_index(c, node)];
+                  for (unsigned int q = 0; q < quadrature.size(); ++q)
+                  {
+                    const double w = fe_face.shape_value(k, q) * fe_face.JxW(q);
+                    a.weight += w;
+                    a.normal += w * fe_face.normal_vector(q);
+                  }
+                }
+            }
+        AssertThrow(found_boundary,
+                    ExcMessage("Contact pair `" + pair.name +
+                               "': the slave body `" + slave.name() +
+                               "' has no boundary with id " +
+                               std::to_string(pair.slave_boundary) + "."));
+
+        std::vector<Point<dim>> support_points(slave.n_dofs());
+        DoFTools::map_dofs_to_support_points(slave.mapping(),
+                                             slave.dof_handler(),
+                                             support_points);
+
+        // Master faces (body-body pairs): cell, face, vertices.
+        struct MasterFace
+        {
+          typename DoFHandler<dim>::active_cell_iterator cell;
+          unsigned int                                   face;
+          std::vector<Point<dim>>                        vertices;
+          Point<dim>                                     cell_center;
+        };
+        std::vector<MasterFace> master_faces;
+        if (!pair.obstacle)
+        {
+          const fem::ElasticBody<dim> &master = *bodies[pair.master_body];
+          for (const auto &cell : master.dof_handler().active_cell_iterators())
+            for (const unsigned int f : cell->face_indices())
+              if (cell->face(f)->at_boundary() &&
+                  cell->face(f)->boundary_id() == pair.master_boundary)
+              {
+                MasterFace face{cell, f, {}, cell->center()};
+                for (const unsigned int v : cell->face(f)->vertex_indices())
+                  face.vertices.push_back(cell->face(f)->vertex(v));
+                master_faces.push_back(face);
+              }
+          AssertThrow(!master_faces.empty(),
+                      ExcMessage("Contact pair `" + pair.name +
+                                 "': the master body `" + master.name() +
+                                 "' has no boundary with id " +
+                                 std::to_string(pair.master_boundary) + "."));
+        }
+
+        // 2. Per node: master point, frame, gap, rows.
+        PairSummary summary;
+        summary.name    = pair.name;
+        summary.min_gap = std::numeric_limits<double>::max();
+        summary.max_gap = -std::numeric_limits<double>::max();
+        for (const auto &[key, a] : accumulated)
+        {
+          ContactNode<dim> node;
+          node.pair     = p;
+          node.body     = pair.slave_body;
+          node.dofs     = a.dofs;
+          node.position = support_points[key];
+          node.weight   = a.weight;
+          std::vector<RowEntry>     master_entries; // per component: dof, phi
+          std::vector<unsigned int> master_component;
+          if (pair.obstacle)
+          {
+            Tensor<1, dim> outward;
+            pair.obstacle->project(node.position, node.master_point, outward);
+            node.normal = -outward;
+            if ((node.position - node.master_point).norm() >
+                pair.search_distance)
+              continue;
+          }
+          else
+          {
+            double         best      = std::numeric_limits<double>::max();
+            unsigned int   best_face = 0;
+            Tensor<1, dim> best_normal;
+            for (unsigned int mf = 0; mf < master_faces.size(); ++mf)
+            {
+              Point<dim>     closest;
+              Tensor<1, dim> normal;
+              const double   d2 = project_on_face(master_faces[mf].vertices,
+                                                node.position,
+                                                closest,
+                                                normal);
+              if (d2 < best)
+              {
+                best              = d2;
+                best_face         = mf;
+                node.master_point = closest;
+                // outward normal of the master cell
+                if (normal * (closest - master_faces[mf].cell_center) < 0)
+                  normal *= -1;
+                best_normal = normal;
+              }
+            }
+            if (std::sqrt(best) > pair.search_distance)
+              continue;
+            node.normal = -best_normal;
+
+            const fem::ElasticBody<dim> &master = *bodies[pair.master_body];
+            const MasterFace            &face   = master_faces[best_face];
+            const Point<dim>             unit =
+              master.mapping().transform_real_to_unit_cell(face.cell,
+                                                           node.master_point);
+            std::vector<types::global_dof_index> master_dofs(
+              master.fe().n_dofs_per_cell());
+            face.cell->get_dof_indices(master_dofs);
+            for (unsigned int k = 0; k < master.fe().n_dofs_per_cell(); ++k)
+            {
+              const double phi = master.fe().shape_value(k, unit);
+              if (std::abs(phi) > 1e-14)
+              {
+                master_entries.push_back(
+                  {pair.master_body, master_dofs[k], phi});
+                master_component.push_back(
+                  master.fe().system_to_component_index(k).first);
+              }
+            }
+          }
+          node.tangents =
+            make_tangents<dim>(node.normal, pair.first_tangent_direction);
+          node.gap = (node.master_point - node.position) * node.normal;
+
+          const auto make_row = [&](const Tensor<1, dim> &direction)
+          {
+            std::vector<RowEntry> row;
+            for (unsigned int c = 0; c < dim; ++c)
+              if (direction[c] != 0.)
+                row.push_back({node.body, node.dofs[c], direction[c]});
+            for (unsigned int e = 0; e < master_entries.size(); ++e)
+              if (direction[master_component[e]] != 0.)
+                row.push_back(
+                  {master_entries[e].body,
+                   master_entries[e].dof,
+                   -master_entries[e].value * direction[master_component[e]]});
+            return row;
+          };
+          rows_n.push_back(make_row(node.normal));
+          for (unsigned int k = 0; k + 1 < dim; ++k)
+            rows_t.push_back(make_row(node.tangents[k]));
+
+          ++summary.n_nodes;
+          summary.min_gap = std::min(summary.min_gap, node.gap);
+          summary.max_gap = std::max(summary.max_gap, node.gap);
+          summary.area += node.weight;
+          nodes_.push_back(node);
+        }
+        AssertThrow(summary.n_nodes > 0,
+                    ExcMessage("Contact pair `" + pair.name +
+                               "': no slave node found the master within "
+                               "the search distance " +
+                               std::to_string(pair.search_distance) + " m."));
+        summaries_.push_back(summary);
+      }
+
+      // 3. Condense through the bodies' constraints and build the matrices.
+      const auto build = [&](const std::vector<std::vector<RowEntry>> &rows,
+                             SparsityPattern                          &pattern,
+                             SparseMatrix<double>                     &matrix,
+                             Vector<double>                           &offset)
+      {
+        std::vector<std::map<types::global_dof_index, double>> condensed(
+          rows.size());
+        offset.reinit(rows.size());
+        for (unsigned int r = 0; r < rows.size(); ++r)
+          for (const RowEntry &entry : rows[r])
+          {
+            const AffineConstraints<double> &constraints =
+              bodies[entry.body]->constraints();
+            const types::global_dof_index offset_b = offsets_[entry.body];
+            if (constraints.is_constrained(entry.dof))
+            {
+              offset(r) +=
+                entry.value * constraints.get_inhomogeneity(entry.dof);
+              if (const auto *line =
+                    constraints.get_constraint_entries(entry.dof))
+                for (const auto &[dof, weight] : *line)
+                  condensed[r][offset_b + dof] += entry.value * weight;
+            }
+            else
+              condensed[r][offset_b + entry.dof] += entry.value;
+          }
+        DynamicSparsityPattern dsp(rows.size(), offsets_.back());
+        for (unsigned int r = 0; r < rows.size(); ++r)
+          for (const auto &[column, value] : condensed[r])
+            dsp.add(r, column);
+        pattern.copy_from(dsp);
+        matrix.reinit(pattern);
+        for (unsigned int r = 0; r < rows.size(); ++r)
+          for (const auto &[column, value] : condensed[r])
+            matrix.set(r, column, value);
+      };
+      build(rows_n, normal_pattern_, normal_matrix_, normal_offset_);
+      build(rows_t,
+            tangential_pattern_,
+            tangential_matrix_,
+            tangential_offset_);
+      gaps_.reinit(nodes_.size());
+      for (unsigned int i = 0; i < nodes_.size(); ++i)
+        gaps_(i) = nodes_[i].gap;
+    }
+
+
+    template <int dim>
+    unsigned int
+    ContactDiscretization<dim>::n_nodes() const
+    {
+      return nodes_.size();
+    }
+
+    template <int dim>
+    const std::vector<ContactNode<dim>> &
+    ContactDiscretization<dim>::nodes() const
+    {
+      return nodes_;
+    }
+
+    template <int dim>
+    const std::vector<typename ContactDiscretization<dim>::PairSummary> &
+    ContactDiscretization<dim>::pair_summaries() const
+    {
+      return summaries_;
+    }
+
+    template <int dim>
+    const std::vector<ContactPair<dim>> &
+    ContactDiscretization<dim>::pairs() const
+    {
+      return pairs_;
+    }
+
+    template <int dim>
+    types::global_dof_index
+    ContactDiscretization<dim>::n_dofs() const
+    {
+      return offsets_.back();
+    }
+
+    template <int dim>
+    types::global_dof_index
+    ContactDiscretization<dim>::body_offset(const unsigned int body) const
+    {
+      return offsets_.at(body);
+    }
+
+    template <int dim>
+    const SparseMatrix<double> &
+    ContactDiscretization<dim>::normal_matrix() const
+    {
+      return normal_matrix_;
+    }
+
+    template <int dim>
+    const SparseMatrix<double> &
+    ContactDiscretization<dim>::tangential_matrix() const
+    {
+      return tangential_matrix_;
+    }
+
+    template <int dim>
+    const Vector<double> &
+    ContactDiscretization<dim>::gaps() const
+    {
+      return gaps_;
+    }
+
+    template <int dim>
+    const Vector<double> &
+    ContactDiscretization<dim>::normal_offset() const
+    {
+      return normal_offset_;
+    }
+
+    template <int dim>
+    const Vector<double> &
+    ContactDiscretization<dim>::tangential_offset() const
+    {
+      return tangential_offset_;
+    }
+
+    template <int dim>
+    Vector<double>
+    ContactDiscretization<dim>::normal_bound() const
+    {
+      Vector<double> bound = gaps_;
+      bound -= normal_offset_;
+      return bound;
+    }
+
+
+    template class ContactDiscretization<2>;
+    template class ContactDiscretization<3>;
+  } // namespace contact
+} // namespace dualcontact

@@ -1,0 +1,134 @@
+#pragma once
+
+#include <deal.II/base/point.h>
+#include <deal.II/base/tensor.h>
+#include <deal.II/lac/sparse_matrix.h>
+#include <deal.II/lac/sparsity_pattern.h>
+#include <deal.II/lac/vector.h>
+
+#include <contact/contact_pair.h>
+#include <fem/elastic_body.h>
+
+#include <array>
+#include <string>
+#include <vector>
+
+namespace dualcontact
+{
+  namespace contact
+  {
+    /**
+     * One slave node of a contact pair: where it is, its contact frame, its
+     * initial gap and its share of the contact area.
+     */
+    template <int dim>
+    struct ContactNode
+    {
+      unsigned int pair = 0;
+      unsigned int body = 0;
+      /** The node's dofs in its body's numbering, one per component. */
+      std::array<dealii::types::global_dof_index, dim> dofs;
+      dealii::Point<dim>                               position;
+      /** Closest point of the master surface (reference configuration). */
+      dealii::Point<dim> master_point;
+      /** Unit normal, pointing from the slave into the master. */
+      dealii::Tensor<1, dim> normal;
+      /** Unit tangents; (normal, tangents) is orthonormal. */
+      std::array<dealii::Tensor<1, dim>, dim - 1> tangents;
+      /** Initial normal gap (master_point - position) . normal [m]. */
+      double gap = 0;
+      /** Contact area weight: int phi_i ds over the slave surface [m^2]. */
+      double weight = 0;
+    };
+
+
+    /**
+     * Node-to-surface contact discretization (small displacements, reference
+     * configuration) of all contact pairs of a scene.
+     *
+     * The displacements of all bodies form one vector, body b's dofs at
+     * offset body_offset(b).  Per slave node i the relative displacement
+     * u_s - u_m (u_m interpolated at the slave node's closest point on the
+     * master surface; zero for a rigid obstacle) gives one normal row of B_N
+     * and dim - 1 tangential rows of B_T:
+     *   (B_N u)_i = n_i . (u_s - u_m),   (B_T u)_{(dim-1) i + k} = t_ik . (u_s
+     * - u_m), and non-penetration reads B_N u <= gap.
+     *
+     * The matrices act on the *condensed* displacements: entries at dofs
+     * constrained by a body's AffineConstraints (Dirichlet, hanging nodes)
+     * are expanded through the constraint lines, and the inhomogeneities move
+     * into normal_offset() / tangential_offset(), so that for u satisfying
+     * the constraints  B_full u = B u + offset.  Hence normal_bound() =
+     * gap - normal_offset is the right-hand side of B_N u <= c for the
+     * condensed stiffness matrices.
+     *
+     * Master faces are projected onto by their vertices (bilinear/straight
+     * geometry); curved Q2 master faces are approximated by that.
+     */
+    template <int dim>
+    class ContactDiscretization
+    {
+    public:
+      /** Per pair: what the log reports. */
+      struct PairSummary
+      {
+        std::string  name;
+        unsigned int n_nodes = 0;
+        double       min_gap = 0;
+        double       max_gap = 0;
+        double       area    = 0; ///< sum of the weights [m^2]
+      };
+
+      ContactDiscretization(
+        const std::vector<const fem::ElasticBody<dim> *> &bodies,
+        const std::vector<ContactPair<dim>>              &pairs);
+
+      unsigned int
+      n_nodes() const;
+      const std::vector<ContactNode<dim>> &
+      nodes() const;
+      const std::vector<PairSummary> &
+      pair_summaries() const;
+      const std::vector<ContactPair<dim>> &
+      pairs() const;
+
+      /** Total number of displacement dofs of all bodies. */
+      dealii::types::global_dof_index
+      n_dofs() const;
+      dealii::types::global_dof_index
+      body_offset(const unsigned int body) const;
+
+      /** B_N: n_nodes() x n_dofs(). */
+      const dealii::SparseMatrix<double> &
+      normal_matrix() const;
+      /** B_T: (dim - 1) n_nodes() x n_dofs(). */
+      const dealii::SparseMatrix<double> &
+      tangential_matrix() const;
+      /** The initial gaps of the nodes [m]. */
+      const dealii::Vector<double> &
+      gaps() const;
+      /** B_N applied to the prescribed (inhomogeneous) displacements. */
+      const dealii::Vector<double> &
+      normal_offset() const;
+      /** B_T applied to the prescribed displacements. */
+      const dealii::Vector<double> &
+      tangential_offset() const;
+      /** c = gap - normal_offset: B_N u <= c on condensed displacements. */
+      dealii::Vector<double>
+      normal_bound() const;
+
+    private:
+      std::vector<ContactPair<dim>>                pairs_;
+      std::vector<dealii::types::global_dof_index> offsets_;
+      std::vector<ContactNode<dim>>                nodes_;
+      std::vector<PairSummary>                     summaries_;
+      dealii::SparsityPattern                      normal_pattern_;
+      dealii::SparsityPattern                      tangential_pattern_;
+      dealii::SparseMatrix<double>                 normal_matrix_;
+      dealii::SparseMatrix<double>                 tangential_matrix_;
+      dealii::Vector<double>                       gaps_;
+      dealii::Vector<double>                       normal_offset_;
+      dealii::Vector<double>                       tangential_offset_;
+    };
+  } // namespace contact
+} // namespace dualcontact
