@@ -199,6 +199,8 @@ namespace dualcontact
             prm.get_integer("Material id"));
           const double youngs_modulus = prm.get_double("Young's modulus");
           const double poisson_ratio  = prm.get_double("Poisson's ratio");
+          const std::string youngs_modulus_text = prm.get("Young's modulus");
+          const std::string poisson_ratio_text  = prm.get("Poisson's ratio");
           prm.leave_subsection();
 
           AssertThrow(materials.count(id) == 0,
@@ -210,13 +212,13 @@ namespace dualcontact
           AssertThrow(youngs_modulus > 0,
                       dealii::ExcMessage(
                         "Young's modulus must be > 0, got " +
-                        dealii::Utilities::to_string(youngs_modulus) + " " +
+                        youngs_modulus_text + " " +
                         io::parameter_location(sub_path, "Young's modulus") +
                         "."));
           AssertThrow(poisson_ratio > -1. && poisson_ratio < 0.5,
                       dealii::ExcMessage(
                         "Poisson's ratio must lie in (-1, 0.5), got " +
-                        dealii::Utilities::to_string(poisson_ratio) + " " +
+                        poisson_ratio_text + " " +
                         io::parameter_location(sub_path, "Poisson's ratio") +
                         "."));
           materials.emplace(id,

@@ -67,8 +67,7 @@ namespace dualcontact
       , console_(console)
       , is_output_rank_(
           dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0)
-      , timer_(MPI_COMM_WORLD,
-               console,
+      , timer_(console,
                dealii::TimerOutput::never,
                dealii::TimerOutput::wall_times)
     {

@@ -283,6 +283,10 @@ namespace dualcontact
                                const std::string          &mesh_name) const
     {
       generate(triangulation, mesh_name);
+      if (kind_ != Kind::gmsh)
+        // colorized generators may number cells by position: one material
+        for (const auto &cell : triangulation.active_cell_iterators())
+          cell->set_material_id(0);
       check_cells(triangulation,
                   mesh_name + (kind_ == Kind::gmsh ?
                                  " (file `" + gmsh_file_ + "')" :

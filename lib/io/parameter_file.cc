@@ -83,20 +83,50 @@ namespace dualcontact
 
           std::smatch match;
           std::string where = "in the input file `" + file_name + "'";
+          std::string path;
           if (std::regex_search(text,
                                 match,
-                                std::regex("Line <([0-9]+)> of file <[^>]*>: *")))
+                                std::regex("Line <([0-9]+)> of file <.*?>?: *")))
             {
               const unsigned int line_number = std::stoul(match[1].str());
-              const std::string  path =
-                subsection_path_at_line(file_name, line_number);
+              path  = subsection_path_at_line(file_name, line_number);
               where = "in line " + std::to_string(line_number) +
-                      " of the input file `" + file_name + "' (" +
-                      (path.empty() ? std::string("top level") :
-                                      "in `subsection " + path + "'") +
-                      ")";
-              text = match.suffix().str();
+                      " of the input file `" + file_name + "'";
+              text  = match.suffix().str();
             }
+          // say it ASPECT style: name the entry and its subsection
+          if (std::regex_search(
+                text,
+                match,
+                std::regex("No entry with name <(.*)> was declared")))
+            throw dealii::ExcMessage(
+              "Unknown parameter " + parameter_location(path, match[1].str()) +
+              " " + where +
+              ": there is no such parameter in this subsection (see "
+              "`dualcontact --print-parameters').");
+          if (std::regex_search(
+                text,
+                match,
+                std::regex("The entry value <?(.*?)>? for the entry named <?(.*?)>? "
+                           "does not match the given pattern:? <?(.*?)>?\\.?$")))
+            throw dealii::ExcMessage("The value `" + match[1].str() +
+                                     "' does not match the pattern " +
+                                     match[3].str() + " " +
+                                     parameter_location(path, match[2].str()) +
+                                     " " + where + ".");
+          if (std::regex_search(
+                text,
+                match,
+                std::regex("There is no such subsection to be entered: (.*)")))
+            throw dealii::ExcMessage(
+              "Unknown subsection `subsection " +
+              join_path(path, dealii::Utilities::trim(match[1].str())) +
+              "' " + where +
+              ". (Numbered subsections `Body N', `Material N', `Dirichlet "
+              "N', `Traction N' exist for N up to the corresponding `Number "
+              "of ...' parameter.)");
+          if (!path.empty())
+            where += " (in `subsection " + path + "')";
           throw dealii::ExcMessage("Error " + where + ": " + text);
         }
     }
