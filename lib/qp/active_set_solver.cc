@@ -272,6 +272,19 @@ namespace dualcontact
           set.free_gradient(x, g, p);
         }
         stop = this->check_stop(stats, evaluate());
+        if (stop && stats.reason == ConvergenceReason::converged)
+        {
+          // g was updated by recurrences (g -= alpha A p); before
+          // claiming convergence, check with the true gradient A x - b
+          // (one product), which differs when rounding or an inexact
+          // operator made the recurrence drift.  If it fails, go on
+          // from the true gradient with a CG restart.
+          stats.history.pop_back();
+          recompute_gradient();
+          stop = this->check_stop(stats, evaluate());
+          if (!stop)
+            set.free_gradient(x, g, p);
+        }
       }
 
       this->finish(problem, x, stats);

@@ -6,12 +6,25 @@
 #include <deal.II/base/exceptions.h>
 
 #include <cmath>
+#include <cstdio>
 #include <limits>
 
 namespace dualcontact
 {
   namespace qp
   {
+    namespace
+    {
+      std::string
+      sci(const double v)
+      {
+        char buf[32];
+        std::snprintf(buf, sizeof(buf), "%.3e", v);
+        return buf;
+      }
+    } // namespace
+
+
     template <typename VectorType>
     SolverBase<VectorType>::SolverBase(const std::string      &name,
                                        const SolverParameters &parameters)
@@ -167,9 +180,8 @@ namespace dualcontact
       stats.final_criterion = relative;
       if (!std::isfinite(relative))
       {
-        stats.reason = ConvergenceReason::non_finite;
-        stats.message =
-          "the stopping criterion became " + std::to_string(relative);
+        stats.reason  = ConvergenceReason::non_finite;
+        stats.message = "the stopping criterion became " + sci(relative);
         return true;
       }
       if (relative <= prm.tolerance)
@@ -195,8 +207,7 @@ namespace dualcontact
         stats.reason  = ConvergenceReason::stagnation;
         stats.message = "no new minimum of the criterion for " +
                         std::to_string(prm.stagnation_window) +
-                        " iterations (best " + std::to_string(best_criterion) +
-                        ")";
+                        " iterations (best " + sci(best_criterion) + ")";
         return true;
       }
       return false;

@@ -1,0 +1,127 @@
+// SolverParameters in `subsection QP solver`: defaults are table 14's
+// (alpha_bar factor 1.95, Gamma 1, PBBf K 10, SPG-QP m 10, gamma 0.1,
+// sigma2 0.9999, alpha0 factor 1.95, APGD L factor 1, 1e4 iterations);
+// values read back from a .prm; out-of-range values rejected naming the
+// parameter; every declared solver name either creates a solver or throws
+// "unavailable"; power iteration on diag(1..n) finds n within its
+// tolerance and applies the safety factor.
+#include "test_tools.h"
+
+#include <deal.II/base/parameter_handler.h>
+
+#include <qp/power_iteration.h>
+#include <qp/solver_factory.h>
+
+#include <sstream>
+
+using namespace qptest;
+using namespace dualcontact::qp;
+using Vec = dealii::Vector<double>;
+
+int
+main()
+{
+  Checker check;
+  {
+    dealii::ParameterHandler prm;
+    SolverParameters::declare_parameters(prm);
+    SolverParameters p;
+    p.parse_parameters(prm);
+    const SolverParameters d;
+    check.check(p.solver == "mprgp" && p.tolerance == 1e-8 &&
+                  p.alpha_bar_factor == 1.95 && p.gamma == 1. &&
+                  p.pbbf_k == 10 && p.spg_m == 10 && p.spg_gamma == 0.1 &&
+                  p.spg_sigma2 == 0.9999 && p.spg_alpha0_factor == 1.95 &&
+                  p.apgd_l_factor == 1. && p.max_iterations == 10000 &&
+                  p.stopping_criterion == StoppingCriterion::projected &&
+                  p.mwpgp_delta == d.mwpgp_delta &&
+                  p.power_safety_factor == d.power_safety_factor,
+                "defaults of the .prm equal the struct's (table 14)");
+    prm.parse_input_from_string("subsection QP solver\n"
+                                "  set Solver = mwpgp\n"
+                                "  set Tolerance = 1e-6\n"
+                                "  set Stopping criterion = reduced-projected\n"
+                                "  set Maximum iterations = 77\n"
+                                "  set MwPGP delta = 0.4\n"
+                                "end\n");
+    p.parse_parameters(prm);
+    check.check(p.solver == "mwpgp" && p.tolerance == 1e-6 &&
+                  p.stopping_criterion ==
+                    StoppingCriterion::reduced_projected &&
+                  p.max_iterations == 77 && p.mwpgp_delta == 0.4,
+                "values read back from a .prm");
+    bool rejected = false;
+    try
+    {
+      prm.parse_input_from_string("subsection QP solver\n"
+                                  "  set MwPGP delta = 0.7\n"
+                                  "end\n");
+    }
+    catch (const std::exception &)
+    {
+      rejected = true;
+    }
+    check.check(rejected, "MwPGP delta = 0.7 rejected by the pattern");
+    std::string what;
+    try
+    {
+      SolverParameters q;
+      q.alpha_bar_factor = 2.5;
+      q.check();
+    }
+    catch (const std::exception &e)
+    {
+      what = e.what();
+    }
+    check.check(what.find("Alpha bar factor") != std::string::npos &&
+                  what.find("QP solver") != std::string::npos,
+                "check() names the parameter and the subsection");
+  }
+  {
+    std::istringstream names(solver_names());
+    std::string        name;
+    unsigned int       created = 0, total = 0;
+    std::string        list;
+    while (std::getline(names, name, '|'))
+    {
+      ++total;
+      try
+      {
+        auto s = create<Vec>(name, SolverParameters());
+        created += (s && s->name() == name) ? 1 : 0;
+        list += " " + name;
+      }
+      catch (const std::exception &e)
+      {
+        check.check(std::string(e.what()).find(name) != std::string::npos,
+                    "solver '" + name +
+                      "' not available yet: message names it");
+      }
+    }
+    check.check(created >= 4,
+                "factory creates" + list + " (" + std::to_string(created) +
+                  " of " + std::to_string(total) + " names)");
+  }
+  {
+    const unsigned                                n = 50;
+    Vec                                           layout(n);
+    const std::function<void(Vec &, const Vec &)> A =
+      [](Vec &dst, const Vec &src)
+    {
+      for (unsigned i = 0; i < src.size(); ++i)
+        dst[i] = (i + 1.) * src[i];
+    };
+    const auto r = power_iteration<Vec>(A, layout, 2000, 1e-10, 1.05);
+    check.check(std::abs(r.estimate - n) <= 1e-3 * n &&
+                  std::abs(r.lambda_max - 1.05 * r.estimate) <= 1e-12 * n,
+                "power iteration on diag(1..50): estimate " + sci(r.estimate) +
+                  " after " + std::to_string(r.iterations) +
+                  " products, lambda_max " + sci(r.lambda_max));
+    const auto r2 = power_iteration<Vec>(A, layout, 100, 1e-4, 1.05);
+    check.check(r2.estimate <= n * (1. + 1e-12) && r2.estimate >= 0.9 * n,
+                "power iteration, default budget: estimate " +
+                  sci(r2.estimate) + " (from below) in " +
+                  std::to_string(r2.iterations) + " products");
+  }
+  return check.finish("parameters");
+}
