@@ -60,16 +60,91 @@ namespace dualcontact
         return 0.;
       };
 
+      // Raw motions, each scaled to unit norm over all dofs.
       const AffineConstraints<double> &constraints = body.constraints();
-      modes_.assign(n_modes, Vector<double>(n_dofs));
-      for (unsigned int k = 0; k < n_modes; ++k)
+      const unsigned int               n_rigid     = dim * (dim + 1) / 2;
+      std::vector<double>              scale(n_rigid, 0.);
+      for (unsigned int k = 0; k < n_rigid; ++k)
+      {
         for (unsigned int i = 0; i < n_dofs; ++i)
-          if (!constraints.is_constrained(i))
-            modes_[k](i) = mode_value(k, points[i], component[i]);
+          scale[k] += std::pow(mode_value(k, points[i], component[i]), 2);
+        scale[k] = 1. / std::sqrt(scale[k]);
+      }
+
+      // The motions that the Dirichlet conditions allow: the kernel of M'M,
+      // M the raw motions at the Dirichlet-constrained dofs (constrained
+      // without constraint entries, as opposed to hanging nodes).
+      FullMatrix<double> MtM(n_rigid, n_rigid);
+      double             n_dirichlet = 0;
+      for (unsigned int i = 0; i < n_dofs; ++i)
+        if (constraints.is_constrained(i) &&
+            (constraints.get_constraint_entries(i) == nullptr ||
+             constraints.get_constraint_entries(i)->empty()))
+        {
+          ++n_dirichlet;
+          for (unsigned int k = 0; k < n_rigid; ++k)
+            for (unsigned int l = 0; l < n_rigid; ++l)
+              MtM(k, l) += mode_value(k, points[i], component[i]) * scale[k] *
+                           mode_value(l, points[i], component[i]) * scale[l];
+        }
+      // Symmetric eigen-decomposition by cyclic Jacobi rotations (n <= 6).
+      FullMatrix<double> V(n_rigid, n_rigid);
+      for (unsigned int k = 0; k < n_rigid; ++k)
+        V(k, k) = 1.;
+      for (unsigned int sweep = 0; sweep < 50; ++sweep)
+      {
+        double off = 0;
+        for (unsigned int p = 0; p < n_rigid; ++p)
+          for (unsigned int q = p + 1; q < n_rigid; ++q)
+            off += MtM(p, q) * MtM(p, q);
+        if (off < 1e-30 * (1. + MtM.frobenius_norm()))
+          break;
+        for (unsigned int p = 0; p < n_rigid; ++p)
+          for (unsigned int q = p + 1; q < n_rigid; ++q)
+            if (MtM(p, q) != 0.)
+            {
+              const double theta =
+                0.5 * std::atan2(2 * MtM(p, q), MtM(q, q) - MtM(p, p));
+              const double c = std::cos(theta), s = std::sin(theta);
+              for (unsigned int k = 0; k < n_rigid; ++k)
+              {
+                const double kp = MtM(k, p), kq = MtM(k, q);
+                MtM(k, p) = c * kp - s * kq;
+                MtM(k, q) = s * kp + c * kq;
+              }
+              for (unsigned int k = 0; k < n_rigid; ++k)
+              {
+                const double pk = MtM(p, k), qk = MtM(q, k);
+                MtM(p, k) = c * pk - s * qk;
+                MtM(q, k) = s * pk + c * qk;
+              }
+              for (unsigned int k = 0; k < n_rigid; ++k)
+              {
+                const double kp = V(k, p), kq = V(k, q);
+                V(k, p) = c * kp - s * kq;
+                V(k, q) = s * kp + c * kq;
+              }
+            }
+      }
+      // A direction is held when M'M "sees" it at about the level of a
+      // single supported node; far below that it is a kernel vector.
+      const double threshold = 1e-8 * std::max(n_dirichlet, 1.) / n_dofs;
+      for (unsigned int j = 0; j < n_rigid; ++j)
+        if (n_dirichlet == 0 || MtM(j, j) < threshold)
+        {
+          Vector<double> mode(n_dofs);
+          for (unsigned int i = 0; i < n_dofs; ++i)
+            if (!constraints.is_constrained(i))
+              for (unsigned int k = 0; k < n_rigid; ++k)
+                mode(i) +=
+                  V(k, j) * scale[k] * mode_value(k, points[i], component[i]);
+          modes_.push_back(mode);
+        }
+      const unsigned int n_kernel = modes_.size();
 
       // Modified Gram-Schmidt, twice for round-off.
       for (unsigned int pass = 0; pass < 2; ++pass)
-        for (unsigned int k = 0; k < n_modes; ++k)
+        for (unsigned int k = 0; k < n_kernel; ++k)
         {
           for (unsigned int j = 0; j < k; ++j)
             modes_[k].add(-(modes_[k] * modes_[j]), modes_[j]);
@@ -79,6 +154,8 @@ namespace dualcontact
                                  ": the rigid-body modes are degenerate."));
           modes_[k] /= norm;
         }
+      if (n_kernel == 0)
+        return;
 
       // Fixing dofs: node A farthest from the centroid, B farthest from A,
       // C (3D) farthest from the line AB; only unconstrained nodes.
@@ -144,10 +221,10 @@ namespace dualcontact
       std::vector<Vector<double>> rows; // orthonormalized rows of R(fixed, :)
       for (const auto dof : candidates)
       {
-        if (fixing_dofs_.size() == n_modes)
+        if (fixing_dofs_.size() == n_kernel)
           break;
-        Vector<double> row(n_modes);
-        for (unsigned int k = 0; k < n_modes; ++k)
+        Vector<double> row(n_kernel);
+        for (unsigned int k = 0; k < n_kernel; ++k)
           row(k) = modes_[k](dof);
         const double original = row.l2_norm();
         for (const auto &q : rows)
@@ -159,10 +236,18 @@ namespace dualcontact
           fixing_dofs_.push_back(dof);
         }
       }
-      AssertThrow(fixing_dofs_.size() == n_modes,
+      AssertThrow(fixing_dofs_.size() == n_kernel,
                   ExcMessage(body.name() +
                              ": could not choose fixing nodes for the "
                              "generalized inverse (degenerate mesh?)."));
+    }
+
+
+    template <int dim>
+    unsigned int
+    RigidBodyModes<dim>::n_modes() const
+    {
+      return modes_.size();
     }
 
 
