@@ -8,6 +8,7 @@
 
 #include <driver/scene_parameters.h>
 #include <driver/simulation.h>
+#include <io/parameter_file.h>
 
 #include <iostream>
 #include <sstream>
@@ -95,10 +96,13 @@ main(int argc, char *argv[])
           driver::SceneLayout      layout;
           driver::SceneParameters::declare_parameters(prm, layout);
           if (is_rank_0)
-            prm.print_parameters(std::cout,
-                                 dealii::ParameterHandler::PRM |
-                                   dealii::ParameterHandler::
-                                     KeepDeclarationOrder);
+            {
+              std::cout << "# dualcontact " << DUALCONTACT_VERSION
+                        << ": all parameters, with documentation, default "
+                           "and allowed values.\n# Shown for one body; "
+                           "`Body 2', ... have the same entries.\n\n";
+              io::print_documented_parameters(prm, std::cout);
+            }
           return 0;
         }
       if (!argument.empty() && argument[0] == '-')

@@ -153,7 +153,10 @@ namespace dualcontact
         }
 
       if (is_output_rank_)
-        run_phase("Output", [this]() { write_output(); });
+        {
+          run_phase("Output", [this]() { write_output(); });
+          write_records();
+        }
 
       std::string files;
       for (const auto &name : output_folder_->file_names())
@@ -364,9 +367,16 @@ namespace dualcontact
       io::OutputFolder &folder = *output_folder_;
       if (write_vtu_)
         io::write_solution<dim>(folder, bodies_, displacements_);
+    }
+
+
+    template <int dim>
+    void
+    Simulation<dim>::write_records()
+    {
+      io::OutputFolder &folder = *output_folder_;
       folder.write("results.txt",
                    [this](std::ostream &out) { out << results_text(); });
-      // statistics last but one: it includes the time of the output so far
       folder.write("statistics.json",
                    [this](std::ostream &out) { out << statistics_json(); });
       folder.write("used_parameters.prm", [this](std::ostream &out) {

@@ -68,8 +68,15 @@ namespace dualcontact
       solve();
       void
       postprocess();
+      /** The VTU/PVTU/PVD files (timed as the phase `Output'). */
       void
       write_output();
+      /**
+       * results.txt, statistics.json, used_parameters.prm, then rename all
+       * files to their final names.
+       */
+      void
+      write_records();
 
       std::string
       results_text() const;

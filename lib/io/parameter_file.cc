@@ -3,6 +3,8 @@
 
 #include <io/parameter_file.h>
 
+#include <nlohmann/json.hpp>
+
 #include <filesystem>
 #include <fstream>
 #include <regex>
@@ -53,6 +55,55 @@ namespace dualcontact
       for (const auto &name : stack)
         path = join_path(path, name);
       return path;
+    }
+
+
+    namespace
+    {
+      void
+      print_json_level(const nlohmann::ordered_json &level,
+                       const unsigned int            indent,
+                       std::ostream                 &out)
+      {
+        const std::string prefix(indent, ' ');
+        const auto        comment = [&](const std::string &text) {
+          for (const auto &line :
+               dealii::Utilities::break_text_into_lines(text,
+                                                         76 - indent))
+            out << prefix << "# " << line << "\n";
+        };
+        for (const auto &[name, entry] : level.items())
+          if (entry.contains("value"))
+            {
+              comment(entry.value("documentation", std::string()));
+              comment("Default: `" +
+                      entry.value("default_value", std::string()) +
+                      "'. Allowed: " +
+                      entry.value("pattern_description", std::string()));
+              out << prefix << "set " << name << " = "
+                  << entry.value("value", std::string()) << "\n\n";
+            }
+        for (const auto &[name, entry] : level.items())
+          if (!entry.contains("value"))
+            {
+              out << prefix << "subsection " << name << "\n";
+              print_json_level(entry, indent + 2, out);
+              out << prefix << "end\n\n";
+            }
+      }
+    } // namespace
+
+
+    void
+    print_documented_parameters(const dealii::ParameterHandler &prm,
+                                std::ostream                   &out)
+    {
+      std::stringstream json_text;
+      prm.print_parameters(json_text,
+                           dealii::ParameterHandler::JSON |
+                             dealii::ParameterHandler::KeepDeclarationOrder);
+      const auto json = nlohmann::ordered_json::parse(json_text.str());
+      print_json_level(json, 0, out);
     }
 
 

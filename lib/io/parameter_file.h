@@ -2,6 +2,7 @@
 
 #include <deal.II/base/parameter_handler.h>
 
+#include <ostream>
 #include <string>
 
 namespace dualcontact
@@ -35,6 +36,15 @@ namespace dualcontact
     parse_parameter_file(dealii::ParameterHandler &prm,
                          const std::string        &file_name,
                          const bool                skip_undefined);
+
+    /**
+     * Print every entry of @p prm as a parameter file: per entry its
+     * documentation, its default value and its pattern as comments, then
+     * `set Name = value'; entries before subsections, in declaration order.
+     */
+    void
+    print_documented_parameters(const dealii::ParameterHandler &prm,
+                                std::ostream                   &out);
 
     /**
      * The subsection path ("Body 1/Mesh") in effect at line @p line_number
