@@ -375,6 +375,39 @@ namespace dualcontact
       std::sort(ellipses.begin(), ellipses.end(), by_offset);
       std::sort(cones.begin(), cones.end(), by_offset);
 
+      // runs of consecutive bound / box blocks (SoA copies of the bounds)
+      const auto make_runs = [](const auto &blocks, std::vector<Run> &runs)
+      {
+        runs.clear();
+        for (std::size_t k = 0; k < blocks.size(); ++k)
+          if (!runs.empty() &&
+              runs.back().begin + runs.back().count == blocks[k].global)
+            ++runs.back().count;
+          else
+            runs.push_back({static_cast<std::size_t>(blocks[k].global), 1, k});
+      };
+      make_runs(bounds, bound_runs);
+      make_runs(boxes, box_runs);
+      bound_lower.resize(bounds.size());
+      for (std::size_t k = 0; k < bounds.size(); ++k)
+        bound_lower[k] = bounds[k].lower;
+      box_lower.resize(boxes.size());
+      box_upper.resize(boxes.size());
+      for (std::size_t k = 0; k < boxes.size(); ++k)
+      {
+        box_lower[k] = boxes[k].lower;
+        box_upper[k] = boxes[k].upper;
+      }
+      free_ranges.clear();
+      for (std::size_t i = 0; i < local_size; ++i)
+        if (!used[i])
+        {
+          if (!free_ranges.empty() && free_ranges.back().second == i)
+            ++free_ranges.back().second;
+          else
+            free_ranges.emplace_back(i, i + 1);
+        }
+
       const std::array<std::size_t, n_block_types> local_counts = {
         {bounds.size(),
          boxes.size(),
@@ -550,10 +583,21 @@ namespace dualcontact
     {
       Assert(finalized, dealii::ExcMessage("call finalize() first"));
       double *v = x.begin();
-      for (const auto &blk : bounds)
-        v[blk.global] = std::max(v[blk.global], blk.lower);
-      for (const auto &blk : boxes)
-        v[blk.global] = std::min(std::max(v[blk.global], blk.lower), blk.upper);
+      for (const Run &run : bound_runs)
+      {
+        double       *y = v + run.begin;
+        const double *l = bound_lower.data() + run.first;
+        for (std::size_t i = 0; i < run.count; ++i)
+          y[i] = std::max(y[i], l[i]);
+      }
+      for (const Run &run : box_runs)
+      {
+        double       *y = v + run.begin;
+        const double *l = box_lower.data() + run.first;
+        const double *u = box_upper.data() + run.first;
+        for (std::size_t i = 0; i < run.count; ++i)
+          y[i] = std::min(std::max(y[i], l[i]), u[i]);
+      }
       for (const auto &blk : discs)
       {
         double      *y = v + blk.global;
@@ -640,20 +684,31 @@ namespace dualcontact
       const double *v     = x.begin();
       const double *d     = p.begin();
       double        alpha = infinity;
-      for (const auto &blk : bounds)
+      // bounds and boxes: branch-free (the signs of p are not predictable)
+      for (const Run &run : bound_runs)
       {
-        const double di = d[blk.global];
-        if (di > 0.)
-          alpha = std::min(alpha, std::max(v[blk.global] - blk.lower, 0.) / di);
+        const double *y = v + run.begin;
+        const double *q = d + run.begin;
+        const double *l = bound_lower.data() + run.first;
+        for (std::size_t i = 0; i < run.count; ++i)
+        {
+          const double a = std::max(y[i] - l[i], 0.) / q[i];
+          alpha          = (q[i] > 0. && a < alpha) ? a : alpha;
+        }
       }
-      for (const auto &blk : boxes)
+      for (const Run &run : box_runs)
       {
-        const double di = d[blk.global];
-        const double y  = v[blk.global];
-        if (di > 0.)
-          alpha = std::min(alpha, std::max(y - blk.lower, 0.) / di);
-        else if (di < 0.)
-          alpha = std::min(alpha, std::max(blk.upper - y, 0.) / -di);
+        const double *y = v + run.begin;
+        const double *q = d + run.begin;
+        const double *l = box_lower.data() + run.first;
+        const double *u = box_upper.data() + run.first;
+        for (std::size_t i = 0; i < run.count; ++i)
+        {
+          const double room =
+            q[i] > 0. ? std::max(y[i] - l[i], 0.) : std::max(u[i] - y[i], 0.);
+          const double a = room / std::abs(q[i]);
+          alpha          = (q[i] != 0. && a < alpha) ? a : alpha;
+        }
       }
       for (const auto &blk : discs)
       {
@@ -798,15 +853,18 @@ namespace dualcontact
                                     const VectorType &g,
                                     const double      alpha,
                                     const bool        reduced,
-                                    Sink             &sink) const
+                                    Sink             &sink,
+                                    const bool        curved_only) const
     {
       Assert(finalized, dealii::ExcMessage("call finalize() first"));
-      const Kernels k{tolerance};
-      const double *v  = x.begin();
-      const double *gv = g.begin();
-      double        phi[3], beta[3], red[3];
+      const Kernels            k{tolerance};
+      const double            *v  = x.begin();
+      const double            *gv = g.begin();
+      const std::vector<Bound> no_bounds;
+      const std::vector<Box>   no_boxes;
+      double                   phi[3], beta[3], red[3];
 
-      for (const auto &blk : bounds)
+      for (const auto &blk : (curved_only ? no_bounds : bounds))
       {
         const double y = v[blk.global], gi = gv[blk.global];
         if (!k.bound_active(y, blk.lower))
@@ -824,7 +882,7 @@ namespace dualcontact
         }
         sink(blk.global, 1, phi, beta, red);
       }
-      for (const auto &blk : boxes)
+      for (const auto &blk : (curved_only ? no_boxes : boxes))
       {
         const double y = v[blk.global], gi = gv[blk.global];
         const int    state = k.box_state(y, blk.lower, blk.upper);
@@ -1023,9 +1081,30 @@ namespace dualcontact
                                             const VectorType &g,
                                             VectorType       &out) const
     {
-      out          = g;
-      double *o    = out.begin();
-      auto    sink = [o](const size_type o_,
+      out             = g;
+      double       *o = out.begin();
+      const double *v = x.begin();
+      for (const Run &run : bound_runs)
+      {
+        const double *y = v + run.begin;
+        double       *f = o + run.begin;
+        const double *l = bound_lower.data() + run.first;
+        for (std::size_t i = 0; i < run.count; ++i)
+          f[i] = (y[i] - l[i] <= tolerance * std::abs(l[i])) ? 0. : f[i];
+      }
+      for (const Run &run : box_runs)
+      {
+        const double *y = v + run.begin;
+        double       *f = o + run.begin;
+        const double *l = box_lower.data() + run.first;
+        const double *u = box_upper.data() + run.first;
+        for (std::size_t i = 0; i < run.count; ++i)
+          f[i] = (y[i] - l[i] <= tolerance * std::abs(l[i]) ||
+                  u[i] - y[i] <= tolerance * std::abs(u[i])) ?
+                   0. :
+                   f[i];
+      }
+      auto sink = [o](const size_type o_,
                       const unsigned  w,
                       const double   *phi,
                       const double *,
@@ -1034,7 +1113,7 @@ namespace dualcontact
         for (unsigned c = 0; c < w; ++c)
           o[o_ + c] = phi[c];
       };
-      sweep(x, g, 1., false, sink);
+      sweep(x, g, 1., false, sink, true);
     }
 
 
@@ -1150,30 +1229,69 @@ namespace dualcontact
                                     const double      alpha,
                                     const bool        reduced) const
     {
-      // ||phi||^2 = ||g||^2 - (sum over constrained entries of g^2) +
-      // (their phi^2): avoids touching the free unknowns twice
-      const double *gv    = g.begin();
-      double        total = 0.;
-      for (std::size_t i = 0; i < local_size; ++i)
-        total += gv[i] * gv[i];
-      double constrained_g = 0., fsq = 0., bsq = 0., rsq = 0.;
-      auto   sink = [&](const size_type o,
-                      const unsigned  w,
-                      const double   *phi,
-                      const double   *beta,
-                      const double   *red)
+      const double *gv  = g.begin();
+      const double *v   = x.begin();
+      double        fsq = 0., bsq = 0., rsq = 0.;
+      for (const auto &range : free_ranges)
+        for (std::size_t i = range.first; i < range.second; ++i)
+          fsq += gv[i] * gv[i];
+      if (!reduced)
+      {
+        // bounds and boxes in branch-free streaming loops
+        for (const Run &run : bound_runs)
+        {
+          const double *y = v + run.begin;
+          const double *q = gv + run.begin;
+          const double *l = bound_lower.data() + run.first;
+          double        f = 0., b = 0.;
+          for (std::size_t i = 0; i < run.count; ++i)
+          {
+            const bool   active = y[i] - l[i] <= tolerance * std::abs(l[i]);
+            const double gm     = std::min(q[i], 0.);
+            f += active ? 0. : q[i] * q[i];
+            b += active ? gm * gm : 0.;
+          }
+          fsq += f;
+          bsq += b;
+        }
+        for (const Run &run : box_runs)
+        {
+          const double *y = v + run.begin;
+          const double *q = gv + run.begin;
+          const double *l = box_lower.data() + run.first;
+          const double *u = box_upper.data() + run.first;
+          double        f = 0., b = 0.;
+          for (std::size_t i = 0; i < run.count; ++i)
+          {
+            const bool   at_l = y[i] - l[i] <= tolerance * std::abs(l[i]);
+            const bool   at_u = u[i] - y[i] <= tolerance * std::abs(u[i]);
+            const double c =
+              (at_l && at_u) ?
+                0. :
+                (at_l ? std::min(q[i], 0.) : (at_u ? std::max(q[i], 0.) : 0.));
+            f += (at_l || at_u) ? 0. : q[i] * q[i];
+            b += c * c;
+          }
+          fsq += f;
+          bsq += b;
+        }
+      }
+      auto sink = [&](const size_type,
+                      const unsigned w,
+                      const double  *phi,
+                      const double  *beta,
+                      const double  *red)
       {
         for (unsigned c = 0; c < w; ++c)
         {
-          constrained_g += gv[o + c] * gv[o + c];
           fsq += phi[c] * phi[c];
           bsq += beta[c] * beta[c];
           if (reduced)
             rsq += red[c] * red[c];
         }
       };
-      sweep(x, g, alpha, reduced, sink);
-      double local[3] = {std::max(total - constrained_g, 0.) + fsq, bsq, rsq};
+      sweep(x, g, alpha, reduced, sink, !reduced);
+      double local[3] = {fsq, bsq, rsq};
       double global[3];
       dealii::Utilities::MPI::sum(dealii::ArrayView<const double>(local, 3),
                                   internal::communicator(x),
@@ -1197,31 +1315,38 @@ namespace dualcontact
       // free unknowns contribute g exactly; blocks (x_j - P_j(x_j -
       // alpha g_j)) / alpha
       Assert(finalized, dealii::ExcMessage("call finalize() first"));
-      const double *v     = x.begin();
-      const double *gv    = g.begin();
-      double        total = 0., constrained = 0., blocks = 0.;
-      for (std::size_t i = 0; i < local_size; ++i)
-        total += gv[i] * gv[i];
-      for (const auto &blk : bounds)
+      const double *v    = x.begin();
+      const double *gv   = g.begin();
+      double        free = 0., blocks = 0.;
+      for (const auto &range : free_ranges)
+        for (std::size_t i = range.first; i < range.second; ++i)
+          free += gv[i] * gv[i];
+      for (const Run &run : bound_runs)
       {
-        const double y = v[blk.global], gi = gv[blk.global];
-        constrained += gi * gi;
-        blocks += sq((y - std::max(y - alpha * gi, blk.lower)) / alpha);
+        const double *y = v + run.begin;
+        const double *q = gv + run.begin;
+        const double *l = bound_lower.data() + run.first;
+        double        b = 0.;
+        for (std::size_t i = 0; i < run.count; ++i)
+          b += sq(y[i] - std::max(y[i] - alpha * q[i], l[i]));
+        blocks += b / (alpha * alpha);
       }
-      for (const auto &blk : boxes)
+      for (const Run &run : box_runs)
       {
-        const double y = v[blk.global], gi = gv[blk.global];
-        constrained += gi * gi;
-        blocks +=
-          sq((y - std::min(std::max(y - alpha * gi, blk.lower), blk.upper)) /
-             alpha);
+        const double *y = v + run.begin;
+        const double *q = gv + run.begin;
+        const double *l = box_lower.data() + run.first;
+        const double *u = box_upper.data() + run.first;
+        double        b = 0.;
+        for (std::size_t i = 0; i < run.count; ++i)
+          b += sq(y[i] - std::min(std::max(y[i] - alpha * q[i], l[i]), u[i]));
+        blocks += b / (alpha * alpha);
       }
       for (const auto &blk : discs)
       {
         const double *y = v + blk.global, *gj = gv + blk.global;
-        constrained += gj[0] * gj[0] + gj[1] * gj[1];
-        double       z0 = y[0] - alpha * gj[0], z1 = y[1] - alpha * gj[1];
-        const double m = std::sqrt(z0 * z0 + z1 * z1);
+        double        z0 = y[0] - alpha * gj[0], z1 = y[1] - alpha * gj[1];
+        const double  m = std::sqrt(z0 * z0 + z1 * z1);
         if (m > blk.radius)
         {
           z0 *= blk.radius / m;
@@ -1231,8 +1356,7 @@ namespace dualcontact
       }
       for (const auto &blk : ellipses)
       {
-        const double *y = v + blk.global, *gj = gv + blk.global;
-        constrained += gj[0] * gj[0] + gj[1] * gj[1];
+        const double      *y = v + blk.global, *gj = gv + blk.global;
         const EllipseFrame e{blk.a, blk.b, blk.cos_angle, blk.sin_angle};
         double             z0, z1;
         e.project(y[0] - alpha * gj[0], y[1] - alpha * gj[1], z0, z1);
@@ -1241,17 +1365,15 @@ namespace dualcontact
       for (const auto &blk : cones)
       {
         const double *y = v + blk.global, *gj = gv + blk.global;
-        constrained += gj[0] * gj[0] + gj[1] * gj[1] + gj[2] * gj[2];
-        const double w[3] = {y[0] - alpha * gj[0],
-                             y[1] - alpha * gj[1],
-                             y[2] - alpha * gj[2]};
-        double       z[3];
+        const double  w[3] = {y[0] - alpha * gj[0],
+                              y[1] - alpha * gj[1],
+                              y[2] - alpha * gj[2]};
+        double        z[3];
         project_cone(blk.mu, w, z);
         blocks += (sq(y[0] - z[0]) + sq(y[1] - z[1]) + sq(y[2] - z[2])) /
                   (alpha * alpha);
       }
-      return std::sqrt(
-        internal::sum(std::max(total - constrained, 0.) + blocks, x));
+      return std::sqrt(internal::sum(free + blocks, x));
     }
 
 

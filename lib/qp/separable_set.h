@@ -253,13 +253,16 @@ namespace dualcontact
       /// One sweep over all blocks computing phi_j, beta_j and (if
       /// @p reduced) beta~_alpha_j, handed to sink(offset, width, phi,
       /// beta, reduced_beta); all gradient functions are built on it.
+      /// (With @p curved_only, bound and box blocks are skipped: the hot
+      /// paths treat them in their own vectorisable loops over runs.)
       template <typename Sink>
       void
       sweep(const VectorType &x,
             const VectorType &g,
             double            alpha,
             bool              reduced,
-            Sink             &sink) const;
+            Sink             &sink,
+            bool              curved_only = false) const;
 
       GradientNorms
       norms(const VectorType &x,
@@ -311,6 +314,21 @@ namespace dualcontact
       std::vector<Disc>    discs;
       std::vector<Ellipse> ellipses;
       std::vector<Cone>    cones;
+
+      /// A maximal set of bound (or box) blocks at consecutive local
+      /// offsets [begin, begin + count); `first` indexes the type's
+      /// vectors (bounds / bound_lower, ...).  In the dual contact
+      /// problem all normal multipliers form one run, so the hot loops
+      /// (norms, free gradient, steps) are plain streaming loops without
+      /// indirection or unpredictable branches.
+      struct Run
+      {
+        std::size_t begin, count, first;
+      };
+      std::vector<Run>    bound_runs, box_runs;
+      std::vector<double> bound_lower, box_lower, box_upper;
+      /// unconstrained local entries, as ranges [first, second)
+      std::vector<std::pair<std::size_t, std::size_t>> free_ranges;
 
       std::array<size_type, n_block_types> global_counts{};
       dealii::IndexSet                     owned;
