@@ -89,7 +89,7 @@ namespace dualcontact
         "Gmsh file",
         "",
         dealii::Patterns::Anything(),
-        "gmsh: the mesh file (Gmsh format 2.2 or 4.1, ASCII, "
+        "gmsh: the mesh file (ASCII Gmsh format as read by deal.II; tested: 2.2, "
         "quadrilaterals/hexahedra). A relative name is looked up relative to "
         "the working directory, then to the folder of this parameter file, "
         "then to the dualcontact source folder.");
