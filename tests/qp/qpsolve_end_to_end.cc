@@ -1,0 +1,217 @@
+// End-to-end test of the qpsolve program (app/qpsolve.cc): runs the built
+// binary ../bin/qpsolve (ctest's working directory is <build>/tests), or
+// $QPSOLVE if set, on files written here:
+//  - a bound/box/disc/cone problem with a planted solution: exit 0 for
+//    mpgp, mwpgp, spg-qp, pbbf, apgd (mprgp takes bounds only); JSON summary
+//    with n, blocks by type, iterations, products, KKT residuals, reason
+//    "converged"; --x-out holds x* to 1e-8; --json-out equals stdout;
+//  - the same bound problem with --solver cgc: exit 0;
+//  - an equality-constrained problem: SMALSE-M wraps the solver, exit 0,
+//    equality_residual reported;
+//  - --max-iter 2: exit 2, reason max_iterations;
+//  - bad inputs (missing file, bad field, unknown solver, cgc with a disc
+//    block, bad --tol): exit 1 with a message naming the file/field/option.
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <sstream>
+#include <string>
+#include <sys/wait.h>
+#include <vector>
+
+namespace
+{
+  int n_failures = 0;
+
+  void
+  check(const bool ok, const std::string &what)
+  {
+    std::cout << (ok ? "ok   " : "FAIL ") << what << std::endl;
+    if (!ok)
+      ++n_failures;
+  }
+
+  struct Result
+  {
+    int         code = -1;
+    std::string out, err;
+  };
+
+  std::string
+  read(const std::string &file)
+  {
+    std::ifstream      in(file);
+    std::ostringstream s;
+    s << in.rdbuf();
+    return s.str();
+  }
+
+  std::string qpsolve;
+  std::string dir;
+
+  Result
+  run(const std::string &args)
+  {
+    const std::string command = qpsolve + " " + args + " >" + dir +
+                                "/stdout.txt 2>" + dir + "/stderr.txt";
+    const int status = std::system(command.c_str());
+    Result    r;
+    r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    r.out  = read(dir + "/stdout.txt");
+    r.err  = read(dir + "/stderr.txt");
+    return r;
+  }
+
+  void
+  write(const std::string &name, const std::string &text)
+  {
+    std::ofstream(dir + "/" + name) << text;
+  }
+
+  bool
+  contains(const std::string &text, const std::string &piece)
+  {
+    return text.find(piece) != std::string::npos;
+  }
+} // namespace
+
+int
+main()
+{
+  qpsolve = std::getenv("QPSOLVE") ? std::getenv("QPSOLVE") : "../bin/qpsolve";
+  if (!std::filesystem::exists(qpsolve))
+  {
+    std::cout << "FAIL qpsolve binary not found at " << qpsolve
+              << " (set QPSOLVE)" << std::endl;
+    return 1;
+  }
+  dir = (std::filesystem::temp_directory_path() / "dualcontact_qpsolve_e2e")
+          .string();
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+
+  // A = tridiag(-1, 3, -1), n = 10; x*: bound active at 0 (l = 0, mu = 1),
+  // box active at the upper bound 1 (mu = 2), disc (2,3) active on radius 1
+  // at angle 0 (mu = 1), cone (4,5,6) interior, 7..9 free.
+  const int          n         = 10;
+  double             x_star[n] = {0., 1., 1., 0., 1., 0.1, 0.1, 0.3, -0.2, 0.5};
+  double             g[n]      = {1., -2., -1., 0., 0., 0., 0., 0., 0., 0.};
+  std::ostringstream mtx, rhs;
+  mtx << "%%MatrixMarket matrix coordinate real symmetric\n"
+      << n << " " << n << " " << 2 * n - 1 << "\n";
+  for (int i = 0; i < n; ++i)
+  {
+    mtx << i + 1 << " " << i + 1 << " 3\n";
+    if (i > 0)
+      mtx << i + 1 << " " << i << " -1\n";
+  }
+  for (int i = 0; i < n; ++i)
+  {
+    double ax = 3. * x_star[i];
+    if (i > 0)
+      ax -= x_star[i - 1];
+    if (i + 1 < n)
+      ax -= x_star[i + 1];
+    rhs.precision(17);
+    rhs << ax - g[i] << "\n"; // b = A x* - g*
+  }
+  write("A.mtx", mtx.str());
+  write("b.txt", rhs.str());
+  write("p.json", R"({"hessian": "A.mtx", "rhs": "b.txt", "constraints": [
+      {"type": "bound", "first": 0, "count": 1, "lower": 0},
+      {"type": "box", "first": 1, "count": 1, "lower": -1, "upper": 1},
+      {"type": "disc", "first": 2, "count": 1, "radius": 1},
+      {"type": "cone", "first": 4, "count": 1, "mu": 0.5}]})");
+
+  for (const std::string solver : {"mpgp", "mwpgp", "spg-qp", "pbbf", "apgd"})
+  {
+    const Result r =
+      run(dir + "/p.json --solver " + solver + " --tol 1e-10 --x-out " + dir +
+          "/x.txt" + " --json-out " + dir + "/summary.json");
+    check(r.code == 0 && contains(r.out, "\"reason\": \"converged\"") &&
+            contains(r.out, "\"n\": 10") && contains(r.out, "\"disc\": 1") &&
+            contains(r.out, "\"hessian_products\"") &&
+            contains(r.out, "\"stationarity\"") &&
+            contains(r.out, "\"iterations_by_kind\""),
+          "qpsolve --solver " + solver + ": exit 0 and a JSON summary");
+    std::ifstream in(dir + "/x.txt");
+    double        error = 0., value;
+    int           count = 0;
+    while (in >> value && count < n)
+      error = std::max(error, std::abs(value - x_star[count++]));
+    check(count == n && error < 1e-8,
+          "qpsolve --solver " + solver + ": --x-out holds x* to 1e-8");
+    check(read(dir + "/summary.json") == r.out,
+          "qpsolve --solver " + solver + ": --json-out equals stdout");
+  }
+
+  // cgc on bounds only
+  write("bounds.json", R"({"hessian": "A.mtx", "rhs": "b.txt", "constraints": [
+      {"type": "bound", "first": 0, "count": 1, "lower": 0},
+      {"type": "box", "first": 1, "count": 1, "lower": -1, "upper": 1}]})");
+  {
+    const Result r = run(dir + "/bounds.json --solver cgc --tol 1e-10");
+    check(r.code == 0 && contains(r.out, "\"solver\": \"cgc\"") &&
+            contains(r.out, "\"reason\": \"converged\""),
+          "qpsolve --solver cgc on bound/box constraints: exit 0");
+  }
+
+  // equality: x_7 + x_8 + x_9 = 0.6 (x* satisfies it) -> b unchanged
+  // requires nu = 0, fine: SMALSE-M must still run and report
+  write("B.mtx",
+        "%%MatrixMarket matrix coordinate real general\n1 10 3\n"
+        "1 8 1\n1 9 1\n1 10 1\n");
+  write("c.txt", "0.6\n");
+  write("eq.json", R"({"hessian": "A.mtx", "rhs": "b.txt",
+      "constraints": [{"type": "bound", "first": 0, "count": 1, "lower": 0}],
+      "equality": {"matrix": "B.mtx", "rhs": "c.txt"}})");
+  {
+    const Result r = run(dir + "/eq.json --solver mprgp --tol 1e-9");
+    check(r.code == 0 && contains(r.out, "smalse-m(mprgp)") &&
+            contains(r.out, "\"equality_residual\"") &&
+            contains(r.out, "\"outer_iterations\""),
+          "equality constraints: SMALSE-M wraps mprgp, exit 0");
+  }
+
+  // iteration limit
+  {
+    const Result r = run(dir + "/p.json --solver spg-qp --max-iter 2");
+    check(r.code == 2 && contains(r.out, "\"reason\": \"max_iterations\"") &&
+            contains(r.out, "\"converged\": false"),
+          "--max-iter 2: exit 2, reason max_iterations");
+  }
+
+  // bad inputs: exit 1 and a message naming the culprit
+  write("bad_field.json", R"({"hessian": "A.mtx", "rhs": "b.txt",
+      "constraints": [{"type": "disc", "first": 9, "count": 1, "radius": 1}]})");
+  write("bad_radius.json", R"({"hessian": "A.mtx", "rhs": "b.txt",
+      "constraints": [{"type": "disc", "first": 0, "count": 1, "radius": -1}]})");
+  const std::vector<std::pair<std::string, std::vector<std::string>>> bad = {
+    {dir + "/missing.json", {"missing.json"}},
+    {dir + "/bad_field.json", {"bad_field.json", "constraints[0]"}},
+    {dir + "/bad_radius.json", {"constraints[0].radius", ">= 0"}},
+    {dir + "/p.json --solver newton", {"--solver", "newton"}},
+    {dir + "/p.json --solver cgc", {"cgc", "disc"}},
+    {dir + "/p.json --tol abc", {"--tol", "abc"}},
+    {dir + "/p.json --criterion nonsense", {"nonsense"}},
+  };
+  for (const auto &[args, pieces] : bad)
+  {
+    const Result r  = run(args);
+    bool         ok = r.code == 1 && r.out.empty();
+    for (const auto &piece : pieces)
+      ok = ok && contains(r.err, piece);
+    check(ok,
+          "bad input rejected with exit 1: qpsolve " +
+            args.substr(dir.size() + 1));
+    if (!ok)
+      std::cout << "     exit " << r.code << ", stderr: " << r.err;
+  }
+
+  std::filesystem::remove_all(dir);
+  std::cout << (n_failures == 0 ? "all checks passed" : "FAILED") << std::endl;
+  return n_failures == 0 ? 0 : 1;
+}
