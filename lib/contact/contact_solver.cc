@@ -1,0 +1,176 @@
+#include <contact/contact_solver.h>
+#include <qp/solver_factory.h>
+
+#include <cmath>
+
+namespace dualcontact
+{
+  namespace contact
+  {
+    void
+    CoulombParameters::declare_parameters(dealii::ParameterHandler &prm)
+    {
+      prm.enter_subsection("Coulomb");
+      prm.declare_entry("Tolerance",
+                        "1e-6",
+                        dealii::Patterns::Double(0.),
+                        "Coulomb friction is solved as a fixed point over "
+                        "Tresca problems, psi_i = mu lambda_N,i; it stops when "
+                        "the relative change of the slip bounds psi is below "
+                        "this value [-].");
+      prm.declare_entry("Maximum iterations",
+                        "50",
+                        dealii::Patterns::Integer(1),
+                        "Limit on the Coulomb fixed-point iterations; reaching "
+                        "it is reported as not converged.");
+      prm.declare_entry("Divergence window",
+                        "5",
+                        dealii::Patterns::Integer(2),
+                        "The fixed point is declared divergent when the change "
+                        "of psi grew in this many consecutive iterations.");
+      prm.leave_subsection();
+    }
+
+
+    void
+    CoulombParameters::parse_parameters(dealii::ParameterHandler &prm)
+    {
+      prm.enter_subsection("Coulomb");
+      tolerance         = prm.get_double("Tolerance");
+      max_iterations    = prm.get_integer("Maximum iterations");
+      divergence_window = prm.get_integer("Divergence window");
+      prm.leave_subsection();
+    }
+
+
+    template <int dim>
+    ContactSolver<dim>::ContactSolver(
+      DualProblem<dim>            &dual,
+      const qp::SolverParameters  &qp_parameters,
+      const qp::SMALSEMParameters &smalse_parameters,
+      const CoulombParameters     &coulomb_parameters)
+        : dual_(dual)
+        , qp_parameters_(qp_parameters)
+        , smalse_parameters_(smalse_parameters)
+        , coulomb_parameters_(coulomb_parameters)
+    {
+    }
+
+
+    template <int dim>
+    qp::SolverStatistics
+    ContactSolver<dim>::solve_qp(dealii::Vector<double> &lambda) const
+    {
+      const qp::Problem<dealii::Vector<double>> problem = dual_.make_problem();
+      if (problem.equality)
+      {
+        qp::SMALSEM<dealii::Vector<double>> solver(qp_parameters_,
+                                                   smalse_parameters_);
+        return solver.solve(problem, lambda);
+      }
+      auto solver = qp::create<dealii::Vector<double>>(qp_parameters_);
+      return solver->solve(problem, lambda);
+    }
+
+
+    template <int dim>
+    typename ContactSolver<dim>::Result
+    ContactSolver<dim>::solve(
+      const std::function<void(const Result &)> &on_iterate)
+    {
+      Result result;
+      result.lambda.reinit(dual_.n_multipliers());
+      dual_.update_slip_bounds(nullptr);
+
+      const bool has_coulomb = dual_.has_coulomb_friction();
+
+      result.qp_statistics.push_back(solve_qp(result.lambda));
+      if (!result.qp_statistics.back().converged())
+      {
+        result.reason = "QP solver did not converge: " +
+                        qp::to_string(result.qp_statistics.back().reason);
+        dual_.recover(result.lambda, result.displacements);
+        return result;
+      }
+
+      if (has_coulomb)
+      {
+        unsigned int growing = 0;
+        for (unsigned int it = 0;; ++it)
+        {
+          const std::vector<double> old_first  = dual_.slip_bounds_first();
+          const std::vector<double> old_second = dual_.slip_bounds_second();
+          dual_.update_slip_bounds(&result.lambda);
+          double change = 0, norm = 0;
+          for (unsigned int j = 0; j < old_first.size(); ++j)
+          {
+            change +=
+              std::pow(dual_.slip_bounds_first()[j] - old_first[j], 2) +
+              std::pow(dual_.slip_bounds_second()[j] - old_second[j], 2);
+            norm += std::pow(dual_.slip_bounds_first()[j], 2) +
+                    std::pow(dual_.slip_bounds_second()[j], 2);
+          }
+          const double relative =
+            norm > 0 ? std::sqrt(change / norm) : std::sqrt(change);
+          result.coulomb_changes.push_back(relative);
+          if (on_iterate)
+          {
+            dual_.recover(result.lambda, result.displacements);
+            on_iterate(result);
+          }
+          if (!std::isfinite(relative))
+          {
+            result.reason = "Coulomb fixed point: non-finite slip bounds";
+            break;
+          }
+          if (relative <= coulomb_parameters_.tolerance)
+          {
+            result.converged = true;
+            break;
+          }
+          if (result.coulomb_changes.size() > 1 &&
+              relative >
+                result.coulomb_changes[result.coulomb_changes.size() - 2])
+            ++growing;
+          else
+            growing = 0;
+          if (growing >= coulomb_parameters_.divergence_window)
+          {
+            result.reason = "Coulomb fixed point diverged (the change of "
+                            "psi grew in " +
+                            std::to_string(growing) +
+                            " consecutive iterations)";
+            break;
+          }
+          if (it + 1 >= coulomb_parameters_.max_iterations)
+          {
+            result.reason = "Coulomb fixed point: maximum iterations (" +
+                            std::to_string(coulomb_parameters_.max_iterations) +
+                            ") reached, relative change " +
+                            std::to_string(relative);
+            break;
+          }
+          result.qp_statistics.push_back(solve_qp(result.lambda));
+          if (!result.qp_statistics.back().converged())
+          {
+            result.reason = "QP solver did not converge in Coulomb iteration " +
+                            std::to_string(it + 1) + ": " +
+                            qp::to_string(result.qp_statistics.back().reason);
+            break;
+          }
+        }
+      }
+      else
+        result.converged = true;
+
+      if (result.converged)
+        result.reason = "converged";
+      dual_.recover(result.lambda, result.displacements);
+      return result;
+    }
+
+
+    template class ContactSolver<2>;
+    template class ContactSolver<3>;
+  } // namespace contact
+} // namespace dualcontact

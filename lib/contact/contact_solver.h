@@ -1,0 +1,81 @@
+#pragma once
+
+#include <deal.II/base/parameter_handler.h>
+#include <deal.II/lac/vector.h>
+
+#include <contact/dual_problem.h>
+#include <qp/smalse_m.h>
+#include <qp/solver_parameters.h>
+#include <qp/solver_statistics.h>
+
+#include <string>
+#include <vector>
+
+namespace dualcontact
+{
+  namespace contact
+  {
+    /** Parameters of the Coulomb fixed point, subsection `Coulomb`. */
+    struct CoulombParameters
+    {
+      /** Stop when ||psi_new - psi_old|| <= tolerance ||psi_new|| [-]. */
+      double tolerance = 1e-6;
+      /** Limit on the fixed-point iterations. */
+      unsigned int max_iterations = 50;
+      /**
+       * Declared divergent when the change grew in this many consecutive
+       * iterations.
+       */
+      unsigned int divergence_window = 5;
+
+      static void
+      declare_parameters(dealii::ParameterHandler &prm);
+      void
+      parse_parameters(dealii::ParameterHandler &prm);
+    };
+
+
+    /**
+     * Solves the contact problem of a DualProblem: one QP for frictionless
+     * and Tresca scenes; for Coulomb pairs the fixed point over Tresca
+     * problems psi_i = mu lambda_N,i (the first with psi = 0), each QP warm
+     * started from the previous multipliers.  QPs with equality constraints
+     * (floating bodies) go through SMALSE-M with the chosen solver inside.
+     */
+    template <int dim>
+    class ContactSolver
+    {
+    public:
+      struct Result
+      {
+        dealii::Vector<double>              lambda;
+        std::vector<dealii::Vector<double>> displacements;
+        /** One record per QP solved (Coulomb: per fixed-point iterate). */
+        std::vector<qp::SolverStatistics> qp_statistics;
+        /** Relative change of psi per Coulomb iterate. */
+        std::vector<double> coulomb_changes;
+        bool                converged = false;
+        /** "converged", or why not (QP failure, Coulomb limit/divergence). */
+        std::string reason;
+      };
+
+      ContactSolver(DualProblem<dim>            &dual,
+                    const qp::SolverParameters  &qp_parameters,
+                    const qp::SMALSEMParameters &smalse_parameters,
+                    const CoulombParameters     &coulomb_parameters);
+
+      /** Solve; @p on_iterate (if set) sees every Coulomb iterate. */
+      Result
+      solve(const std::function<void(const Result &)> &on_iterate = {});
+
+    private:
+      qp::SolverStatistics
+      solve_qp(dealii::Vector<double> &lambda) const;
+
+      DualProblem<dim>     &dual_;
+      qp::SolverParameters  qp_parameters_;
+      qp::SMALSEMParameters smalse_parameters_;
+      CoulombParameters     coulomb_parameters_;
+    };
+  } // namespace contact
+} // namespace dualcontact

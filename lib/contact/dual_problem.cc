@@ -1,0 +1,480 @@
+#include <deal.II/base/exceptions.h>
+#include <deal.II/lac/full_matrix.h>
+
+#include <contact/dual_problem.h>
+#include <fem/generalized_inverse.h>
+#include <qp/power_iteration.h>
+#include <qp/separable_set.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace dualcontact
+{
+  namespace contact
+  {
+    using namespace dealii;
+
+    template <int dim>
+    DualProblem<dim>::DualProblem(
+      const std::vector<const fem::ElasticBody<dim> *>             &bodies,
+      const ContactDiscretization<dim>                             &contact,
+      const std::function<std::unique_ptr<fem::StiffnessSolver>()> &make_solver)
+        : bodies_(bodies)
+        , contact_(contact)
+    {
+      const unsigned int n_dofs = contact.n_dofs();
+      load_.reinit(n_dofs);
+      for (unsigned int b = 0; b < bodies_.size(); ++b)
+      {
+        const types::global_dof_index offset = contact.body_offset(b);
+        for (unsigned int i = 0; i < bodies_[b]->n_dofs(); ++i)
+          load_(offset + i) = bodies_[b]->load_vector()(i);
+
+        modes_.push_back(
+          std::make_unique<fem::RigidBodyModes<dim>>(*bodies_[b]));
+        for (const auto &mode : modes_.back()->modes())
+        {
+          Vector<double> column(n_dofs);
+          for (unsigned int i = 0; i < mode.size(); ++i)
+            column(offset + i) = mode(i);
+          rigid_modes_.push_back(column);
+        }
+        auto solver = std::make_unique<fem::GeneralizedInverse>(
+          make_solver(), modes_.back()->fixing_dofs());
+        solver->initialize(bodies_[b]->stiffness_matrix());
+        solvers_.push_back(std::move(solver));
+      }
+
+      // Frictional nodes: those of pairs with a friction law.
+      frictional_index_.assign(contact.n_nodes(), -1);
+      for (unsigned int i = 0; i < contact.n_nodes(); ++i)
+        if (contact.pairs()[contact.nodes()[i].pair].friction.has_friction())
+        {
+          frictional_index_[i] = frictional_nodes_.size();
+          frictional_nodes_.push_back(i);
+        }
+      psi_first_.assign(frictional_nodes_.size(), 0.);
+      psi_second_.assign(frictional_nodes_.size(), 0.);
+
+      // d = B K^# f - [c; -o_T]
+      work_u_ = load_;
+      apply_K_inverse(work_u_);
+      d_.reinit(n_multipliers());
+      apply_B(work_u_, d_);
+      const Vector<double> c = contact.normal_bound();
+      for (unsigned int i = 0; i < contact.n_nodes(); ++i)
+        d_(i) -= c(i);
+      for (unsigned int j = 0; j < frictional_nodes_.size(); ++j)
+        for (unsigned int k = 0; k + 1 < dim; ++k)
+          d_(contact.n_nodes() + (dim - 1) * j + k) +=
+            contact.tangential_offset()((dim - 1) * frictional_nodes_[j] + k);
+
+      // G = R'B' (rows B r_k), e = R'f
+      e_.reinit(rigid_modes_.size());
+      for (unsigned int k = 0; k < rigid_modes_.size(); ++k)
+      {
+        VectorType row(n_multipliers());
+        apply_B(rigid_modes_[k], row);
+        G_rows_.push_back(row);
+        e_(k) = rigid_modes_[k] * load_;
+      }
+
+      // Orthonormal rows: G~ = L^{-1} G, e~ = L^{-1} e with G G' = L L',
+      // by modified Gram-Schmidt on the rows (applied to e alike).
+      G_orthonormal_ = G_rows_;
+      e_orthonormal_ = e_;
+      for (unsigned int k = 0; k < G_orthonormal_.size(); ++k)
+      {
+        for (unsigned int j = 0; j < k; ++j)
+        {
+          const double projection = G_orthonormal_[k] * G_orthonormal_[j];
+          G_orthonormal_[k].add(-projection, G_orthonormal_[j]);
+          e_orthonormal_(k) -= projection * e_orthonormal_(j);
+        }
+        const double norm = G_orthonormal_[k].l2_norm();
+        AssertThrow(norm > 1e-10,
+                    ExcMessage(
+                      "A rigid-body motion of a body is not restrained by "
+                      "any contact constraint (G = R'B' is rank deficient): "
+                      "add a Dirichlet condition, a contact pair or "
+                      "friction that holds it."));
+        G_orthonormal_[k] /= norm;
+        e_orthonormal_(k) /= norm;
+      }
+
+      // Scale of F for the scaled QP.
+      const qp::PowerIterationResult power = qp::power_iteration<VectorType>(
+        [this](VectorType &dst, const VectorType &src) { apply_F(dst, src); },
+        d_,
+        200,
+        1e-6,
+        1.0);
+      scale_            = power.estimate;
+      n_power_products_ = power.n_products;
+      AssertThrow(scale_ > 0 && std::isfinite(scale_),
+                  ExcMessage("The dual operator F = B K^# B' is zero or not "
+                             "finite: are there contact constraints?"));
+    }
+
+
+    template <int dim>
+    DualProblem<dim>::~DualProblem() = default;
+
+
+    template <int dim>
+    unsigned int
+    DualProblem<dim>::n_multipliers() const
+    {
+      return contact_.n_nodes() + (dim - 1) * frictional_nodes_.size();
+    }
+
+    template <int dim>
+    unsigned int
+    DualProblem<dim>::n_contact_nodes() const
+    {
+      return contact_.n_nodes();
+    }
+
+    template <int dim>
+    unsigned int
+    DualProblem<dim>::n_frictional_nodes() const
+    {
+      return frictional_nodes_.size();
+    }
+
+    template <int dim>
+    int
+    DualProblem<dim>::frictional_index(const unsigned int node) const
+    {
+      return frictional_index_[node];
+    }
+
+    template <int dim>
+    bool
+    DualProblem<dim>::has_coulomb_friction() const
+    {
+      for (const auto &pair : contact_.pairs())
+        if (pair.friction.is_coulomb())
+          return true;
+      return false;
+    }
+
+
+    template <int dim>
+    unsigned int
+    DualProblem<dim>::n_rigid_body_modes() const
+    {
+      return rigid_modes_.size();
+    }
+
+
+    template <int dim>
+    void
+    DualProblem<dim>::set_slip_bounds(const std::vector<double> &first,
+                                      const std::vector<double> &second)
+    {
+      AssertDimension(first.size(), frictional_nodes_.size());
+      AssertDimension(second.size(), frictional_nodes_.size());
+      psi_first_  = first;
+      psi_second_ = second;
+    }
+
+
+    template <int dim>
+    void
+    DualProblem<dim>::update_slip_bounds(const VectorType *lambda)
+    {
+      for (unsigned int j = 0; j < frictional_nodes_.size(); ++j)
+      {
+        const unsigned int      node = frictional_nodes_[j];
+        const ContactNode<dim> &n    = contact_.nodes()[node];
+        const FrictionLaw      &law  = contact_.pairs()[n.pair].friction;
+        if (law.is_coulomb())
+        {
+          const double lambda_n = lambda ? std::max((*lambda)(node), 0.) : 0.;
+          psi_first_[j]         = law.first * lambda_n;
+          psi_second_[j] =
+            (law.is_orthotropic() ? law.second : law.first) * lambda_n;
+        }
+        else
+        {
+          psi_first_[j] = law.first * n.weight;
+          psi_second_[j] =
+            (law.is_orthotropic() ? law.second : law.first) * n.weight;
+        }
+      }
+    }
+
+
+    template <int dim>
+    const std::vector<double> &
+    DualProblem<dim>::slip_bounds_first() const
+    {
+      return psi_first_;
+    }
+
+    template <int dim>
+    const std::vector<double> &
+    DualProblem<dim>::slip_bounds_second() const
+    {
+      return psi_second_;
+    }
+
+
+    template <int dim>
+    qp::Problem<typename DualProblem<dim>::VectorType>
+    DualProblem<dim>::make_problem() const
+    {
+      qp::Problem<VectorType> problem;
+      problem.hessian = [this](VectorType &dst, const VectorType &src)
+      {
+        apply_F(dst, src);
+        dst /= scale_;
+      };
+      problem.b = d_;
+      problem.b /= scale_;
+      // the power iteration's estimate approaches from below
+      problem.lambda_max = 1.05;
+
+      auto               set = std::make_shared<qp::SeparableSet<VectorType>>();
+      const unsigned int n_nodes = contact_.n_nodes();
+      for (unsigned int i = 0; i < n_nodes; ++i)
+        set->add_bound(i, 0.);
+      for (unsigned int j = 0; j < frictional_nodes_.size(); ++j)
+      {
+        const unsigned int first = n_nodes + (dim - 1) * j;
+        const FrictionLaw &law =
+          contact_.pairs()[contact_.nodes()[frictional_nodes_[j]].pair]
+            .friction;
+        if (dim == 2)
+          set->add_box(first, -psi_first_[j], psi_first_[j]);
+        else if (law.is_orthotropic() && psi_first_[j] > 0 &&
+                 psi_second_[j] > 0)
+          set->add_ellipse(first, psi_first_[j], psi_second_[j]);
+        else
+          // isotropic, or a node without normal force (all bounds zero)
+          set->add_disc(first, std::min(psi_first_[j], psi_second_[j]));
+      }
+      VectorType layout(n_multipliers());
+      set->finalize(layout);
+      problem.constraints = set;
+
+      if (!G_rows_.empty())
+      {
+        auto equality = std::make_shared<qp::EqualityConstraints<VectorType>>();
+        equality->vmult = [this](VectorType &dst, const VectorType &src)
+        {
+          dst.reinit(G_orthonormal_.size());
+          for (unsigned int k = 0; k < G_orthonormal_.size(); ++k)
+            dst(k) = G_orthonormal_[k] * src;
+        };
+        equality->Tvmult = [this](VectorType &dst, const VectorType &src)
+        {
+          dst.reinit(n_multipliers());
+          for (unsigned int k = 0; k < G_orthonormal_.size(); ++k)
+            dst.add(src(k), G_orthonormal_[k]);
+        };
+        equality->c             = e_orthonormal_;
+        equality->n_constraints = G_orthonormal_.size();
+        equality->norm_sq       = 1.; // ||G~||^2 = lambda_max(G~ G~') = 1
+        problem.equality        = equality;
+        problem.semidefinite    = true;
+      }
+      return problem;
+    }
+
+
+    template <int dim>
+    void
+    DualProblem<dim>::apply_K_inverse(Vector<double> &x) const
+    {
+      Vector<double> in, out;
+      for (unsigned int b = 0; b < bodies_.size(); ++b)
+      {
+        const types::global_dof_index offset = contact_.body_offset(b);
+        const unsigned int            n      = bodies_[b]->n_dofs();
+        in.reinit(n, true);
+        for (unsigned int i = 0; i < n; ++i)
+          in(i) = x(offset + i);
+        solvers_[b]->solve(out, in);
+        for (unsigned int i = 0; i < n; ++i)
+          x(offset + i) = out(i);
+      }
+      ++n_stiffness_solves_;
+    }
+
+
+    template <int dim>
+    void
+    DualProblem<dim>::apply_B(const Vector<double> &u, VectorType &lambda) const
+    {
+      const unsigned int n_nodes = contact_.n_nodes();
+      lambda.reinit(n_multipliers(), true);
+      Vector<double> normal(n_nodes);
+      contact_.normal_matrix().vmult(normal, u);
+      for (unsigned int i = 0; i < n_nodes; ++i)
+        lambda(i) = normal(i);
+      if (!frictional_nodes_.empty())
+      {
+        work_t_.reinit((dim - 1) * n_nodes, true);
+        contact_.tangential_matrix().vmult(work_t_, u);
+        for (unsigned int j = 0; j < frictional_nodes_.size(); ++j)
+          for (unsigned int k = 0; k + 1 < dim; ++k)
+            lambda(n_nodes + (dim - 1) * j + k) =
+              work_t_((dim - 1) * frictional_nodes_[j] + k);
+      }
+    }
+
+
+    template <int dim>
+    void
+    DualProblem<dim>::apply_Bt(const VectorType &lambda,
+                               Vector<double>   &u) const
+    {
+      const unsigned int n_nodes = contact_.n_nodes();
+      u.reinit(contact_.n_dofs());
+      Vector<double> normal(n_nodes);
+      for (unsigned int i = 0; i < n_nodes; ++i)
+        normal(i) = lambda(i);
+      contact_.normal_matrix().Tvmult(u, normal);
+      if (!frictional_nodes_.empty())
+      {
+        work_t_.reinit((dim - 1) * n_nodes);
+        for (unsigned int j = 0; j < frictional_nodes_.size(); ++j)
+          for (unsigned int k = 0; k + 1 < dim; ++k)
+            work_t_((dim - 1) * frictional_nodes_[j] + k) =
+              lambda(n_nodes + (dim - 1) * j + k);
+        contact_.tangential_matrix().Tvmult_add(u, work_t_);
+      }
+    }
+
+
+    template <int dim>
+    void
+    DualProblem<dim>::apply_F(VectorType &dst, const VectorType &src) const
+    {
+      Vector<double> u;
+      apply_Bt(src, u);
+      apply_K_inverse(u);
+      apply_B(u, dst);
+    }
+
+
+    template <int dim>
+    const typename DualProblem<dim>::VectorType &
+    DualProblem<dim>::d() const
+    {
+      return d_;
+    }
+
+
+    template <int dim>
+    void
+    DualProblem<dim>::recover(const VectorType            &lambda,
+                              std::vector<Vector<double>> &displacements) const
+    {
+      Vector<double> u;
+      apply_Bt(lambda, u);
+      u.sadd(-1., 1., load_);
+      apply_K_inverse(u);
+
+      if (!rigid_modes_.empty())
+      {
+        // Residual of the constraints without the rigid motion,
+        // r = B u - [c; -o_T] (= d - F lambda).
+        VectorType r(n_multipliers());
+        apply_B(u, r);
+        const Vector<double> c = contact_.normal_bound();
+        for (unsigned int i = 0; i < contact_.n_nodes(); ++i)
+          r(i) -= c(i);
+        for (unsigned int j = 0; j < frictional_nodes_.size(); ++j)
+          for (unsigned int k = 0; k + 1 < dim; ++k)
+            r(contact_.n_nodes() + (dim - 1) * j + k) +=
+              contact_.tangential_offset()((dim - 1) * frictional_nodes_[j] +
+                                           k);
+        // Rows that must hold with equality: active normal rows, and the
+        // tangential rows of sticking nodes that are in contact.
+        const unsigned int n_nodes = contact_.n_nodes();
+        double             scale   = 0;
+        for (unsigned int i = 0; i < n_nodes; ++i)
+          scale = std::max(scale, std::abs(lambda(i)));
+        const double      tol = 1e-8 * scale;
+        std::vector<bool> active(n_multipliers(), false);
+        for (unsigned int i = 0; i < n_nodes; ++i)
+          active[i] = lambda(i) > tol;
+        for (unsigned int j = 0; j < frictional_nodes_.size(); ++j)
+        {
+          double norm = 0;
+          for (unsigned int k = 0; k + 1 < dim; ++k)
+            norm += std::pow(lambda(n_nodes + (dim - 1) * j + k), 2);
+          norm               = std::sqrt(norm);
+          const double bound = std::min(psi_first_[j], psi_second_[j]);
+          if (active[frictional_nodes_[j]] && norm < (1 - 1e-6) * bound)
+            for (unsigned int k = 0; k + 1 < dim; ++k)
+              active[n_nodes + (dim - 1) * j + k] = true;
+        }
+        // alpha = (G_A G_A')^{-1} G_A (-r_A): G_A' alpha = -r_A in the
+        // least-squares sense.
+        const unsigned int m = rigid_modes_.size();
+        FullMatrix<double> GGt(m, m);
+        Vector<double>     rhs(m), alpha(m);
+        for (unsigned int k = 0; k < m; ++k)
+          for (unsigned int r_ = 0; r_ < n_multipliers(); ++r_)
+            if (active[r_])
+            {
+              rhs(k) -= G_rows_[k](r_) * r(r_);
+              for (unsigned int l = 0; l < m; ++l)
+                GGt(k, l) += G_rows_[k](r_) * G_rows_[l](r_);
+            }
+        double diag = 0;
+        for (unsigned int k = 0; k < m; ++k)
+          diag = std::max(diag, GGt(k, k));
+        AssertThrow(diag > 0,
+                    ExcMessage("The rigid-body motion of a floating body is "
+                               "not determined: no active contact "
+                               "constraint holds it."));
+        FullMatrix<double> inverse(m, m);
+        // Tikhonov-free solve; a singular G_A G_A' means a mode that no
+        // active constraint sees (e.g. tangential motion without
+        // friction): it is left at zero by the pseudo-inverse below.
+        for (unsigned int k = 0; k < m; ++k)
+          GGt(k, k) += 1e-14 * diag;
+        inverse.invert(GGt);
+        inverse.vmult(alpha, rhs);
+        for (unsigned int k = 0; k < m; ++k)
+          u.add(alpha(k), rigid_modes_[k]);
+      }
+
+      displacements.resize(bodies_.size());
+      for (unsigned int b = 0; b < bodies_.size(); ++b)
+      {
+        const types::global_dof_index offset = contact_.body_offset(b);
+        displacements[b].reinit(bodies_[b]->n_dofs());
+        for (unsigned int i = 0; i < bodies_[b]->n_dofs(); ++i)
+          displacements[b](i) = u(offset + i);
+        bodies_[b]->distribute(displacements[b]);
+      }
+    }
+
+
+    template <int dim>
+    double
+    DualProblem<dim>::scale() const
+    {
+      return scale_;
+    }
+
+
+    template <int dim>
+    unsigned long
+    DualProblem<dim>::n_stiffness_solves() const
+    {
+      return n_stiffness_solves_;
+    }
+
+
+    template class DualProblem<2>;
+    template class DualProblem<3>;
+  } // namespace contact
+} // namespace dualcontact

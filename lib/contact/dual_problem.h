@@ -1,0 +1,168 @@
+#pragma once
+
+#include <deal.II/lac/vector.h>
+
+#include <contact/contact_discretization.h>
+#include <fem/elastic_body.h>
+#include <fem/rigid_body_modes.h>
+#include <fem/stiffness_solver.h>
+#include <qp/problem.h>
+
+#include <functional>
+#include <memory>
+#include <vector>
+
+namespace dualcontact
+{
+  namespace contact
+  {
+    /**
+     * The dual of the contact problem of a scene, for one set of slip bounds
+     * (one Tresca problem; the Coulomb loop changes the bounds):
+     *
+     *   minimize 1/2 lambda'F lambda - lambda'd
+     *   subject to lambda_N >= 0, lambda_T,i in the friction set of node i,
+     *              G lambda = e   (only if some body has rigid-body modes)
+     *
+     * with B = [B_N; B_T] (tangential rows only for nodes of frictional
+     * pairs), F = B K^# B', d = B K^# f - [c; -o_T], G = R'B', e = R'f.
+     * K^# is K^{-1} for a supported body and the fixing-dof generalized
+     * inverse for a body with rigid-body modes R; c = gap - B_N u_D and o_T =
+     * B_T u_D carry prescribed displacements (ContactDiscretization).
+     *
+     * lambda are nodal forces [N, N/m in 2D]: lambda_N,i = p_i w_i with the
+     * contact pressure p_i and the node's area weight w_i.  Hence the nodal
+     * slip bound of a Tresca pair is psi_i = g w_i and of a Coulomb pair
+     * psi_i = mu lambda_N,i.  The friction set of a node is a box
+     * [-psi, psi] in 2D, a disc of radius psi (isotropic) or an ellipse with
+     * semi-axes psi_1, psi_2 along the node's tangents t_1, t_2 (orthotropic)
+     * in 3D.
+     *
+     * Layout of lambda: [lambda_N (one per contact node); lambda_T
+     * (dim - 1 per frictional node, in node order)].
+     */
+    template <int dim>
+    class DualProblem
+    {
+    public:
+      using VectorType = dealii::Vector<double>;
+
+      /**
+       * Factorizes every body's K with a solver made by @p make_solver
+       * (wrapped in a generalized inverse where the body has rigid-body
+       * modes) and builds d, G, e.
+       */
+      DualProblem(const std::vector<const fem::ElasticBody<dim> *> &bodies,
+                  const ContactDiscretization<dim>                 &contact,
+                  const std::function<std::unique_ptr<fem::StiffnessSolver>()>
+                    &make_solver);
+
+      ~DualProblem();
+
+      unsigned int
+      n_multipliers() const;
+      unsigned int
+      n_contact_nodes() const;
+      /** Nodes with tangential multipliers (frictional pairs). */
+      unsigned int
+      n_frictional_nodes() const;
+      /** Index into the frictional nodes, or -1 for a frictionless node. */
+      int
+      frictional_index(const unsigned int node) const;
+      /** Whether some pair has Coulomb friction (bounds depend on lambda). */
+      bool
+      has_coulomb_friction() const;
+      /** Total number of rigid-body modes (rows of G). */
+      unsigned int
+      n_rigid_body_modes() const;
+
+      /**
+       * Nodal slip bounds [N] of the frictional nodes (size
+       * n_frictional_nodes(); @p second is used by orthotropic pairs in 3D
+       * only).
+       */
+      void
+      set_slip_bounds(const std::vector<double> &first,
+                      const std::vector<double> &second);
+      /**
+       * The bounds of the pairs' laws: Tresca psi = g w_i; Coulomb
+       * psi = mu lambda_N,i with lambda_N from @p lambda (zero if null).
+       */
+      void
+      update_slip_bounds(const VectorType *lambda);
+      const std::vector<double> &
+      slip_bounds_first() const;
+      const std::vector<double> &
+      slip_bounds_second() const;
+
+      /**
+       * The QP with the current slip bounds (F counted by the solver), in
+       * scaled form: Hessian F / s and right-hand side d / s with s the
+       * largest eigenvalue of F (so that the Hessian has norm 1 and the
+       * right-hand side is a force, like the multipliers and the equality
+       * residual), and the rows of G orthonormalized (G G' = I).  The
+       * minimizer is that of the unscaled problem.
+       */
+      qp::Problem<VectorType>
+      make_problem() const;
+
+      /** dst = F src. */
+      void
+      apply_F(VectorType &dst, const VectorType &src) const;
+
+      const VectorType &
+      d() const;
+
+      /** s = lambda_max(F) (power iteration) [m/N]. */
+      double
+      scale() const;
+
+      /**
+       * Displacements of every body for multipliers @p lambda:
+       * u = K^#(f - B'lambda) + R alpha, alpha fitted so that the
+       * constraints whose multipliers are active (lambda_N,i > 0, and
+       * tangential rows of sticking nodes) hold with equality, then the
+       * constraints of each body distributed.
+       */
+      void
+      recover(const VectorType                    &lambda,
+              std::vector<dealii::Vector<double>> &displacements) const;
+
+      /** Number of K^# applications so far (two per F product). */
+      unsigned long
+      n_stiffness_solves() const;
+
+    private:
+      void
+      apply_K_inverse(dealii::Vector<double> &x) const;
+      void
+      apply_B(const dealii::Vector<double> &u, VectorType &lambda) const;
+      void
+      apply_Bt(const VectorType &lambda, dealii::Vector<double> &u) const;
+
+      std::vector<const fem::ElasticBody<dim> *>             bodies_;
+      const ContactDiscretization<dim>                      &contact_;
+      std::vector<std::unique_ptr<fem::RigidBodyModes<dim>>> modes_;
+      std::vector<std::unique_ptr<fem::StiffnessSolver>>     solvers_;
+      std::vector<int>                                       frictional_index_;
+      std::vector<unsigned int>                              frictional_nodes_;
+      /** Stacked load f and the columns of R over all dofs. */
+      dealii::Vector<double>              load_;
+      std::vector<dealii::Vector<double>> rigid_modes_;
+      /** G as rows (each of size n_multipliers()) and e. */
+      std::vector<VectorType> G_rows_;
+      VectorType              e_;
+      VectorType              d_;
+      /** lambda_max(F), the scale of the QP handed to the solvers. */
+      double scale_ = 1;
+      /** Products with F spent on the power iteration. */
+      unsigned int n_power_products_ = 0;
+      /** Orthonormalized G and the correspondingly transformed e. */
+      std::vector<VectorType>        G_orthonormal_;
+      VectorType                     e_orthonormal_;
+      std::vector<double>            psi_first_, psi_second_;
+      mutable unsigned long          n_stiffness_solves_ = 0;
+      mutable dealii::Vector<double> work_u_, work_t_;
+    };
+  } // namespace contact
+} // namespace dualcontact
