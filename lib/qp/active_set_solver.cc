@@ -3,6 +3,7 @@
 
 #include <deal.II/base/exceptions.h>
 
+#include <array>
 #include <cmath>
 #include <limits>
 
@@ -18,6 +19,47 @@ namespace dualcontact
       // zero: exact zeros of a singular A come out of a product as
       // rounding noise of that size.
       constexpr double curvature_threshold = 1e-13;
+
+      // {p'Ap, p'p, g'p} in one pass over the local entries, one reduction
+      template <typename VectorType>
+      std::array<double, 3>
+      fused_dots(const VectorType &p, const VectorType &Ap, const VectorType &g)
+      {
+        const double     *pv = p.begin(), *av = Ap.begin(), *gv = g.begin();
+        const std::size_t n        = p.locally_owned_size();
+        double            local[3] = {0., 0., 0.};
+        for (std::size_t i = 0; i < n; ++i)
+        {
+          local[0] += pv[i] * av[i];
+          local[1] += pv[i] * pv[i];
+          local[2] += gv[i] * pv[i];
+        }
+        std::array<double, 3> global;
+        dealii::Utilities::MPI::sum(dealii::ArrayView<const double>(local, 3),
+                                    internal::communicator(p),
+                                    dealii::ArrayView<double>(global.data(),
+                                                              3));
+        return global;
+      }
+
+      // x -= alpha p, g -= alpha Ap in one pass (the CG step)
+      template <typename VectorType>
+      void
+      fused_step(VectorType       &x,
+                 VectorType       &g,
+                 const VectorType &p,
+                 const VectorType &Ap,
+                 const double      alpha)
+      {
+        double           *xv = x.begin(), *gv = g.begin();
+        const double     *pv = p.begin(), *av = Ap.begin();
+        const std::size_t n = x.locally_owned_size();
+        for (std::size_t i = 0; i < n; ++i)
+        {
+          xv[i] -= alpha * pv[i];
+          gv[i] -= alpha * av[i];
+        }
+      }
     } // namespace
 
 
@@ -86,10 +128,17 @@ namespace dualcontact
 
       double        bb_alpha = alpha_bar;
       GradientNorms norms;
-      const auto    evaluate = [&]() -> double
+      // phi_out := phi(x), norms := the gradient norms at x; returns the
+      // absolute stopping criterion
+      const auto refresh = [&](VectorType &phi_out) -> double
       {
-        norms = weak ? set.reduced_gradient_norms(x, g, alpha_bar) :
-                       set.gradient_norms(x, g);
+        if (weak)
+        {
+          set.free_gradient(x, g, phi_out);
+          norms = set.reduced_gradient_norms(x, g, alpha_bar);
+        }
+        else
+          norms = set.free_gradient_and_norms(x, g, phi_out);
         switch (prm.stopping_criterion)
         {
           case StoppingCriterion::projected:
@@ -162,9 +211,9 @@ namespace dualcontact
       };
 
       recompute_gradient();
-      bool stop = this->check_stop(stats, evaluate());
-      set.free_gradient(x, g, p);
+      bool stop = this->check_stop(stats, refresh(p)); // p = phi
 
+      double value = 0.;
       while (!stop)
       {
         ++stats.iterations;
@@ -189,9 +238,9 @@ namespace dualcontact
         if (proportional())
         {
           this->apply_hessian(problem, Ap, p, stats);
-          const double pAp = p * Ap;
-          const double pp  = p * p;
-          const double gp  = g * p; // = phi'p, p lives on the free set
+          // p'Ap, p'p, g'p (= phi'p, p lives on the free set) in one pass
+          const std::array<double, 3> d   = fused_dots(p, Ap, g);
+          const double                pAp = d[0], pp = d[1], gp = d[2];
           if (pAp < -curvature_threshold * lambda_max * pp)
           {
             stats.reason  = ConvergenceReason::breakdown;
@@ -214,9 +263,8 @@ namespace dualcontact
           if (alpha_cg <= alpha_f)
           {
             // CG step
-            x.add(-alpha_cg, p);
-            g.add(-alpha_cg, Ap);
-            set.free_gradient(x, g, phi);
+            fused_step(x, g, p, Ap, alpha_cg);
+            value                = refresh(phi);
             const double beta_cg = (phi * Ap) / pAp;
             p.sadd(-beta_cg, 1., phi);
             ++stats.n_cg;
@@ -228,7 +276,7 @@ namespace dualcontact
             g.add(-alpha_f, Ap);
             ++stats.n_half_steps;
             expansion();
-            set.free_gradient(x, g, p);
+            value = refresh(p);
           }
         }
         else if (variant.step == ActiveSetVariant::Step::proportioning)
@@ -236,9 +284,8 @@ namespace dualcontact
           // steepest descent along beta, cut at the boundary (boxes)
           set.chopped_gradient(x, g, p);
           this->apply_hessian(problem, Ap, p, stats);
-          const double bAb = p * Ap;
-          const double bb  = p * p;
-          const double gb  = g * p;
+          const std::array<double, 3> d   = fused_dots(p, Ap, g);
+          const double                bAb = d[0], bb = d[1], gb = d[2];
           if (bAb < -curvature_threshold * lambda_max * bb)
           {
             stats.reason = ConvergenceReason::breakdown;
@@ -264,14 +311,14 @@ namespace dualcontact
           set.feasible_step(x, p, alpha);
           g.add(-alpha, Ap);
           ++stats.n_proportioning;
-          set.free_gradient(x, g, p);
+          value = refresh(p);
         }
         else
         {
           expansion();
-          set.free_gradient(x, g, p);
+          value = refresh(p);
         }
-        stop = this->check_stop(stats, evaluate());
+        stop = this->check_stop(stats, value);
         if (stop && stats.reason == ConvergenceReason::converged)
         {
           // g was updated by recurrences (g -= alpha A p); before
@@ -281,9 +328,7 @@ namespace dualcontact
           // from the true gradient with a CG restart.
           stats.history.pop_back();
           recompute_gradient();
-          stop = this->check_stop(stats, evaluate());
-          if (!stop)
-            set.free_gradient(x, g, p);
+          stop = this->check_stop(stats, refresh(p)); // restart: p = phi
         }
       }
 

@@ -684,17 +684,34 @@ namespace dualcontact
       const double *v     = x.begin();
       const double *d     = p.begin();
       double        alpha = infinity;
-      // bounds and boxes: branch-free (the signs of p are not predictable)
+      // bounds and boxes: branch-free, and without a division per entry:
+      // the smallest ratio room/q over q > 0 is tracked as a fraction
+      // (num, den) compared by cross-multiplication, in four independent
+      // lanes (registers) so the comparisons do not wait for each other.
+      double     n0 = 1., n1 = 1., n2 = 1., n3 = 1.;
+      double     d0 = 0., d1 = 0., d2 = 0., d3 = 0.;
+      const auto offer =
+        [](double &num, double &den, const double room, const double q)
+      {
+        const bool take = q > 0. && room * den < num * q;
+        num             = take ? room : num;
+        den             = take ? q : den;
+      };
       for (const Run &run : bound_runs)
       {
-        const double *y = v + run.begin;
-        const double *q = d + run.begin;
-        const double *l = bound_lower.data() + run.first;
-        for (std::size_t i = 0; i < run.count; ++i)
+        const double     *y = v + run.begin;
+        const double     *q = d + run.begin;
+        const double     *l = bound_lower.data() + run.first;
+        const std::size_t m = run.count & ~std::size_t(3);
+        for (std::size_t i = 0; i < m; i += 4)
         {
-          const double a = std::max(y[i] - l[i], 0.) / q[i];
-          alpha          = (q[i] > 0. && a < alpha) ? a : alpha;
+          offer(n0, d0, std::max(y[i] - l[i], 0.), q[i]);
+          offer(n1, d1, std::max(y[i + 1] - l[i + 1], 0.), q[i + 1]);
+          offer(n2, d2, std::max(y[i + 2] - l[i + 2], 0.), q[i + 2]);
+          offer(n3, d3, std::max(y[i + 3] - l[i + 3], 0.), q[i + 3]);
         }
+        for (std::size_t i = m; i < run.count; ++i)
+          offer(n0, d0, std::max(y[i] - l[i], 0.), q[i]);
       }
       for (const Run &run : box_runs)
       {
@@ -706,10 +723,15 @@ namespace dualcontact
         {
           const double room =
             q[i] > 0. ? std::max(y[i] - l[i], 0.) : std::max(u[i] - y[i], 0.);
-          const double a = room / std::abs(q[i]);
-          alpha          = (q[i] != 0. && a < alpha) ? a : alpha;
+          offer(n0, d0, room, std::abs(q[i]));
         }
       }
+      for (const auto &[num, den] : {std::pair<double, double>{n0, d0},
+                                     std::pair<double, double>{n1, d1},
+                                     std::pair<double, double>{n2, d2},
+                                     std::pair<double, double>{n3, d3}})
+        if (den > 0.)
+          alpha = std::min(alpha, num / den);
       for (const auto &blk : discs)
       {
         const double *y = v + blk.global;
@@ -1207,6 +1229,90 @@ namespace dualcontact
                                              const VectorType &g) const
     {
       return norms(x, g, 1., false);
+    }
+
+
+    template <typename VectorType>
+    GradientNorms
+    SeparableSet<VectorType>::free_gradient_and_norms(const VectorType &x,
+                                                      const VectorType &g,
+                                                      VectorType &phi) const
+    {
+      Assert(finalized, dealii::ExcMessage("call finalize() first"));
+      Assert(&phi != &g, dealii::ExcMessage("phi must not alias g"));
+      const double *gv  = g.begin();
+      const double *v   = x.begin();
+      double       *o   = phi.begin();
+      double        fsq = 0., bsq = 0.;
+      for (const auto &range : free_ranges)
+        for (std::size_t i = range.first; i < range.second; ++i)
+        {
+          o[i] = gv[i];
+          fsq += gv[i] * gv[i];
+        }
+      for (const Run &run : bound_runs)
+      {
+        const double *y  = v + run.begin;
+        const double *q  = gv + run.begin;
+        double       *f  = o + run.begin;
+        const double *l  = bound_lower.data() + run.first;
+        double        fs = 0., bs = 0.;
+        for (std::size_t i = 0; i < run.count; ++i)
+        {
+          const bool   active = y[i] - l[i] <= tolerance * std::abs(l[i]);
+          const double gm     = std::min(q[i], 0.);
+          f[i]                = active ? 0. : q[i];
+          fs += active ? 0. : q[i] * q[i];
+          bs += active ? gm * gm : 0.;
+        }
+        fsq += fs;
+        bsq += bs;
+      }
+      for (const Run &run : box_runs)
+      {
+        const double *y  = v + run.begin;
+        const double *q  = gv + run.begin;
+        double       *f  = o + run.begin;
+        const double *l  = box_lower.data() + run.first;
+        const double *u  = box_upper.data() + run.first;
+        double        fs = 0., bs = 0.;
+        for (std::size_t i = 0; i < run.count; ++i)
+        {
+          const bool   at_l = y[i] - l[i] <= tolerance * std::abs(l[i]);
+          const bool   at_u = u[i] - y[i] <= tolerance * std::abs(u[i]);
+          const double c =
+            (at_l && at_u) ?
+              0. :
+              (at_l ? std::min(q[i], 0.) : (at_u ? std::max(q[i], 0.) : 0.));
+          f[i] = (at_l || at_u) ? 0. : q[i];
+          fs += (at_l || at_u) ? 0. : q[i] * q[i];
+          bs += c * c;
+        }
+        fsq += fs;
+        bsq += bs;
+      }
+      auto sink = [&](const size_type off,
+                      const unsigned  w,
+                      const double   *fphi,
+                      const double   *beta,
+                      const double *)
+      {
+        for (unsigned c = 0; c < w; ++c)
+        {
+          o[off + c] = fphi[c];
+          fsq += fphi[c] * fphi[c];
+          bsq += beta[c] * beta[c];
+        }
+      };
+      sweep(x, g, 1., false, sink, true);
+      double local[2] = {fsq, bsq}, global[2];
+      dealii::Utilities::MPI::sum(dealii::ArrayView<const double>(local, 2),
+                                  internal::communicator(x),
+                                  dealii::ArrayView<double>(global, 2));
+      GradientNorms n;
+      n.free_sq    = global[0];
+      n.chopped_sq = global[1];
+      return n;
     }
 
 

@@ -210,6 +210,13 @@ namespace dualcontact
       /// ||phi||^2 and ||beta||^2 in one sweep, no vectors written.
       GradientNorms
       gradient_norms(const VectorType &x, const VectorType &g) const;
+      /// free_gradient() and gradient_norms() in one pass (what an
+      /// active-set iteration needs after every step); @p phi must not be
+      /// @p g.
+      GradientNorms
+      free_gradient_and_norms(const VectorType &x,
+                              const VectorType &g,
+                              VectorType       &phi) const;
       /// As gradient_norms(), plus ||beta~_alpha||^2.
       GradientNorms
       reduced_gradient_norms(const VectorType &x,
