@@ -4,7 +4,8 @@
 // multipliers are chosen, b = A x* + sum mu_j n_j(x*).  Solved from x0 = 0
 // to ||g^P|| <= 1e-10 ||b||; checks: converged, ||x - x*|| <= 1e-8 (1 +
 // ||x*||), KKT residuals small, statistics consistent (iterations = sum of
-// kinds, products counted).
+// kinds, products counted).  Then ellipses with axis ratios up to 1e4
+// under each of the three stopping criteria.
 #include "test_tools.h"
 
 #include <qp/solver_factory.h>
@@ -91,5 +92,31 @@ main()
                       stats.history.size() == stats.iterations + 1,
                     tag + "statistics consistent");
       }
+  // strongly curved sets: ellipses with axis ratios up to 1e4, under each
+  // stopping criterion (the reduced ones are what MwPGP is made for)
+  check.verbose = true;
+  for (const std::string solver : {"mpgp", "mpgp-bb", "mwpgp"})
+    for (const StoppingCriterion criterion :
+         {StoppingCriterion::projected,
+          StoppingCriterion::reduced,
+          StoppingCriterion::reduced_projected})
+    {
+      const Planted P = make_planted({BlockType::ellipse}, 30, 4, 5, 10., 1e4);
+      const unsigned int n = P.x_star.size();
+      Vec                layout(n);
+      auto               problem = make_problem(P.A, P.b, P.blocks, layout);
+      SolverParameters   prm;
+      prm.tolerance          = 1e-10;
+      prm.stopping_criterion = criterion;
+      Vec          x(n);
+      const auto   stats = create<Vec>(solver, prm)->solve(problem, x);
+      const double err   = distance(x, P.x_star);
+      check.check(stats.converged() && err <= 1e-8 * (1. + norm(P.x_star)),
+                  solver + ", ellipses with axis ratio up to 1e4, " +
+                    to_string(criterion) +
+                    " criterion: " + to_string(stats.reason) + " in " +
+                    std::to_string(stats.iterations) +
+                    " iterations, |x - x*| = " + sci(err));
+    }
   return check.finish("solvers_planted");
 }
