@@ -278,9 +278,15 @@ namespace dualcontact
         {
           const BodyResults &r      = results_[b];
           const std::string  prefix = "body_" + std::to_string(b + 1) + ".";
-          double             force_scale = r.applied_force.norm();
+          // the size of the forces in this body, to recognize round-off
+          // zeros: the largest resultant, or energy / displacement when
+          // nothing is loaded (prescribed displacements only)
+          double force_scale = r.applied_force.norm();
           for (const auto &[id, force] : r.reaction_forces)
             force_scale = std::max(force_scale, force.norm());
+          if (r.max_displacement > 0)
+            force_scale =
+              std::max(force_scale, r.strain_energy / r.max_displacement);
           out << prefix << "n_cells = "
               << bodies_[b]->triangulation().n_active_cells() << "\n";
           out << prefix << "n_dofs = " << bodies_[b]->n_dofs() << "\n";
