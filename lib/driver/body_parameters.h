@@ -68,13 +68,13 @@ namespace dualcontact
       void
       check_mesh(const dealii::Triangulation<dim> &triangulation) const;
 
-      std::string                                               name;
-      io::MeshGenerator<dim>                                    mesh;
-      io::Placement<dim>                                        placement;
+      std::string                                                  name;
+      io::MeshGenerator<dim>                                       mesh;
+      io::Placement<dim>                                           placement;
       std::map<dealii::types::material_id, fem::IsotropicMaterial> materials;
-      std::vector<fem::DirichletCondition<dim>>                 dirichlet;
-      std::vector<fem::TractionCondition<dim>>                  tractions;
-      std::shared_ptr<const dealii::Function<dim>>              body_force;
+      std::vector<fem::DirichletCondition<dim>>                    dirichlet;
+      std::vector<fem::TractionCondition<dim>>                     tractions;
+      std::shared_ptr<const dealii::Function<dim>>                 body_force;
       /** Whether `Body force' is not identically "0; 0(; 0)". */
       bool has_body_force = false;
 

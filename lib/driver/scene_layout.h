@@ -9,9 +9,9 @@ namespace dualcontact
     /** How many subsections of each kind one body has. */
     struct BodyLayout
     {
-      unsigned int n_materials  = 1;
-      unsigned int n_dirichlet  = 0;
-      unsigned int n_tractions  = 0;
+      unsigned int n_materials = 1;
+      unsigned int n_dirichlet = 0;
+      unsigned int n_tractions = 0;
 
       bool
       operator==(const BodyLayout &other) const

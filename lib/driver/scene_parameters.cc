@@ -22,11 +22,11 @@ namespace dualcontact
       declare_bodies(dealii::ParameterHandler &prm, const SceneLayout &layout)
       {
         for (unsigned int b = 0; b < layout.bodies.size(); ++b)
-          {
-            prm.enter_subsection(body_subsection(b));
-            BodyParameters<dim>::declare_parameters(prm, layout.bodies[b]);
-            prm.leave_subsection();
-          }
+        {
+          prm.enter_subsection(body_subsection(b));
+          BodyParameters<dim>::declare_parameters(prm, layout.bodies[b]);
+          prm.leave_subsection();
+        }
       }
     } // namespace
 
@@ -96,26 +96,25 @@ namespace dualcontact
         declare_top_level_entries(prm);
         io::parse_parameter_file(prm, file_name, true);
         layout.dimension = prm.get_integer("Dimension");
-        layout.bodies.assign(prm.get_integer("Number of bodies"),
-                             BodyLayout());
+        layout.bodies.assign(prm.get_integer("Number of bodies"), BodyLayout());
       }
       // pass 2: the number of materials and conditions of every body
       {
         dealii::ParameterHandler prm;
         declare_top_level_entries(prm);
         for (unsigned int b = 0; b < layout.bodies.size(); ++b)
-          {
-            prm.enter_subsection(body_subsection(b));
-            BodyParameters<3>::declare_layout_entries(prm);
-            prm.leave_subsection();
-          }
+        {
+          prm.enter_subsection(body_subsection(b));
+          BodyParameters<3>::declare_layout_entries(prm);
+          prm.leave_subsection();
+        }
         io::parse_parameter_file(prm, file_name, true);
         for (unsigned int b = 0; b < layout.bodies.size(); ++b)
-          {
-            prm.enter_subsection(body_subsection(b));
-            layout.bodies[b] = BodyParameters<3>::parse_layout(prm);
-            prm.leave_subsection();
-          }
+        {
+          prm.enter_subsection(body_subsection(b));
+          layout.bodies[b] = BodyParameters<3>::parse_layout(prm);
+          prm.leave_subsection();
+        }
       }
       // pass 3: everything, nothing undeclared allowed
       auto prm = std::make_unique<dealii::ParameterHandler>();

@@ -50,8 +50,8 @@ namespace dualcontact
       /** Per body: what was computed from the solution. */
       struct BodyResults
       {
-        double                 strain_energy   = 0;
-        double                 external_work   = 0;
+        double                 strain_energy    = 0;
+        double                 external_work    = 0;
         double                 max_displacement = 0;
         dealii::Tensor<1, dim> applied_force;
         std::map<dealii::types::boundary_id, dealii::Tensor<1, dim>>
@@ -94,17 +94,17 @@ namespace dualcontact
       const bool                  is_output_rank_;
       dealii::TimerOutput         timer_;
 
-      unsigned int                fe_degree_ = 1;
-      bool                        write_vtu_ = true;
+      unsigned int                      fe_degree_ = 1;
+      bool                              write_vtu_ = true;
       std::unique_ptr<io::OutputFolder> output_folder_;
 
-      std::vector<BodyParameters<dim>>                          body_parameters_;
-      std::vector<std::shared_ptr<dealii::Triangulation<dim>>>  triangulations_;
-      std::vector<std::unique_ptr<fem::ElasticBody<dim>>>       bodies_;
-      std::vector<std::unique_ptr<fem::StiffnessSolver>>        solvers_;
-      std::vector<dealii::Vector<double>>                       displacements_;
-      std::vector<BodyResults>                                  results_;
-      std::vector<std::string>                                  details_;
+      std::vector<BodyParameters<dim>>                         body_parameters_;
+      std::vector<std::shared_ptr<dealii::Triangulation<dim>>> triangulations_;
+      std::vector<std::unique_ptr<fem::ElasticBody<dim>>>      bodies_;
+      std::vector<std::unique_ptr<fem::StiffnessSolver>>       solvers_;
+      std::vector<dealii::Vector<double>>                      displacements_;
+      std::vector<BodyResults>                                 results_;
+      std::vector<std::string>                                 details_;
     };
   } // namespace driver
 } // namespace dualcontact

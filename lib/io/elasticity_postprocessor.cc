@@ -10,41 +10,41 @@ namespace dualcontact
     ElasticityPostprocessor<dim>::ElasticityPostprocessor(
       const fem::ElasticBody<dim> &body,
       const unsigned int           body_id)
-      : body_(body)
-      , body_id_(body_id)
-    {}
+        : body_(body)
+        , body_id_(body_id)
+    {
+    }
 
 
     template <int dim>
     void
     ElasticityPostprocessor<dim>::evaluate_vector_field(
       const dealii::DataPostprocessorInputs::Vector<dim> &inputs,
-      std::vector<dealii::Vector<double>>                &computed_quantities)
-      const
+      std::vector<dealii::Vector<double>> &computed_quantities) const
     {
-      const auto cell = inputs.template get_cell<dim>();
+      const auto                    cell = inputs.template get_cell<dim>();
       const fem::IsotropicMaterial &material =
         body_.material(cell->material_id());
       const unsigned int n_tensor = dim * dim;
       for (unsigned int q = 0; q < inputs.solution_gradients.size(); ++q)
-        {
-          dealii::Tensor<2, dim> gradient;
-          for (unsigned int i = 0; i < dim; ++i)
-            gradient[i] = inputs.solution_gradients[q][i];
-          const dealii::SymmetricTensor<2, dim> strain = symmetrize(gradient);
-          const dealii::SymmetricTensor<2, dim> stress =
-            material.stress<dim>(strain);
-          dealii::Vector<double> &out = computed_quantities[q];
-          for (unsigned int i = 0; i < dim; ++i)
-            for (unsigned int j = 0; j < dim; ++j)
-              {
-                out[i * dim + j]                = stress[i][j];
-                out[n_tensor + 1 + i * dim + j] = strain[i][j];
-              }
-          out[n_tensor]         = material.von_mises_stress<dim>(stress);
-          out[2 * n_tensor + 1] = cell->material_id();
-          out[2 * n_tensor + 2] = body_id_;
-        }
+      {
+        dealii::Tensor<2, dim> gradient;
+        for (unsigned int i = 0; i < dim; ++i)
+          gradient[i] = inputs.solution_gradients[q][i];
+        const dealii::SymmetricTensor<2, dim> strain = symmetrize(gradient);
+        const dealii::SymmetricTensor<2, dim> stress =
+          material.stress<dim>(strain);
+        dealii::Vector<double> &out = computed_quantities[q];
+        for (unsigned int i = 0; i < dim; ++i)
+          for (unsigned int j = 0; j < dim; ++j)
+          {
+            out[i * dim + j]                = stress[i][j];
+            out[n_tensor + 1 + i * dim + j] = strain[i][j];
+          }
+        out[n_tensor]         = material.von_mises_stress<dim>(stress);
+        out[2 * n_tensor + 1] = cell->material_id();
+        out[2 * n_tensor + 2] = body_id_;
+      }
     }
 
 

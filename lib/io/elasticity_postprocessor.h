@@ -33,7 +33,7 @@ namespace dualcontact
       void
       evaluate_vector_field(
         const dealii::DataPostprocessorInputs::Vector<dim> &inputs,
-        std::vector<dealii::Vector<double>> &computed_quantities)
+        std::vector<dealii::Vector<double>>                &computed_quantities)
         const override;
 
       std::vector<std::string>

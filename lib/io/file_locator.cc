@@ -32,22 +32,22 @@ namespace dualcontact
       AssertThrow(!name.empty(),
                   dealii::ExcMessage("No file name given " +
                                      parameter_location + "."));
-      const std::filesystem::path   path(name);
+      const std::filesystem::path        path(name);
       std::vector<std::filesystem::path> candidates{path};
       if (path.is_relative())
-        {
-          candidates.push_back(std::filesystem::path(parameter_file_folder) /
-                               path);
-          candidates.push_back(std::filesystem::path(DUALCONTACT_SOURCE_DIR) /
-                               path);
-        }
+      {
+        candidates.push_back(std::filesystem::path(parameter_file_folder) /
+                             path);
+        candidates.push_back(std::filesystem::path(DUALCONTACT_SOURCE_DIR) /
+                             path);
+      }
       std::string tried;
       for (const auto &candidate : candidates)
-        {
-          if (is_readable_file(candidate))
-            return candidate.lexically_normal().string();
-          tried += "\n    " + candidate.lexically_normal().string();
-        }
+      {
+        if (is_readable_file(candidate))
+          return candidate.lexically_normal().string();
+        tried += "\n    " + candidate.lexically_normal().string();
+      }
       AssertThrow(false,
                   dealii::ExcMessage("Cannot open the file `" + name + "' " +
                                      parameter_location +

@@ -35,30 +35,31 @@ namespace dualcontact
                   dealii::ExcMessage(
                     "Expected " + std::to_string(n_components) +
                     " expressions separated by `;' (one per component), got " +
-                    std::to_string(parts.size()) + ": `" + expressions +
-                    "' " + parameter_location + "."));
+                    std::to_string(parts.size()) + ": `" + expressions + "' " +
+                    parameter_location + "."));
       const std::string variables = (dim == 2 ? "x,y" : "x,y,z");
       const std::map<std::string, double> constants{
         {"pi", dealii::numbers::PI}};
-      auto function = std::make_shared<dealii::FunctionParser<dim>>(n_components);
+      auto function =
+        std::make_shared<dealii::FunctionParser<dim>>(n_components);
       try
-        {
-          function->initialize(variables, parts, constants);
-          // muparser compiles lazily: evaluate once to find errors now
-          dealii::Vector<double> values(n_components);
-          function->vector_value(dealii::Point<dim>(), values);
-        }
+      {
+        function->initialize(variables, parts, constants);
+        // muparser compiles lazily: evaluate once to find errors now
+        dealii::Vector<double> values(n_components);
+        function->vector_value(dealii::Point<dim>(), values);
+      }
       catch (const dealii::ExceptionBase &exception)
-        {
-          std::ostringstream info;
-          exception.print_info(info);
-          AssertThrow(false,
-                      dealii::ExcMessage(
-                        "Cannot parse the function `" + expressions + "' " +
-                        parameter_location + " (variables: " + variables +
-                        "; constant: pi): " +
-                        dealii::Utilities::trim(info.str())));
-        }
+      {
+        std::ostringstream info;
+        exception.print_info(info);
+        AssertThrow(false,
+                    dealii::ExcMessage("Cannot parse the function `" +
+                                       expressions + "' " + parameter_location +
+                                       " (variables: " + variables +
+                                       "; constant: pi): " +
+                                       dealii::Utilities::trim(info.str())));
+      }
       return function;
     }
 

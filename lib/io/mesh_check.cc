@@ -28,34 +28,32 @@ namespace dualcontact
         points.push_back(point);
 
       for (const auto &cell : triangulation.active_cell_iterators())
+      {
+        const double scale = std::pow(cell->diameter(), dim);
+        for (const auto &point : points)
         {
-          const double scale = std::pow(cell->diameter(), dim);
-          for (const auto &point : points)
-            {
-              dealii::Tensor<2, dim> jacobian;
-              for (unsigned int v = 0; v < Info::vertices_per_cell; ++v)
-                jacobian +=
-                  dealii::outer_product(cell->vertex(v),
-                                        Info::d_linear_shape_function_gradient(
-                                          point, v));
-              const double det = dealii::determinant(jacobian);
-              if (!(det > 1e-10 * scale))
-                {
-                  std::ostringstream message;
-                  message << "The mesh of " << mesh_name
-                          << " has an inverted or degenerate cell (cell "
-                          << cell->id() << ", vertices";
-                  for (unsigned int v = 0; v < Info::vertices_per_cell; ++v)
-                    message << (v == 0 ? " (" : ", (") << cell->vertex(v)
-                            << ")";
-                  message << "): the Jacobian determinant is " << det
-                          << " at the reference point (" << point
-                          << "); cells must have positive measure with "
-                             "vertices in deal.II/Gmsh order.";
-                  AssertThrow(false, dealii::ExcMessage(message.str()));
-                }
-            }
+          dealii::Tensor<2, dim> jacobian;
+          for (unsigned int v = 0; v < Info::vertices_per_cell; ++v)
+            jacobian += dealii::outer_product(
+              cell->vertex(v),
+              Info::d_linear_shape_function_gradient(point, v));
+          const double det = dealii::determinant(jacobian);
+          if (!(det > 1e-10 * scale))
+          {
+            std::ostringstream message;
+            message << "The mesh of " << mesh_name
+                    << " has an inverted or degenerate cell (cell "
+                    << cell->id() << ", vertices";
+            for (unsigned int v = 0; v < Info::vertices_per_cell; ++v)
+              message << (v == 0 ? " (" : ", (") << cell->vertex(v) << ")";
+            message << "): the Jacobian determinant is " << det
+                    << " at the reference point (" << point
+                    << "); cells must have positive measure with "
+                       "vertices in deal.II/Gmsh order.";
+            AssertThrow(false, dealii::ExcMessage(message.str()));
+          }
         }
+      }
     }
 
 

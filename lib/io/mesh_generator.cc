@@ -89,7 +89,8 @@ namespace dualcontact
         "Gmsh file",
         "",
         dealii::Patterns::Anything(),
-        "gmsh: the mesh file (ASCII Gmsh format as read by deal.II; tested: 2.2, "
+        "gmsh: the mesh file (ASCII Gmsh format as read by deal.II; tested: "
+        "2.2, "
         "quadrilaterals/hexahedra). A relative name is looked up relative to "
         "the working directory, then to the folder of this parameter file, "
         "then to the dualcontact source folder.");
@@ -165,57 +166,55 @@ namespace dualcontact
                                  const std::string          &mesh_name) const
     {
       switch (kind_)
+      {
+        case Kind::box:
+          dealii::GridGenerator::subdivided_hyper_rectangle(
+            triangulation, subdivisions_, lower_corner_, upper_corner_, true);
+          break;
+        case Kind::ball:
+          dealii::GridGenerator::hyper_ball(triangulation,
+                                            dealii::Point<dim>(),
+                                            radius_);
+          break;
+        case Kind::half_ball:
+          dealii::GridGenerator::half_hyper_ball(triangulation,
+                                                 dealii::Point<dim>(),
+                                                 radius_);
+          break;
+        case Kind::cylinder:
+          dealii::GridGenerator::cylinder(triangulation, radius_, half_length_);
+          break;
+        case Kind::gmsh:
         {
-          case Kind::box:
-            dealii::GridGenerator::subdivided_hyper_rectangle(
-              triangulation, subdivisions_, lower_corner_, upper_corner_, true);
-            break;
-          case Kind::ball:
-            dealii::GridGenerator::hyper_ball(triangulation,
-                                              dealii::Point<dim>(),
-                                              radius_);
-            break;
-          case Kind::half_ball:
-            dealii::GridGenerator::half_hyper_ball(triangulation,
-                                                   dealii::Point<dim>(),
-                                                   radius_);
-            break;
-          case Kind::cylinder:
-            dealii::GridGenerator::cylinder(triangulation,
-                                            radius_,
-                                            half_length_);
-            break;
-          case Kind::gmsh:
-            {
-              std::ifstream in(gmsh_file_);
-              AssertThrow(in,
-                          dealii::ExcMessage(
-                            "Cannot open the mesh file `" + gmsh_file_ + "' " +
-                            parameter_location(path_, "Gmsh file") + "."));
-              dealii::GridIn<dim> grid_in;
-              grid_in.attach_triangulation(triangulation);
-              try
-                {
-                  grid_in.read_msh(in);
-                }
-              catch (const dealii::ExceptionBase &exception)
-                {
-                  std::ostringstream info;
-                  exception.print_info(info);
-                  AssertThrow(false,
-                              dealii::ExcMessage(
-                                "Cannot read the mesh file `" + gmsh_file_ +
-                                "' of " + mesh_name + " " +
-                                parameter_location(path_, "Gmsh file") + ": " +
-                                dealii::Utilities::trim(info.str())));
-                }
-              AssertThrow(triangulation.n_active_cells() > 0,
-                          dealii::ExcMessage("The mesh file `" + gmsh_file_ +
-                                             "' of " + mesh_name +
-                                             " has no cells."));
-              break;
-            }
+          std::ifstream in(gmsh_file_);
+          AssertThrow(in,
+                      dealii::ExcMessage(
+                        "Cannot open the mesh file `" + gmsh_file_ + "' " +
+                        parameter_location(path_, "Gmsh file") + "."));
+          dealii::GridIn<dim> grid_in;
+          grid_in.attach_triangulation(triangulation);
+          try
+          {
+            grid_in.read_msh(in);
+          }
+          catch (const dealii::ExceptionBase &exception)
+          {
+            std::ostringstream info;
+            exception.print_info(info);
+            AssertThrow(false,
+                        dealii::ExcMessage(
+                          "Cannot read the mesh file `" + gmsh_file_ + "' of " +
+                          mesh_name + " " +
+                          parameter_location(path_, "Gmsh file") + ": " +
+                          dealii::Utilities::trim(info.str())));
+          }
+          AssertThrow(triangulation.n_active_cells() > 0,
+                      dealii::ExcMessage("The mesh file `" + gmsh_file_ +
+                                         "' of " + mesh_name +
+                                         " has no cells."));
+          break;
         }
+      }
     }
 
 
@@ -226,11 +225,9 @@ namespace dualcontact
     {
       if (placement.is_identity())
         return;
-      dealii::GridTools::transform(
-        [&placement](const dealii::Point<dim> &point) {
-          return placement(point);
-        },
-        triangulation);
+      dealii::GridTools::transform([&placement](const dealii::Point<dim> &point)
+                                   { return placement(point); },
+                                   triangulation);
 
       // The generators attach manifolds in the unplaced coordinates; replace
       // them by placed ones.  Curved ones first: a transfinite interpolation
@@ -238,41 +235,39 @@ namespace dualcontact
       const dealii::Point<dim> center = placement(dealii::Point<dim>());
       std::vector<dealii::types::manifold_id> transfinite;
       for (const auto id : triangulation.get_manifold_ids())
+      {
+        if (id == dealii::numbers::flat_manifold_id)
+          continue;
+        const auto &manifold = triangulation.get_manifold(id);
+        if (dynamic_cast<const dealii::SphericalManifold<dim> *>(&manifold))
+          triangulation.set_manifold(id,
+                                     dealii::SphericalManifold<dim>(center));
+        else if (dynamic_cast<
+                   const dealii::TransfiniteInterpolationManifold<dim> *>(
+                   &manifold))
+          transfinite.push_back(id);
+        else if constexpr (dim == 3)
         {
-          if (id == dealii::numbers::flat_manifold_id)
-            continue;
-          const auto &manifold = triangulation.get_manifold(id);
-          if (dynamic_cast<const dealii::SphericalManifold<dim> *>(&manifold))
-            triangulation.set_manifold(id,
-                                       dealii::SphericalManifold<dim>(center));
-          else if (dynamic_cast<
-                     const dealii::TransfiniteInterpolationManifold<dim> *>(
-                     &manifold))
-            transfinite.push_back(id);
-          else if constexpr (dim == 3)
-            {
-              if (dynamic_cast<const dealii::CylindricalManifold<dim> *>(
-                    &manifold))
-                {
-                  dealii::Tensor<1, dim> axis;
-                  axis[0] = 1;
-                  triangulation.set_manifold(
-                    id,
-                    dealii::CylindricalManifold<dim>(placement.rotate(axis),
-                                                     center));
-                }
-              else
-                AssertThrow(false, dealii::ExcInternalError());
-            }
+          if (dynamic_cast<const dealii::CylindricalManifold<dim> *>(&manifold))
+          {
+            dealii::Tensor<1, dim> axis;
+            axis[0] = 1;
+            triangulation.set_manifold(
+              id,
+              dealii::CylindricalManifold<dim>(placement.rotate(axis), center));
+          }
           else
             AssertThrow(false, dealii::ExcInternalError());
         }
+        else
+          AssertThrow(false, dealii::ExcInternalError());
+      }
       for (const auto id : transfinite)
-        {
-          dealii::TransfiniteInterpolationManifold<dim> manifold;
-          manifold.initialize(triangulation);
-          triangulation.set_manifold(id, manifold);
-        }
+      {
+        dealii::TransfiniteInterpolationManifold<dim> manifold;
+        manifold.initialize(triangulation);
+        triangulation.set_manifold(id, manifold);
+      }
     }
 
 
@@ -302,27 +297,27 @@ namespace dualcontact
     {
       std::ostringstream text;
       switch (kind_)
-        {
-          case Kind::box:
-            text << (dim == 2 ? "rectangle " : "box ");
-            for (unsigned int d = 0; d < dim; ++d)
-              text << (d == 0 ? "" : " x ") << subdivisions_[d];
-            break;
-          case Kind::ball:
-            text << (dim == 2 ? "disc" : "ball") << " of radius " << radius_;
-            break;
-          case Kind::half_ball:
-            text << (dim == 2 ? "half disc" : "half ball") << " of radius "
-                 << radius_;
-            break;
-          case Kind::cylinder:
-            text << "cylinder of radius " << radius_ << ", length "
-                 << 2 * half_length_;
-            break;
-          case Kind::gmsh:
-            text << "Gmsh file " << gmsh_file_;
-            break;
-        }
+      {
+        case Kind::box:
+          text << (dim == 2 ? "rectangle " : "box ");
+          for (unsigned int d = 0; d < dim; ++d)
+            text << (d == 0 ? "" : " x ") << subdivisions_[d];
+          break;
+        case Kind::ball:
+          text << (dim == 2 ? "disc" : "ball") << " of radius " << radius_;
+          break;
+        case Kind::half_ball:
+          text << (dim == 2 ? "half disc" : "half ball") << " of radius "
+               << radius_;
+          break;
+        case Kind::cylinder:
+          text << "cylinder of radius " << radius_ << ", length "
+               << 2 * half_length_;
+          break;
+        case Kind::gmsh:
+          text << "Gmsh file " << gmsh_file_;
+          break;
+      }
       text << ", " << n_refinements_ << " global refinement"
            << (n_refinements_ == 1 ? "" : "s");
       return text.str();

@@ -33,11 +33,11 @@ namespace dualcontact
      *    length' to +`Half length', `Radius'; boundary id 0 on the hull, 1 at
      *    x = -L, 2 at x = +L.  In 2D this is the rectangle [-L, L] x [-R, R]
      *    with id 0 at y = +-R.
-     *  - `gmsh': the Gmsh file `Gmsh file' (ASCII, as read by deal.II's GridIn::read_msh; format 2.2 is tested; see
-     *    io::locate_file for where it is looked for): boundary ids are the
-     *    physical tags of the boundary lines (2D) or faces (3D), material ids
-     *    the physical tags of the cells (quadrilaterals/hexahedra only).
-     *  Generated meshes have material id 0.
+     *  - `gmsh': the Gmsh file `Gmsh file' (ASCII, as read by deal.II's
+     * GridIn::read_msh; format 2.2 is tested; see io::locate_file for where it
+     * is looked for): boundary ids are the physical tags of the boundary lines
+     * (2D) or faces (3D), material ids the physical tags of the cells
+     * (quadrilaterals/hexahedra only). Generated meshes have material id 0.
      */
     template <int dim>
     class MeshGenerator

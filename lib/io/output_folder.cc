@@ -25,26 +25,26 @@ namespace dualcontact
 
     OutputFolder::OutputFolder(const std::string &path,
                                const std::string &parameter_location)
-      : path_(path)
+        : path_(path)
     {
       AssertThrow(!path.empty(),
                   dealii::ExcMessage("The output folder name is empty " +
                                      parameter_location + "."));
       // Walk up to the deepest part of the path that exists: it must be a
       // writable directory.
-      fs::path        existing = fs::absolute(fs::path(path)).lexically_normal();
+      fs::path existing = fs::absolute(fs::path(path)).lexically_normal();
       std::error_code error;
       while (!fs::exists(existing, error) && existing.has_parent_path() &&
              existing != existing.parent_path())
         existing = existing.parent_path();
       AssertThrow(fs::is_directory(existing, error),
-                  dealii::ExcMessage(
-                    "Cannot write the output folder `" + path + "' " +
-                    parameter_location + ": `" + existing.string() +
-                    "' exists and is not a directory."));
+                  dealii::ExcMessage("Cannot write the output folder `" + path +
+                                     "' " + parameter_location + ": `" +
+                                     existing.string() +
+                                     "' exists and is not a directory."));
       AssertThrow(access(existing.c_str(), W_OK | X_OK) == 0,
-                  dealii::ExcMessage("Cannot write the output folder `" +
-                                     path + "' " + parameter_location +
+                  dealii::ExcMessage("Cannot write the output folder `" + path +
+                                     "' " + parameter_location +
                                      ": the directory `" + existing.string() +
                                      "' is not writable."));
     }
@@ -81,15 +81,15 @@ namespace dualcontact
            folder = folder.parent_path())
         missing.push_back(folder);
       for (auto folder = missing.rbegin(); folder != missing.rend(); ++folder)
-        {
-          std::error_code error;
-          fs::create_directory(*folder, error);
-          AssertThrow(!error,
-                      dealii::ExcMessage("Cannot create the output folder `" +
-                                         folder->string() +
-                                         "': " + error.message()));
-          created_folders_.push_back(folder->string());
-        }
+      {
+        std::error_code error;
+        fs::create_directory(*folder, error);
+        AssertThrow(!error,
+                    dealii::ExcMessage("Cannot create the output folder `" +
+                                       folder->string() +
+                                       "': " + error.message()));
+        created_folders_.push_back(folder->string());
+      }
     }
 
 
@@ -109,8 +109,8 @@ namespace dualcontact
       writer(out);
       out.close();
       AssertThrow(out,
-                  dealii::ExcMessage("Writing the file `" +
-                                     temporary.string() + "' failed."));
+                  dealii::ExcMessage("Writing the file `" + temporary.string() +
+                                     "' failed."));
     }
 
 
@@ -118,16 +118,16 @@ namespace dualcontact
     OutputFolder::commit()
     {
       for (const auto &name : file_names_)
-        {
-          std::error_code error;
-          fs::rename(fs::path(path_) / temporary_name(name),
-                     fs::path(path_) / name,
-                     error);
-          AssertThrow(!error,
-                      dealii::ExcMessage("Cannot rename the output file `" +
-                                         name + "' in `" + path_ +
-                                         "': " + error.message()));
-        }
+      {
+        std::error_code error;
+        fs::rename(fs::path(path_) / temporary_name(name),
+                   fs::path(path_) / name,
+                   error);
+        AssertThrow(!error,
+                    dealii::ExcMessage("Cannot rename the output file `" +
+                                       name + "' in `" + path_ +
+                                       "': " + error.message()));
+      }
       committed_ = true;
     }
 

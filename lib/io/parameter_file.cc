@@ -40,17 +40,17 @@ namespace dualcontact
       std::vector<std::string> stack;
       std::string              line;
       for (unsigned int n = 1; n < line_number && std::getline(in, line); ++n)
-        {
-          // strip comments and surrounding blanks, as ParameterHandler does
-          const auto comment = line.find('#');
-          if (comment != std::string::npos)
-            line.erase(comment);
-          line = dealii::Utilities::trim(line);
-          if (line.rfind("subsection ", 0) == 0)
-            stack.push_back(dealii::Utilities::trim(line.substr(11)));
-          else if ((line == "end") && !stack.empty())
-            stack.pop_back();
-        }
+      {
+        // strip comments and surrounding blanks, as ParameterHandler does
+        const auto comment = line.find('#');
+        if (comment != std::string::npos)
+          line.erase(comment);
+        line = dealii::Utilities::trim(line);
+        if (line.rfind("subsection ", 0) == 0)
+          stack.push_back(dealii::Utilities::trim(line.substr(11)));
+        else if ((line == "end") && !stack.empty())
+          stack.pop_back();
+      }
       std::string path;
       for (const auto &name : stack)
         path = join_path(path, name);
@@ -66,30 +66,29 @@ namespace dualcontact
                        std::ostream                 &out)
       {
         const std::string prefix(indent, ' ');
-        const auto        comment = [&](const std::string &text) {
+        const auto        comment = [&](const std::string &text)
+        {
           for (const auto &line :
-               dealii::Utilities::break_text_into_lines(text,
-                                                         76 - indent))
+               dealii::Utilities::break_text_into_lines(text, 76 - indent))
             out << prefix << "# " << line << "\n";
         };
         for (const auto &[name, entry] : level.items())
           if (entry.contains("value"))
-            {
-              comment(entry.value("documentation", std::string()));
-              comment("Default: `" +
-                      entry.value("default_value", std::string()) +
-                      "'. Allowed: " +
-                      entry.value("pattern_description", std::string()));
-              out << prefix << "set " << name << " = "
-                  << entry.value("value", std::string()) << "\n\n";
-            }
+          {
+            comment(entry.value("documentation", std::string()));
+            comment("Default: `" + entry.value("default_value", std::string()) +
+                    "'. Allowed: " +
+                    entry.value("pattern_description", std::string()));
+            out << prefix << "set " << name << " = "
+                << entry.value("value", std::string()) << "\n\n";
+          }
         for (const auto &[name, entry] : level.items())
           if (!entry.contains("value"))
-            {
-              out << prefix << "subsection " << name << "\n";
-              print_json_level(entry, indent + 2, out);
-              out << prefix << "end\n\n";
-            }
+          {
+            out << prefix << "subsection " << name << "\n";
+            print_json_level(entry, indent + 2, out);
+            out << prefix << "end\n\n";
+          }
       }
     } // namespace
 
@@ -120,66 +119,66 @@ namespace dualcontact
                                        file_name + "'."));
       }
       try
-        {
-          prm.parse_input(file_name, "", skip_undefined);
-        }
+      {
+        prm.parse_input(file_name, "", skip_undefined);
+      }
       catch (const dealii::ExceptionBase &exception)
-        {
-          std::ostringstream info;
-          exception.print_info(info);
-          std::string text = info.str();
-          // deal.II indents its messages; make them one tidy block
-          text = std::regex_replace(text, std::regex("[ \t]*\n[ \t]*"), " ");
-          text = dealii::Utilities::trim(text);
+      {
+        std::ostringstream info;
+        exception.print_info(info);
+        std::string text = info.str();
+        // deal.II indents its messages; make them one tidy block
+        text = std::regex_replace(text, std::regex("[ \t]*\n[ \t]*"), " ");
+        text = dealii::Utilities::trim(text);
 
-          std::smatch match;
-          std::string where = "in the input file `" + file_name + "'";
-          std::string path;
-          if (std::regex_search(text,
-                                match,
-                                std::regex("Line <([0-9]+)> of file <.*?>?: *")))
-            {
-              const unsigned int line_number = std::stoul(match[1].str());
-              path  = subsection_path_at_line(file_name, line_number);
-              where = "in line " + std::to_string(line_number) +
-                      " of the input file `" + file_name + "'";
-              text  = match.suffix().str();
-            }
-          // say it ASPECT style: name the entry and its subsection
-          if (std::regex_search(
-                text,
-                match,
-                std::regex("No entry with name <(.*)> was declared")))
-            throw dealii::ExcMessage(
-              "Unknown parameter " + parameter_location(path, match[1].str()) +
-              " " + where +
-              ": there is no such parameter in this subsection (see "
-              "`dualcontact --print-parameters').");
-          if (std::regex_search(
-                text,
-                match,
-                std::regex("The entry value <?(.*?)>? for the entry named <?(.*?)>? "
-                           "does not match the given pattern:? <?(.*?)>?\\.?$")))
-            throw dealii::ExcMessage("The value `" + match[1].str() +
-                                     "' does not match the pattern " +
-                                     match[3].str() + " " +
-                                     parameter_location(path, match[2].str()) +
-                                     " " + where + ".");
-          if (std::regex_search(
-                text,
-                match,
-                std::regex("There is no such subsection to be entered: (.*)")))
-            throw dealii::ExcMessage(
-              "Unknown subsection `subsection " +
-              join_path(path, dealii::Utilities::trim(match[1].str())) +
-              "' " + where +
-              ". (Numbered subsections `Body N', `Material N', `Dirichlet "
-              "N', `Traction N' exist for N up to the corresponding `Number "
-              "of ...' parameter.)");
-          if (!path.empty())
-            where += " (in `subsection " + path + "')";
-          throw dealii::ExcMessage("Error " + where + ": " + text);
+        std::smatch match;
+        std::string where = "in the input file `" + file_name + "'";
+        std::string path;
+        if (std::regex_search(text,
+                              match,
+                              std::regex("Line <([0-9]+)> of file <.*?>?: *")))
+        {
+          const unsigned int line_number = std::stoul(match[1].str());
+          path  = subsection_path_at_line(file_name, line_number);
+          where = "in line " + std::to_string(line_number) +
+                  " of the input file `" + file_name + "'";
+          text = match.suffix().str();
         }
+        // say it ASPECT style: name the entry and its subsection
+        if (std::regex_search(text,
+                              match,
+                              std::regex(
+                                "No entry with name <(.*)> was declared")))
+          throw dealii::ExcMessage(
+            "Unknown parameter " + parameter_location(path, match[1].str()) +
+            " " + where +
+            ": there is no such parameter in this subsection (see "
+            "`dualcontact --print-parameters').");
+        if (std::regex_search(
+              text,
+              match,
+              std::regex(
+                "The entry value <?(.*?)>? for the entry named <?(.*?)>? "
+                "does not match the given pattern:? <?(.*?)>?\\.?$")))
+          throw dealii::ExcMessage(
+            "The value `" + match[1].str() + "' does not match the pattern " +
+            match[3].str() + " " + parameter_location(path, match[2].str()) +
+            " " + where + ".");
+        if (std::regex_search(
+              text,
+              match,
+              std::regex("There is no such subsection to be entered: (.*)")))
+          throw dealii::ExcMessage(
+            "Unknown subsection `subsection " +
+            join_path(path, dealii::Utilities::trim(match[1].str())) + "' " +
+            where +
+            ". (Numbered subsections `Body N', `Material N', `Dirichlet "
+            "N', `Traction N' exist for N up to the corresponding `Number "
+            "of ...' parameter.)");
+        if (!path.empty())
+          where += " (in `subsection " + path + "')";
+        throw dealii::ExcMessage("Error " + where + ": " + text);
+      }
     }
   } // namespace io
 } // namespace dualcontact

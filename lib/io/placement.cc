@@ -31,7 +31,9 @@ namespace dualcontact
                         "the z axis).");
       prm.declare_entry("Rotation axis",
                         "0, 0, 1",
-                        dealii::Patterns::List(dealii::Patterns::Double(), 3, 3),
+                        dealii::Patterns::List(dealii::Patterns::Double(),
+                                               3,
+                                               3),
                         "Rotation axis [-] (3 numbers, need not be "
                         "normalized; 3D only, ignored in 2D).");
       prm.leave_subsection();
@@ -45,33 +47,34 @@ namespace dualcontact
     {
       const std::string path = join_path(parent_path, "Placement");
       prm.enter_subsection("Placement");
-      const std::vector<double> translation = dealii::Utilities::string_to_double(
-        dealii::Utilities::split_string_list(prm.get("Translation")));
+      const std::vector<double> translation =
+        dealii::Utilities::string_to_double(
+          dealii::Utilities::split_string_list(prm.get("Translation")));
       for (unsigned int d = 0; d < dim; ++d)
         translation_[d] = translation[d];
 
       const double angle =
         prm.get_double("Rotation angle") * dealii::numbers::PI / 180.;
       if constexpr (dim == 2)
-        rotation_ = dealii::Physics::Transformations::Rotations::
-          rotation_matrix_2d(angle);
+        rotation_ =
+          dealii::Physics::Transformations::Rotations::rotation_matrix_2d(
+            angle);
       else
+      {
+        const std::vector<double> axis = dealii::Utilities::string_to_double(
+          dealii::Utilities::split_string_list(prm.get("Rotation axis")));
+        dealii::Tensor<1, 3> direction({axis[0], axis[1], axis[2]});
+        if (angle != 0.)
         {
-          const std::vector<double> axis = dealii::Utilities::string_to_double(
-            dealii::Utilities::split_string_list(prm.get("Rotation axis")));
-          dealii::Tensor<1, 3> direction({axis[0], axis[1], axis[2]});
-          if (angle != 0.)
-            {
-              AssertThrow(direction.norm() > 0,
-                          dealii::ExcMessage(
-                            "The rotation axis must not be zero " +
-                            parameter_location(path, "Rotation axis") + "."));
-              rotation_ = dealii::Physics::Transformations::Rotations::
-                rotation_matrix_3d(dealii::Point<3>(direction /
-                                                    direction.norm()),
-                                   angle);
-            }
+          AssertThrow(direction.norm() > 0,
+                      dealii::ExcMessage(
+                        "The rotation axis must not be zero " +
+                        parameter_location(path, "Rotation axis") + "."));
+          rotation_ =
+            dealii::Physics::Transformations::Rotations::rotation_matrix_3d(
+              dealii::Point<3>(direction / direction.norm()), angle);
         }
+      }
       prm.leave_subsection();
     }
 
@@ -96,9 +99,9 @@ namespace dualcontact
     bool
     Placement<dim>::is_identity() const
     {
-      return (rotation_ - dealii::Tensor<2, dim>(
-                            dealii::unit_symmetric_tensor<dim>()))
-                   .norm() == 0. &&
+      return (rotation_ -
+              dealii::Tensor<2, dim>(dealii::unit_symmetric_tensor<dim>()))
+                 .norm() == 0. &&
              translation_.norm() == 0.;
     }
 

@@ -14,9 +14,9 @@ namespace dualcontact
     template <int dim>
     void
     write_solution(
-      OutputFolder                                               &folder,
+      OutputFolder                                              &folder,
       const std::vector<std::unique_ptr<fem::ElasticBody<dim>>> &bodies,
-      const std::vector<dealii::Vector<double>>                  &displacements)
+      const std::vector<dealii::Vector<double>>                 &displacements)
     {
       std::vector<std::string> pieces;
       // kept for write_pvtu_record, which needs the field names
@@ -24,44 +24,44 @@ namespace dualcontact
       std::unique_ptr<ElasticityPostprocessor<dim>> first_postprocessor;
       std::unique_ptr<dealii::DataOut<dim>>         first_data_out;
       for (unsigned int b = 0; b < bodies.size(); ++b)
+      {
+        const fem::ElasticBody<dim> &body = *bodies[b];
+        auto                         postprocessor =
+          std::make_unique<ElasticityPostprocessor<dim>>(body, b + 1);
+        auto data_out = std::make_unique<dealii::DataOut<dim>>();
+        data_out->attach_dof_handler(body.dof_handler());
+        data_out->add_data_vector(
+          displacements[b],
+          std::vector<std::string>(dim, "displacement_m"),
+          dealii::DataOut<dim>::type_dof_data,
+          std::vector<
+            dealii::DataComponentInterpretation::DataComponentInterpretation>(
+            dim,
+            dealii::DataComponentInterpretation::component_is_part_of_vector));
+        data_out->add_data_vector(displacements[b], *postprocessor);
+        data_out->build_patches(body.mapping(),
+                                body.fe().degree,
+                                dealii::DataOut<dim>::curved_inner_cells);
+        const std::string name = "body_" + std::to_string(b + 1) + ".vtu";
+        folder.write(name,
+                     [&data_out](std::ostream &out)
+                     { data_out->write_vtu(out); });
+        pieces.push_back(name);
+        if (b == 0)
         {
-          const fem::ElasticBody<dim> &body = *bodies[b];
-          auto postprocessor =
-            std::make_unique<ElasticityPostprocessor<dim>>(body, b + 1);
-          auto data_out = std::make_unique<dealii::DataOut<dim>>();
-          data_out->attach_dof_handler(body.dof_handler());
-          data_out->add_data_vector(
-            displacements[b],
-            std::vector<std::string>(dim, "displacement_m"),
-            dealii::DataOut<dim>::type_dof_data,
-            std::vector<dealii::DataComponentInterpretation::
-                          DataComponentInterpretation>(
-              dim,
-              dealii::DataComponentInterpretation::
-                component_is_part_of_vector));
-          data_out->add_data_vector(displacements[b], *postprocessor);
-          data_out->build_patches(body.mapping(),
-                                  body.fe().degree,
-                                  dealii::DataOut<dim>::curved_inner_cells);
-          const std::string name = "body_" + std::to_string(b + 1) + ".vtu";
-          folder.write(name,
-                       [&data_out](std::ostream &out) {
-                         data_out->write_vtu(out);
-                       });
-          pieces.push_back(name);
-          if (b == 0)
-            {
-              first_data_out      = std::move(data_out);
-              first_postprocessor = std::move(postprocessor);
-            }
+          first_data_out      = std::move(data_out);
+          first_postprocessor = std::move(postprocessor);
         }
-      folder.write("solution.pvtu", [&](std::ostream &out) {
-        first_data_out->write_pvtu_record(out, pieces);
-      });
-      folder.write("solution.pvd", [](std::ostream &out) {
-        dealii::DataOutBase::write_pvd_record(
-          out, {std::make_pair(0., std::string("solution.pvtu"))});
-      });
+      }
+      folder.write("solution.pvtu",
+                   [&](std::ostream &out)
+                   { first_data_out->write_pvtu_record(out, pieces); });
+      folder.write("solution.pvd",
+                   [](std::ostream &out)
+                   {
+                     dealii::DataOutBase::write_pvd_record(
+                       out, {std::make_pair(0., std::string("solution.pvtu"))});
+                   });
     }
 
 

@@ -25,8 +25,8 @@ namespace dualcontact
     template <int dim>
     void
     write_solution(
-      OutputFolder                                               &folder,
+      OutputFolder                                              &folder,
       const std::vector<std::unique_ptr<fem::ElasticBody<dim>>> &bodies,
-      const std::vector<dealii::Vector<double>>                  &displacements);
+      const std::vector<dealii::Vector<double>>                 &displacements);
   } // namespace io
 } // namespace dualcontact

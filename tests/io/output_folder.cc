@@ -33,15 +33,15 @@ namespace
   error_of(const Function &function)
   {
     try
-      {
-        function();
-      }
+    {
+      function();
+    }
     catch (const dealii::ExceptionBase &exception)
-      {
-        std::ostringstream info;
-        exception.print_info(info);
-        return info.str();
-      }
+    {
+      std::ostringstream info;
+      exception.print_info(info);
+      return info.str();
+    }
     return "";
   }
 } // namespace
