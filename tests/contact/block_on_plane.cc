@@ -22,20 +22,14 @@
 #include <contact/contact_solver.h>
 #include <fem/cholmod_solver.h>
 
+#include <test_tools.h>
+
 #include <iostream>
 
 using namespace dealii;
 using namespace dualcontact;
 
-int failures = 0;
-
-void
-check(const bool ok, const std::string &what, const double value)
-{
-  std::cout << (ok ? "  ok   " : "  FAIL ") << what << ": " << value
-            << std::endl;
-  failures += ok ? 0 : 1;
-}
+using test_tools::check;
 
 constexpr double E = 2e11, nu = 0.3;
 
@@ -314,6 +308,5 @@ main()
     std::cerr << "exception: " << e.what() << std::endl;
     return 1;
   }
-  std::cout << (failures == 0 ? "all checks passed" : "FAILED") << std::endl;
-  return failures == 0 ? 0 : 1;
+  return test_tools::finish();
 }

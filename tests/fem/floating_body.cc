@@ -15,21 +15,15 @@
 #include <fem/generalized_inverse.h>
 #include <fem/rigid_body_modes.h>
 
+#include <test_tools.h>
+
 #include <iostream>
 #include <random>
 
 using namespace dealii;
 using namespace dualcontact;
 
-int failures = 0;
-
-void
-check(const bool ok, const std::string &what, const double value)
-{
-  std::cout << (ok ? "  ok   " : "  FAIL ") << what << ": " << value
-            << std::endl;
-  failures += ok ? 0 : 1;
-}
+using test_tools::check;
 
 template <int dim>
 void
@@ -175,6 +169,5 @@ main()
     std::cerr << "exception: " << e.what() << std::endl;
     return 1;
   }
-  std::cout << (failures == 0 ? "all checks passed" : "FAILED") << std::endl;
-  return failures == 0 ? 0 : 1;
+  return test_tools::finish();
 }
