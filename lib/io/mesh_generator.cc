@@ -14,6 +14,7 @@
 #include <fstream>
 #include <memory>
 #include <sstream>
+#include <typeinfo>
 
 namespace dualcontact
 {
@@ -239,6 +240,8 @@ namespace dualcontact
         if (id == dealii::numbers::flat_manifold_id)
           continue;
         const auto &manifold = triangulation.get_manifold(id);
+        if (dynamic_cast<const dealii::FlatManifold<dim> *>(&manifold))
+          continue;
         if (dynamic_cast<const dealii::SphericalManifold<dim> *>(&manifold))
           triangulation.set_manifold(id,
                                      dealii::SphericalManifold<dim>(center));
@@ -257,10 +260,16 @@ namespace dualcontact
               dealii::CylindricalManifold<dim>(placement.rotate(axis), center));
           }
           else
-            AssertThrow(false, dealii::ExcInternalError());
+            AssertThrow(false,
+                        dealii::ExcMessage(std::string("cannot place the "
+                                                       "manifold ") +
+                                           typeid(manifold).name()));
         }
         else
-          AssertThrow(false, dealii::ExcInternalError());
+          AssertThrow(false,
+                      dealii::ExcMessage(std::string("cannot place the "
+                                                     "manifold ") +
+                                         typeid(manifold).name()));
       }
       for (const auto id : transfinite)
       {
