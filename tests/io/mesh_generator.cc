@@ -105,6 +105,7 @@ main()
   check_generator<2>("half ball", {0, 1});
   check_generator<3>("ball", {0});
   check_generator<3>("half ball", {0, 1});
+  check_generator<2>("cylinder", {0, 1, 2});
   check_generator<3>("cylinder", {0, 1, 2});
   check_generator<2>("box", {0, 1, 2, 3});
   check_generator<3>("box", {0, 1, 2, 3, 4, 5});
