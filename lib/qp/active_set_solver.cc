@@ -124,7 +124,8 @@ namespace dualcontact
         g -= problem.b;
       };
       // 1/2 x'Ax - b'x from the gradient: 1/2 x'(g - b)
-      const auto cost = [&]() { return 0.5 * (x * g - x * problem.b); };
+      const auto cost = [&]()
+      { return 0.5 * (internal::dot(x, g) - internal::dot(x, problem.b)); };
 
       double        bb_alpha = alpha_bar;
       GradientNorms norms;
@@ -228,7 +229,8 @@ namespace dualcontact
             work.add(-1., x_prev);
             phi.equ(1., g);
             phi.add(-1., g_prev);
-            const double ss = work * work, sy = work * phi;
+            const double ss = internal::dot(work, work),
+                         sy = internal::dot(work, phi);
             if (sy > 0. && std::isfinite(ss / sy))
               bb_alpha = ss / sy;
           }
@@ -241,6 +243,12 @@ namespace dualcontact
           // p'Ap, p'p, g'p (= phi'p, p lives on the free set) in one pass
           const std::array<double, 3> d   = fused_dots(p, Ap, g);
           const double                pAp = d[0], pp = d[1], gp = d[2];
+          if (!std::isfinite(pAp + pp + gp))
+          {
+            stats.reason  = ConvergenceReason::non_finite;
+            stats.message = "non-finite p'Ap, p'p or g'p in a CG step";
+            break;
+          }
           if (pAp < -curvature_threshold * lambda_max * pp)
           {
             stats.reason  = ConvergenceReason::breakdown;
@@ -264,10 +272,18 @@ namespace dualcontact
           {
             // CG step
             fused_step(x, g, p, Ap, alpha_cg);
-            value                = refresh(phi);
-            const double beta_cg = (phi * Ap) / pAp;
-            p.sadd(-beta_cg, 1., phi);
+            value = refresh(phi);
             ++stats.n_cg;
+            const double beta_cg = internal::dot(phi, Ap) / pAp;
+            if (!std::isfinite(beta_cg))
+            {
+              stats.history.push_back(value / stats.norm_b);
+              stats.final_criterion = value / stats.norm_b;
+              stats.reason          = ConvergenceReason::non_finite;
+              stats.message         = "non-finite CG coefficient";
+              break;
+            }
+            p.sadd(-beta_cg, 1., phi);
           }
           else
           {
@@ -286,6 +302,12 @@ namespace dualcontact
           this->apply_hessian(problem, Ap, p, stats);
           const std::array<double, 3> d   = fused_dots(p, Ap, g);
           const double                bAb = d[0], bb = d[1], gb = d[2];
+          if (!std::isfinite(bAb + bb + gb))
+          {
+            stats.reason  = ConvergenceReason::non_finite;
+            stats.message = "non-finite value in a proportioning step";
+            break;
+          }
           if (bAb < -curvature_threshold * lambda_max * bb)
           {
             stats.reason = ConvergenceReason::breakdown;

@@ -25,17 +25,17 @@ namespace dualcontact
       {
         VectorType gp(x);
         problem.constraints->projected_gradient(xp, g, gp);
-        r.stationarity    = gp.l2_norm();
+        r.stationarity    = internal::norm(gp);
         r.complementarity = problem.constraints->complementarity(xp, g);
       }
       else
-        r.stationarity = g.l2_norm();
+        r.stationarity = internal::norm(g);
       if (problem.equality)
       {
         VectorType bx(problem.equality->c);
         problem.equality->vmult(bx, x);
         bx -= problem.equality->c;
-        r.feasibility += bx.l2_norm();
+        r.feasibility += internal::norm(bx);
       }
       return r;
     }

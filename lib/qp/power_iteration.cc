@@ -51,7 +51,7 @@ namespace dualcontact
         for (auto it = owned.begin(); it != owned.end(); ++it, ++k)
           v[k] = start_value(*it);
       }
-      const double norm0 = x.l2_norm();
+      const double norm0 = internal::norm(x);
       if (norm0 == 0.) // empty problem
         return result;
       x /= norm0;
@@ -60,8 +60,8 @@ namespace dualcontact
       {
         A(y, x);
         ++result.n_products;
-        const double rayleigh = x * y; // x has unit norm
-        const double norm_y   = y.l2_norm();
+        const double rayleigh = internal::dot(x, y); // x has unit norm
+        const double norm_y   = internal::norm(y);
         AssertThrow(std::isfinite(norm_y),
                     dealii::ExcMessage(
                       "power iteration: non-finite Hessian product"));

@@ -72,7 +72,7 @@ namespace dualcontact
       stats.solver             = solver_name;
       stats.stopping_criterion = to_string(prm.stopping_criterion);
       stats.tolerance          = prm.tolerance;
-      const double norm_b      = problem.b.l2_norm();
+      const double norm_b      = internal::norm(problem.b);
       AssertThrow(std::isfinite(norm_b),
                   dealii::ExcMessage(solver_name + ": b is not finite"));
       // b = 0 would make every relative test unreachable; use an absolute
@@ -146,7 +146,7 @@ namespace dualcontact
                                       const SolverStatistics    &stats) const
     {
       if (!problem.constraints)
-        return g.l2_norm();
+        return internal::norm(g);
       const SeparableSet<VectorType> &set = *problem.constraints;
       switch (prm.stopping_criterion)
       {

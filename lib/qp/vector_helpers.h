@@ -12,6 +12,8 @@
 #include <deal.II/lac/trilinos_vector.h>
 #include <deal.II/lac/vector.h>
 
+#include <cmath>
+
 namespace dualcontact
 {
   namespace qp
@@ -51,6 +53,32 @@ namespace dualcontact
       max(const double local, const VectorType &v)
       {
         return dealii::Utilities::MPI::max(local, communicator(v));
+      }
+
+      /**
+       * a'b over the vector's communicator.  Unlike the vector classes' own
+       * operator*, this does not assert finiteness (deal.II debug builds
+       * abort on a NaN there), so a solver can see the NaN and report
+       * `non_finite` instead.
+       */
+      template <typename VectorType>
+      inline double
+      dot(const VectorType &a, const VectorType &b)
+      {
+        const double     *av = a.begin(), *bv = b.begin();
+        const std::size_t n = a.locally_owned_size();
+        double            s = 0.;
+        for (std::size_t i = 0; i < n; ++i)
+          s += av[i] * bv[i];
+        return sum(s, a);
+      }
+
+      /// ||a|| without finiteness assertions (see dot()).
+      template <typename VectorType>
+      inline double
+      norm(const VectorType &a)
+      {
+        return std::sqrt(dot(a, a));
       }
     } // namespace internal
   }   // namespace qp
