@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace dualcontact
 {
@@ -166,6 +167,31 @@ namespace dualcontact
     DualProblem<dim>::n_rigid_body_modes() const
     {
       return rigid_modes_.size();
+    }
+
+
+    template <int dim>
+    double
+    DualProblem<dim>::friction_utilization(const VectorType  &lambda,
+                                           const unsigned int j) const
+    {
+      const unsigned int first = n_contact_nodes() + (dim - 1) * j;
+      const FrictionLaw &law =
+        contact_.pairs()[contact_.nodes()[frictional_nodes_[j]].pair].friction;
+      double ratio2 = 0;
+      for (unsigned int k = 0; k + 1 < dim; ++k)
+      {
+        // ellipse semi-axes (psi_1, psi_2) for orthotropic laws in 3D
+        const double bound = (dim == 3 && law.is_orthotropic() && k == 1) ?
+                               psi_second_[j] :
+                               psi_first_[j];
+        const double value = lambda(first + k);
+        if (bound > 0)
+          ratio2 += (value / bound) * (value / bound);
+        else if (value != 0)
+          return std::numeric_limits<double>::infinity();
+      }
+      return std::sqrt(ratio2);
     }
 
 
@@ -405,12 +431,8 @@ namespace dualcontact
           active[i] = lambda(i) > tol;
         for (unsigned int j = 0; j < frictional_nodes_.size(); ++j)
         {
-          double norm = 0;
-          for (unsigned int k = 0; k + 1 < dim; ++k)
-            norm += std::pow(lambda(n_nodes + (dim - 1) * j + k), 2);
-          norm               = std::sqrt(norm);
-          const double bound = std::min(psi_first_[j], psi_second_[j]);
-          if (active[frictional_nodes_[j]] && norm < (1 - 1e-6) * bound)
+          if (active[frictional_nodes_[j]] &&
+              friction_utilization(lambda, j) < 1 - 1e-6)
             for (unsigned int k = 0; k + 1 < dim; ++k)
               active[n_nodes + (dim - 1) * j + k] = true;
         }

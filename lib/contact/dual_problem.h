@@ -96,6 +96,17 @@ namespace dualcontact
       slip_bounds_second() const;
 
       /**
+       * How much of its friction bound the tangential multiplier of the
+       * @p j-th frictional node uses: |lambda_T| / psi in 2D and for
+       * isotropic laws, the ellipse norm sqrt((lambda_1/psi_1)^2 +
+       * (lambda_2/psi_2)^2) for orthotropic ones.  Below 1: the node sticks;
+       * 1: it may slip (on the bound).
+       */
+      double
+      friction_utilization(const VectorType  &lambda,
+                           const unsigned int j) const;
+
+      /**
        * The QP with the current slip bounds (F counted by the solver), in
        * scaled form: Hessian F / s and right-hand side d / s with s the
        * largest eigenvalue of F (so that the Hessian has norm 1 and the
