@@ -3,8 +3,10 @@
 
 #include <deal.II/base/exceptions.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
+#include <deque>
 #include <limits>
 
 namespace dualcontact
@@ -180,8 +182,13 @@ namespace dualcontact
       };
 
       // The expansion (after a half-step, or MPGP's non-proportional
-      // step): fixed length alpha_bar, or Barzilai-Borwein with fall-back.
-      const auto expansion = [&]()
+      // step): fixed length alpha_bar, or Barzilai-Borwein with a
+      // non-monotone safeguard: a BB step is accepted if the cost does
+      // not exceed the largest of the costs before the last
+      // `mpgp_bb_memory` BB attempts (Grippo-Lampariello-Lucidi), else it
+      // is redone with alpha_bar (a fall-back).  Memory 0 = monotone.
+      std::deque<double> recent_costs;
+      const auto         expansion = [&]()
       {
         if (!variant.barzilai_borwein)
         {
@@ -195,10 +202,17 @@ namespace dualcontact
           return;
         }
         const double f_old = cost();
+        recent_costs.push_back(f_old);
+        while (recent_costs.size() > std::max(prm.mpgp_bb_memory, 1u))
+          recent_costs.pop_front();
+        const double reference =
+          prm.mpgp_bb_memory == 0 ?
+            f_old :
+            *std::max_element(recent_costs.begin(), recent_costs.end());
         work.equ(1., x);
         phi.equ(1., g); // keep g; phi is free here
         projection_step(alpha);
-        if (cost() <= f_old)
+        if (cost() <= reference)
         {
           ++stats.n_bb;
           return;

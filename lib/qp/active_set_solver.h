@@ -44,7 +44,8 @@ namespace dualcontact
       /// instead of the full gradient g (MPGP)
       bool expand_with_free_gradient = false;
       /// Barzilai-Borwein step lengths in projections (MPGP-BB), with a
-      /// monotone fall-back to alpha_bar when the cost increases
+      /// fall-back to alpha_bar when the cost exceeds the largest of the
+      /// last `mpgp_bb_memory` pre-step costs (non-monotone safeguard)
       bool barzilai_borwein = false;
       /// accept only bound and box blocks (MPRGP)
       bool bounds_only = false;

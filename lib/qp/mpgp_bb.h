@@ -1,8 +1,10 @@
 /**
  * @file mpgp_bb.h
  * MPGP-BB (thesis 2.4.2): MPGP whose projection steps use the Barzilai-Borwein
- * length s's/s'As; a step that increases the cost is redone with alpha_bar
- * (counted as fall-back), which keeps the method monotone.
+ * length s's/s'As; a step whose cost exceeds the largest cost before the last
+ * `MPGP-BB memory' BB steps is redone with alpha_bar (a fall-back): a
+ * non-monotone safeguard (Grippo-Lampariello-Lucidi) that the thesis leaves
+ * out; memory 0 makes it monotone.
  */
 #ifndef dualcontact_qp_mpgp_bb_h
 #define dualcontact_qp_mpgp_bb_h
@@ -15,10 +17,9 @@ namespace dualcontact
   {
     /**
      * MPGP-BB (thesis 2.4.2): MPGP whose projection steps use the
-     * Barzilai-Borwein length s's/s'As; a step that increases the cost is
-     * redone with alpha_bar (counted as fall-back), which keeps the method
-     * monotone. Parameters: Gamma / MwPGP delta, Alpha bar factor, and the
-     * common ones of SolverParameters.
+     * Barzilai-Borwein length s's/s'As, with the non-monotone safeguard
+     * described above.  Parameters: Gamma, Alpha bar factor, MPGP-BB
+     * memory, and the common ones of SolverParameters.
      */
     template <typename VectorType>
     class MPGPBB : public ActiveSetSolver<VectorType>

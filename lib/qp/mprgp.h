@@ -18,7 +18,7 @@ namespace dualcontact
      * MPRGP (thesis 2.4.4) with the solvability test of MPRGPS (2.4.5): bound
      * and box constraints only; the non-proportional step is a steepest-descent
      * step along the chopped gradient, the expansion after a half-step uses the
-     * free gradient. Parameters: Gamma / MwPGP delta, Alpha bar factor, and the
+     * free gradient. Parameters: Gamma, Alpha bar factor, and the
      * common ones of SolverParameters.
      */
     template <typename VectorType>

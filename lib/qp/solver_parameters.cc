@@ -97,6 +97,14 @@ namespace dualcontact
                         "Proportioning constant Gamma > 0 of MPRGP, MPGP, "
                         "MPGP-BB: a CG step is taken while ||beta|| <= "
                         "Gamma ||phi|| (table 14: 1). Unit: none.");
+      prm.declare_entry("MPGP-BB memory",
+                        "10",
+                        Integer(0),
+                        "MPGP-BB: a Barzilai-Borwein projection step is "
+                        "accepted when the cost does not exceed the largest "
+                        "cost before the last this-many BB steps; otherwise "
+                        "it is redone with alpha_bar (a fall-back). 0 makes "
+                        "the method monotone. Unit: steps.");
       prm.declare_entry("MwPGP delta",
                         "0.25",
                         Double(0., 0.5),
@@ -166,6 +174,7 @@ namespace dualcontact
       alpha_bar_factor    = prm.get_double("Alpha bar factor");
       gamma               = prm.get_double("Gamma");
       mwpgp_delta         = prm.get_double("MwPGP delta");
+      mpgp_bb_memory      = prm.get_integer("MPGP-BB memory");
       pbbf_k              = prm.get_integer("PBBf K");
       spg_m               = prm.get_integer("SPG-QP m");
       spg_gamma           = prm.get_double("SPG-QP gamma");

@@ -53,6 +53,11 @@ namespace dualcontact
       /// Gamma > 0 of the proportioning test ||beta|| <= Gamma ||phi||
       /// (MPRGP, MPGP, MPGP-BB; table 14: 1)
       double gamma = 1.;
+      /// MPGP-BB: a Barzilai-Borwein projection is accepted when the cost
+      /// does not exceed the largest cost before the last this-many BB
+      /// attempts (non-monotone safeguard); 0 = monotone (every increase
+      /// falls back to alpha_bar)
+      unsigned int mpgp_bb_memory = 10;
       /// delta in (0, 1/2) of the MwPGP proportioning test
       /// 2 delta ||g~^P||^2 <= ||phi||^2
       double mwpgp_delta = 0.25;
