@@ -14,8 +14,8 @@ namespace dualcontact
   {
     /**
      * MPGP (thesis 2.4.1, algorithm 7): any separable set; gradient projection
-     * steps with the fixed length alpha_bar. Parameters: Gamma / MwPGP delta,
-     * Alpha bar factor, and the common ones of SolverParameters.
+     * steps with the fixed length alpha_bar. Parameters: Gamma, Alpha bar
+     * factor, and the common ones of SolverParameters.
      */
     template <typename VectorType>
     class MPGP : public ActiveSetSolver<VectorType>
