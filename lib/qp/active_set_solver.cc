@@ -127,7 +127,14 @@ namespace dualcontact
       };
       // 1/2 x'Ax - b'x from the gradient: 1/2 x'(g - b)
       const auto cost = [&]()
-      { return 0.5 * (internal::dot(x, g) - internal::dot(x, problem.b)); };
+      {
+        const double *xv = x.begin(), *gv = g.begin(), *bv = problem.b.begin();
+        const std::size_t n = x.locally_owned_size();
+        double            s = 0.;
+        for (std::size_t i = 0; i < n; ++i)
+          s += xv[i] * (gv[i] - bv[i]);
+        return 0.5 * internal::sum(s, x);
+      };
 
       double        bb_alpha = alpha_bar;
       GradientNorms norms;
@@ -236,20 +243,30 @@ namespace dualcontact
         {
           // BB length from the last iterate difference s = x_k -
           // x_{k-1}, y = g_k - g_{k-1} = A s (no extra product)
-          bb_alpha = alpha_bar;
+          // one pass: s's, s'y, and x_prev := x, g_prev := g
+          bb_alpha                   = alpha_bar;
+          double            local[2] = {0., 0.};
+          double           *xp = x_prev.begin(), *gp = g_prev.begin();
+          const double     *xv = x.begin(), *gv = g.begin();
+          const std::size_t n = x.locally_owned_size();
+          for (std::size_t i = 0; i < n; ++i)
+          {
+            const double si = xv[i] - xp[i], yi = gv[i] - gp[i];
+            local[0] += si * si;
+            local[1] += si * yi;
+            xp[i] = xv[i];
+            gp[i] = gv[i];
+          }
           if (stats.iterations > 1)
           {
-            work.equ(1., x);
-            work.add(-1., x_prev);
-            phi.equ(1., g);
-            phi.add(-1., g_prev);
-            const double ss = internal::dot(work, work),
-                         sy = internal::dot(work, phi);
-            if (sy > 0. && std::isfinite(ss / sy))
-              bb_alpha = ss / sy;
+            double global[2];
+            dealii::Utilities::MPI::sum(dealii::ArrayView<const double>(local,
+                                                                        2),
+                                        internal::communicator(x),
+                                        dealii::ArrayView<double>(global, 2));
+            if (global[1] > 0. && std::isfinite(global[0] / global[1]))
+              bb_alpha = global[0] / global[1];
           }
-          x_prev.equ(1., x);
-          g_prev.equ(1., g);
         }
         if (proportional())
         {
