@@ -4,8 +4,10 @@
 //  - bound 2x2: A = [2 -1; -1 2], b = (-1, 1), x >= 0  ->  (0, 1/2);
 //  - disc: A = diag(1, 4), b = (2, 0), ||x|| <= 1  ->  (1, 0);
 //  - box with l = u, cone apex, rotated ellipse.
-// Also: at the solution g^P, g~_alpha and g~^P_alpha vanish; at a
-// non-solution they do not.
+// Also: at the solution g^P, g~_alpha and g~^P_alpha vanish, the active
+// blocks are those on the boundary (is_active, n_active_blocks) and the
+// complementarity measure is 0; at a non-solution the gradients do not
+// vanish.
 #include "test_tools.h"
 
 #include <qp/solver_factory.h>
@@ -133,6 +135,57 @@ main()
     check.check(n_p <= 1e-14 && n_r <= 1e-14 && n_rp <= 1e-14,
                 t.name + ": g^P, g~, g~^P vanish at x* (" + sci(n_p) + ", " +
                   sci(n_r) + ", " + sci(n_rp) + ")");
+    // active-set queries and complementarity at x*
+    {
+      unsigned int n_boundary = 0, n_is_active = 0;
+      for (const Block &blk : t.blocks)
+      {
+        const double *z           = &t.x_star[blk.first];
+        bool          on_boundary = false;
+        switch (blk.type)
+        {
+          case BlockType::bound:
+            on_boundary = z[0] == blk.p1;
+            break;
+          case BlockType::box:
+            on_boundary = z[0] == blk.p1 || z[0] == blk.p2;
+            break;
+          case BlockType::disc:
+            on_boundary = std::abs(std::hypot(z[0], z[1]) - blk.p1) <= 1e-12;
+            break;
+          case BlockType::ellipse:
+          {
+            const double c = std::cos(blk.p3), sn = std::sin(blk.p3);
+            const double y1 = c * z[0] + sn * z[1], y2 = -sn * z[0] + c * z[1];
+            on_boundary =
+              std::abs(std::hypot(y1 / blk.p1, y2 / blk.p2) - 1.) <= 1e-12;
+            break;
+          }
+          case BlockType::cone:
+            on_boundary =
+              z[0] <= 0. || blk.p1 * z[0] - std::hypot(z[1], z[2]) <=
+                              1e-12 * std::hypot(z[0], z[1], z[2]);
+            break;
+        }
+        n_boundary += on_boundary ? 1 : 0;
+        n_is_active += set.is_active(xs, blk.first) == on_boundary ? 1 : 0;
+      }
+      const auto   counts = set.n_active_blocks(xs);
+      unsigned int total  = 0;
+      for (const auto c : counts)
+        total += c;
+      Vec gs(xs);
+      problem.hessian(gs, xs);
+      gs -= problem.b;
+      const double comp = set.complementarity(xs, gs);
+      check.check(n_is_active == t.blocks.size() && total == n_boundary &&
+                    comp <= 1e-14,
+                  t.name + ": " + std::to_string(n_boundary) + " of " +
+                    std::to_string(t.blocks.size()) +
+                    " blocks on the boundary = is_active = n_active_blocks; "
+                    "complementarity at x* " +
+                    sci(comp));
+    }
     Vec y(xs);
     y.add(0.3, problem.b);
     set.project(y);
