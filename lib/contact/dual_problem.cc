@@ -419,8 +419,11 @@ namespace dualcontact
             r(contact_.n_nodes() + (dim - 1) * j + k) +=
               contact_.tangential_offset()((dim - 1) * frictional_nodes_[j] +
                                            k);
-        // Rows that must hold with equality: active normal rows, and the
-        // tangential rows of sticking nodes that are in contact.
+        // Rows that must hold with equality: normal rows with a positive
+        // multiplier, and the tangential rows of sticking nodes (multiplier
+        // strictly inside a nonzero friction set).  A Tresca bound acts
+        // whether or not the node is pressed, so a separated node can stick;
+        // a zero bound (Coulomb without normal force) constrains nothing.
         const unsigned int n_nodes = contact_.n_nodes();
         double             scale   = 0;
         for (unsigned int i = 0; i < n_nodes; ++i)
@@ -431,7 +434,7 @@ namespace dualcontact
           active[i] = lambda(i) > tol;
         for (unsigned int j = 0; j < frictional_nodes_.size(); ++j)
         {
-          if (active[frictional_nodes_[j]] &&
+          if (std::max(psi_first_[j], psi_second_[j]) > 0 &&
               friction_utilization(lambda, j) < 1 - 1e-6)
             for (unsigned int k = 0; k + 1 < dim; ++k)
               active[n_nodes + (dim - 1) * j + k] = true;

@@ -13,7 +13,11 @@
 //     normal force p L and tangential force tau L balance (1e-8), every
 //     tangential multiplier within its bound, and the stick/slip pattern is
 //     consistent (stick: no slip; slip: multiplier at the bound, pointing
-//     along the slip).
+//     along the slip);
+//  E. 3D, orthotropic Tresca (ellipse with semi-axes g and g/2), shear
+//     along both tangents: balance, multipliers inside their ellipses,
+//     sticking nodes do not slip, slipping nodes slip along the ellipse's
+//     outward normal (the normality rule).
 
 #include <deal.II/base/function.h>
 #include <deal.II/grid/grid_generator.h>
@@ -294,6 +298,80 @@ run_tresca_2d()
   }
 }
 
+void
+run_orthotropic_3d()
+{
+  std::cout << "3D orthotropic Tresca" << std::endl;
+  // Slip bounds g1 along x, g2 = g1 / 2 along y; the shear (tau_x, tau_y)
+  // uses 80% of the elliptic capacity, so the block holds but edge nodes
+  // slip.
+  const double p = 1e7, g1 = 4e6, g2 = 2e6;
+  const double tau_x = 0.8 * g1 * std::cos(0.6),
+               tau_y = 0.8 * g2 * std::sin(0.6);
+  contact::FrictionLaw law;
+  law.type   = contact::FrictionLaw::Type::tresca_orthotropic;
+  law.first  = g1;
+  law.second = g2;
+  auto scene = make_scene<3>({},
+                             {{5,
+                               std::make_shared<Functions::ConstantFunction<3>>(
+                                 std::vector<double>{tau_x, tau_y, -p})}},
+                             0.,
+                             law,
+                             4);
+  for (const std::string solver : {"mpgp", "spg-qp"})
+  {
+    const auto         result = run_solver(scene, solver, 1e-10);
+    const unsigned int n      = scene.contact->n_nodes();
+    Vector<double>     slip(2 * n);
+    scene.contact->tangential_matrix().vmult(slip, result.displacements[0]);
+    const double scale = result.displacements[0].linfty_norm();
+    Tensor<1, 3> force;
+    double       worst_bound = 0, worst_pattern = 0;
+    unsigned int n_slip = 0;
+    for (unsigned int i = 0; i < n; ++i)
+    {
+      const auto &node = scene.contact->nodes()[i];
+      force += result.lambda(i) * node.normal;
+      const double l1 = result.lambda(n + 2 * i),
+                   l2 = result.lambda(n + 2 * i + 1);
+      force += l1 * node.tangents[0] + l2 * node.tangents[1];
+      const double utilization =
+        scene.dual->friction_utilization(result.lambda, i);
+      worst_bound     = std::max(worst_bound, utilization - 1);
+      const double s1 = slip(2 * i), s2 = slip(2 * i + 1);
+      const double s = std::hypot(s1, s2);
+      if (utilization < 1 - 1e-6)
+        worst_pattern = std::max(worst_pattern, s / scale);
+      else if (s > 1e-8 * scale)
+      {
+        ++n_slip;
+        // normality: slip along the ellipse's outward normal
+        const double psi1 = scene.dual->slip_bounds_first()[i];
+        const double psi2 = scene.dual->slip_bounds_second()[i];
+        const double m1 = l1 / (psi1 * psi1), m2 = l2 / (psi2 * psi2);
+        const double cosine = (m1 * s1 + m2 * s2) / (std::hypot(m1, m2) * s);
+        worst_pattern       = std::max(worst_pattern, 1 - cosine);
+      }
+    }
+    // contact force on the body is -force; it balances the applied load
+    Tensor<1, 3> applied = scene.body->applied_force();
+    const double balance = (applied - force).norm() / p;
+    check(result.converged && balance < 1e-8,
+          "E " + solver + ": " + result.reason + ", slipping nodes " +
+            std::to_string(n_slip) + "/" + std::to_string(n) +
+            ", force balance error",
+          balance);
+    check(worst_bound < 1e-9,
+          "E " + solver + ": max ellipse norm - 1",
+          worst_bound);
+    check(n_slip > 0 && worst_pattern < 1e-5,
+          "E " + solver + ": stick without slip, slip along the ellipse normal",
+          worst_pattern);
+  }
+}
+
+
 int
 main()
 {
@@ -302,6 +380,7 @@ main()
     run<2>();
     run<3>();
     run_tresca_2d();
+    run_orthotropic_3d();
   }
   catch (const std::exception &e)
   {
