@@ -102,8 +102,16 @@ namespace dualcontact
           const std::vector<double> old_second = dual_.slip_bounds_second();
           dual_.update_slip_bounds(&result.lambda);
           double change = 0, norm = 0;
+          bool   from_bonded = false;
           for (unsigned int j = 0; j < old_first.size(); ++j)
           {
+            // the first iterate was bonded (infinite bounds) on Coulomb
+            // pairs: its change is not a number to compare
+            if (std::isinf(old_first[j]) || std::isinf(old_second[j]))
+            {
+              from_bonded = true;
+              continue;
+            }
             change +=
               std::pow(dual_.slip_bounds_first()[j] - old_first[j], 2) +
               std::pow(dual_.slip_bounds_second()[j] - old_second[j], 2);
@@ -111,7 +119,9 @@ namespace dualcontact
                     std::pow(dual_.slip_bounds_second()[j], 2);
           }
           const double relative =
-            norm > 0 ? std::sqrt(change / norm) : std::sqrt(change);
+            from_bonded ?
+              1. :
+              (norm > 0 ? std::sqrt(change / norm) : std::sqrt(change));
           result.coulomb_changes.push_back(relative);
           if (on_iterate)
           {

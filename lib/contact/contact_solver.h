@@ -38,7 +38,8 @@ namespace dualcontact
     /**
      * Solves the contact problem of a DualProblem: one QP for frictionless
      * and Tresca scenes; for Coulomb pairs the fixed point over Tresca
-     * problems psi_i = mu lambda_N,i (the first with psi = 0), each QP warm
+     * problems psi_i = mu lambda_N,i (the first one bonded: no bound on
+     * lambda_T, which is feasible for any load), each QP warm
      * started from the previous multipliers.  QPs with equality constraints
      * (floating bodies) go through SMALSE-M with the chosen solver inside.
      */

@@ -186,6 +186,8 @@ namespace dualcontact
                                psi_second_[j] :
                                psi_first_[j];
         const double value = lambda(first + k);
+        if (std::isinf(bound))
+          continue;
         if (bound > 0)
           ratio2 += (value / bound) * (value / bound);
         else if (value != 0)
@@ -218,10 +220,24 @@ namespace dualcontact
         const FrictionLaw      &law  = contact_.pairs()[n.pair].friction;
         if (law.is_coulomb())
         {
-          const double lambda_n = lambda ? std::max((*lambda)(node), 0.) : 0.;
-          psi_first_[j]         = law.first * lambda_n;
-          psi_second_[j] =
-            (law.is_orthotropic() ? law.second : law.first) * lambda_n;
+          // Without multipliers yet: bonded (no bound), which is feasible
+          // for any load; psi = 0 would forbid tangential forces and make
+          // a body with a tangential load and no tangential support
+          // infeasible.
+          const double mu_1 = law.first;
+          const double mu_2 = law.is_orthotropic() ? law.second : law.first;
+          const double inf  = std::numeric_limits<double>::infinity();
+          if (lambda)
+          {
+            const double lambda_n = std::max((*lambda)(node), 0.);
+            psi_first_[j]         = mu_1 * lambda_n;
+            psi_second_[j]        = mu_2 * lambda_n;
+          }
+          else
+          {
+            psi_first_[j]  = mu_1 > 0 ? inf : 0.;
+            psi_second_[j] = mu_2 > 0 ? inf : 0.;
+          }
         }
         else
         {
@@ -273,6 +289,8 @@ namespace dualcontact
         const FrictionLaw &law =
           contact_.pairs()[contact_.nodes()[frictional_nodes_[j]].pair]
             .friction;
+        if (std::isinf(psi_first_[j]) || std::isinf(psi_second_[j]))
+          continue; // bonded: tangential multipliers free
         if (dim == 2)
           set->add_box(first, -psi_first_[j], psi_first_[j]);
         else if (law.is_orthotropic() && psi_first_[j] > 0 &&

@@ -86,7 +86,9 @@ namespace dualcontact
                       const std::vector<double> &second);
       /**
        * The bounds of the pairs' laws: Tresca psi = g w_i; Coulomb
-       * psi = mu lambda_N,i with lambda_N from @p lambda (zero if null).
+       * psi = mu lambda_N,i with lambda_N from @p lambda, or, if @p lambda is
+       * null, no bound at all (bonded: the first Coulomb iterate, feasible
+       * for any load).
        */
       void
       update_slip_bounds(const VectorType *lambda);

@@ -17,7 +17,9 @@
 //  E. 3D, orthotropic Tresca (ellipse with semi-axes g and g/2), shear
 //     along both tangents: balance, multipliers inside their ellipses,
 //     sticking nodes do not slip, slipping nodes slip along the ellipse's
-//     outward normal (the normality rule).
+//     outward normal (the normality rule);
+//  F. 2D Coulomb (mu = 0.3, shear 0.2 p): the fixed point converges in a
+//     few Tresca solves, forces balance, |lambda_T| <= mu lambda_N.
 
 #include <deal.II/base/function.h>
 #include <deal.II/grid/grid_generator.h>
@@ -372,6 +374,50 @@ run_orthotropic_3d()
 }
 
 
+void
+run_coulomb_2d()
+{
+  std::cout << "2D Coulomb" << std::endl;
+  // mu = 0.3, shear 0.2 p on the top: the block holds, edge nodes slip.
+  const double         p = 1e7, mu = 0.3, tau = 0.2 * p;
+  contact::FrictionLaw law;
+  law.type                  = contact::FrictionLaw::Type::coulomb_isotropic;
+  law.first                 = mu;
+  auto               scene  = make_scene<2>({},
+                             {{3,
+                                              std::make_shared<Functions::ConstantFunction<2>>(
+                                 std::vector<double>{tau, -p})}},
+                             0.,
+                             law,
+                             8);
+  const auto         result = run_solver(scene, "mprgp", 1e-10);
+  const unsigned int n      = scene.contact->n_nodes();
+  double             normal = 0, tangential = 0, worst_cone = 0;
+  for (unsigned int i = 0; i < n; ++i)
+  {
+    normal += result.lambda(i);
+    tangential += result.lambda(n + i);
+    worst_cone =
+      std::max(worst_cone,
+               std::abs(result.lambda(n + i)) - mu * result.lambda(i));
+  }
+  check(result.converged && result.qp_statistics.size() > 2 &&
+          result.coulomb_changes.back() <= 1e-6,
+        "F Coulomb: " + result.reason + ", fixed-point iterations " +
+          std::to_string(result.qp_statistics.size()) + ", last change",
+        result.coulomb_changes.back());
+  check(std::abs(normal - p) < 1e-8 * p &&
+          std::abs(tangential - tau) < 1e-8 * p,
+        "F balance error",
+        std::max(std::abs(normal - p), std::abs(tangential - tau)) / p);
+  // psi was updated from the previous iterate, so the cone holds to the
+  // fixed-point tolerance
+  check(worst_cone < 1e-5 * p / n,
+        "F max (|lambda_T| - mu lambda_N) / (p / n)",
+        worst_cone / (p / n));
+}
+
+
 int
 main()
 {
@@ -381,6 +427,7 @@ main()
     run<3>();
     run_tresca_2d();
     run_orthotropic_3d();
+    run_coulomb_2d();
   }
   catch (const std::exception &e)
   {
