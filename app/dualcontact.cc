@@ -1,4 +1,4 @@
-// dualcontact: multi-body linear elasticity (frictional contact to come),
+// dualcontact: multi-body linear elasticity with frictional contact,
 // driven by a parameter file.  Thin: all work is in lib/driver and below.
 
 #include <deal.II/base/conditional_ostream.h>
@@ -96,13 +96,16 @@ main(int argc, char *argv[])
     {
       dealii::ParameterHandler prm;
       driver::SceneLayout      layout;
+      layout.n_obstacles     = 1;
+      layout.n_contact_pairs = 1;
       driver::SceneParameters::declare_parameters(prm, layout);
       if (is_rank_0)
       {
         std::cout << "# dualcontact " << DUALCONTACT_VERSION
                   << ": all parameters, with documentation, default "
-                     "and allowed values.\n# Shown for one body; "
-                     "`Body 2', ... have the same entries.\n\n";
+                     "and allowed values.\n# Shown for one body, one "
+                     "obstacle and one contact pair; `Body 2', `Obstacle "
+                     "2', `Contact pair 2', ... have the same entries.\n\n";
         io::print_documented_parameters(prm, std::cout);
       }
       return 0;
@@ -121,10 +124,13 @@ main(int argc, char *argv[])
             << std::endl;
     driver::SceneLayout layout;
     const auto          prm = driver::SceneParameters::read(argument, layout);
-    if (layout.dimension == 2)
-      driver::Simulation<2>(*prm, argument, console).run();
-    else
-      driver::Simulation<3>(*prm, argument, console).run();
+    // exit code 2: the contact solver did not converge (output written)
+    const bool converged =
+      layout.dimension == 2 ?
+        driver::Simulation<2>(*prm, argument, console).run() :
+        driver::Simulation<3>(*prm, argument, console).run();
+    if (!converged)
+      return 2;
   }
   catch (const std::exception &exception)
   {

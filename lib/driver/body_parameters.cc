@@ -299,7 +299,8 @@ namespace dualcontact
     template <int dim>
     void
     BodyParameters<dim>::check_mesh(
-      const dealii::Triangulation<dim> &triangulation) const
+      const dealii::Triangulation<dim> &triangulation,
+      const bool                        in_contact) const
     {
       const std::vector<dealii::types::boundary_id> ids =
         triangulation.get_boundary_ids();
@@ -338,12 +339,13 @@ namespace dualcontact
                       path_ + "')."));
       }
 
-      AssertThrow(!dirichlet.empty(),
+      AssertThrow(!dirichlet.empty() || in_contact,
                   dealii::ExcMessage(
                     name +
                     " has no Dirichlet condition, so it could move "
-                    "freely and its stiffness matrix is singular; floating "
-                    "bodies need contact, which is not implemented yet " +
+                    "freely and its stiffness matrix is singular; a "
+                    "floating body must be held by contact: make it the "
+                    "slave or master of a `Contact pair N' " +
                     io::parameter_location(path_,
                                            "Number of Dirichlet conditions") +
                     "."));

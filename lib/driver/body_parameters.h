@@ -63,10 +63,14 @@ namespace dualcontact
       /**
        * Check the parameters against the body's mesh: every boundary id of a
        * Dirichlet or traction condition exists on the boundary, every
-       * material id of a cell has a material.
+       * material id of a cell has a material, and a body without Dirichlet
+       * condition is held by contact (@p in_contact: the body is the slave
+       * or master of a contact pair; its rigid-body modes then go into the
+       * dual problem's equality constraints).
        */
       void
-      check_mesh(const dealii::Triangulation<dim> &triangulation) const;
+      check_mesh(const dealii::Triangulation<dim> &triangulation,
+                 const bool                        in_contact) const;
 
       std::string                                                  name;
       io::MeshGenerator<dim>                                       mesh;

@@ -23,8 +23,9 @@ namespace dualcontact
     };
 
     /**
-     * The shape of a parameter file: the dimension and, per body, how many
-     * `Material N', `Dirichlet N' and `Traction N' subsections exist.  It is
+     * The shape of a parameter file: the dimension, per body how many
+     * `Material N', `Dirichlet N' and `Traction N' subsections exist, and
+     * how many `Obstacle N' and `Contact pair N' subsections.  It is
      * read from the file itself in passes that ignore everything else (see
      * SceneParameters::read()), so that a scene has any number of bodies,
      * materials and boundary conditions.
@@ -33,6 +34,10 @@ namespace dualcontact
     {
       unsigned int            dimension = 3;
       std::vector<BodyLayout> bodies    = {BodyLayout()};
+      /** Number of `Obstacle N' subsections. */
+      unsigned int n_obstacles = 0;
+      /** Number of `Contact pair N' subsections. */
+      unsigned int n_contact_pairs = 0;
     };
   } // namespace driver
 } // namespace dualcontact

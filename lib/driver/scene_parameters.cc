@@ -1,9 +1,14 @@
 #include <deal.II/base/patterns.h>
 
+#include <contact/contact_solver.h>
 #include <driver/body_parameters.h>
+#include <driver/contact_pair_parameters.h>
+#include <driver/obstacle_parameters.h>
 #include <driver/scene_parameters.h>
 #include <fem/stiffness_solver.h>
 #include <io/parameter_file.h>
+#include <qp/smalse_m.h>
+#include <qp/solver_parameters.h>
 
 namespace dualcontact
 {
@@ -28,6 +33,24 @@ namespace dualcontact
           prm.leave_subsection();
         }
       }
+
+      template <int dim>
+      void
+      declare_contact(dealii::ParameterHandler &prm, const SceneLayout &layout)
+      {
+        for (unsigned int n = 1; n <= layout.n_obstacles; ++n)
+        {
+          prm.enter_subsection("Obstacle " + std::to_string(n));
+          ObstacleParameters<dim>::declare_parameters(prm);
+          prm.leave_subsection();
+        }
+        for (unsigned int n = 1; n <= layout.n_contact_pairs; ++n)
+        {
+          prm.enter_subsection("Contact pair " + std::to_string(n));
+          ContactPairParameters<dim>::declare_parameters(prm);
+          prm.leave_subsection();
+        }
+      }
     } // namespace
 
 
@@ -44,6 +67,18 @@ namespace dualcontact
                         dealii::Patterns::Integer(1, 1000),
                         "Number of bodies, each described by a subsection "
                         "`Body 1', `Body 2', ...");
+      prm.declare_entry("Number of obstacles",
+                        "0",
+                        dealii::Patterns::Integer(0, 1000),
+                        "Number of rigid obstacles, each described by a "
+                        "subsection `Obstacle 1', `Obstacle 2', ...");
+      prm.declare_entry("Number of contact pairs",
+                        "0",
+                        dealii::Patterns::Integer(0, 1000),
+                        "Number of contact pairs (body-obstacle or "
+                        "body-body), each described by a subsection "
+                        "`Contact pair 1', `Contact pair 2', ... Without "
+                        "contact pairs every body is solved on its own.");
     }
 
 
@@ -70,20 +105,47 @@ namespace dualcontact
                         "directory; created if missing. It receives "
                         "solution.pvd (open this in ParaView), solution.pvtu, "
                         "body_N.vtu, results.txt, statistics.json and "
-                        "used_parameters.prm.");
+                        "used_parameters.prm, and with contact pairs "
+                        "contact_N.vtu per pair.");
       prm.declare_entry("Write VTU",
                         "true",
                         dealii::Patterns::Bool(),
                         "Whether to write the VTU/PVTU/PVD visualization "
                         "files (the other files are always written).");
+      prm.declare_entry("Write Coulomb iterates",
+                        "false",
+                        dealii::Patterns::Bool(),
+                        "With Coulomb friction: also write the contact "
+                        "surfaces of every fixed-point iterate "
+                        "(contact_N_iterate_K.vtu) and coulomb_iterates.pvd, "
+                        "a series over the iterates (time = iterate number).");
+      prm.declare_entry("Contact status tolerance",
+                        "1e-6",
+                        dealii::Patterns::Double(0., 1.),
+                        "Relative tolerance [-] of the status written per "
+                        "contact node: separated if lambda_N <= tolerance * "
+                        "max lambda_N of the pair, slip if the tangential "
+                        "multiplier reaches (1 - tolerance) times its slip "
+                        "bound (the boundary of the friction set), stick "
+                        "otherwise; frictionless nodes in contact count as "
+                        "slip.");
       prm.leave_subsection();
 
       fem::StiffnessSolver::declare_parameters(prm);
+      qp::SolverParameters::declare_parameters(prm);
+      qp::SMALSEMParameters::declare_parameters(prm);
+      contact::CoulombParameters::declare_parameters(prm);
 
       if (layout.dimension == 2)
+      {
         declare_bodies<2>(prm, layout);
+        declare_contact<2>(prm, layout);
+      }
       else
+      {
         declare_bodies<3>(prm, layout);
+        declare_contact<3>(prm, layout);
+      }
     }
 
 
@@ -97,6 +159,8 @@ namespace dualcontact
         io::parse_parameter_file(prm, file_name, true);
         layout.dimension = prm.get_integer("Dimension");
         layout.bodies.assign(prm.get_integer("Number of bodies"), BodyLayout());
+        layout.n_obstacles     = prm.get_integer("Number of obstacles");
+        layout.n_contact_pairs = prm.get_integer("Number of contact pairs");
       }
       // pass 2: the number of materials and conditions of every body
       {

@@ -14,7 +14,10 @@ namespace dualcontact
     /**
      * The whole parameter file.  Top level: `Dimension', `Number of bodies';
      * subsections `Discretization', `Output', `Stiffness solver'
-     * (fem::StiffnessSolver) and `Body 1', `Body 2', ... (BodyParameters).
+     * (fem::StiffnessSolver), `QP solver' and `QP solver/SMALSE-M' (lib/qp),
+     * `Coulomb' (contact::CoulombParameters), `Body 1', `Body 2', ...
+     * (BodyParameters), `Obstacle 1', ... (ObstacleParameters) and `Contact
+     * pair 1', ... (ContactPairParameters).
      *
      * Because the number of bodies (and of materials and boundary
      * conditions per body) is itself a parameter, the file is read in three

@@ -6,10 +6,18 @@
 #include <deal.II/grid/tria.h>
 #include <deal.II/lac/vector.h>
 
+#include <contact/contact_discretization.h>
+#include <contact/contact_solver.h>
+#include <contact/dual_problem.h>
 #include <driver/body_parameters.h>
+#include <driver/contact_pair_parameters.h>
+#include <driver/obstacle_parameters.h>
 #include <fem/elastic_body.h>
 #include <fem/stiffness_solver.h>
+#include <io/contact_surface_writer.h>
 #include <io/output_folder.h>
+#include <qp/smalse_m.h>
+#include <qp/solver_parameters.h>
 
 #include <memory>
 #include <string>
@@ -20,8 +28,11 @@ namespace dualcontact
   namespace driver
   {
     /**
-     * One run of a scene of elastic bodies (no contact yet): meshes, setup,
-     * assembly, one stiffness solve per body, derived results, output.
+     * One run of a scene of elastic bodies: meshes, setup, assembly, then
+     * either one stiffness solve per body (no contact pairs) or the contact
+     * problem (contact search, factorization of every K inside the dual
+     * problem, the dual QP / Coulomb fixed point, recovery of the
+     * displacements), derived results, output.
      *
      * Everything a user can get wrong is checked before anything is written:
      * the constructor parses and checks all parameters (including that the
@@ -43,7 +54,13 @@ namespace dualcontact
                  dealii::ConditionalOStream &console);
       ~Simulation();
 
-      void
+      /**
+       * Run the scene and write its output.  Returns false if the contact
+       * solver did not converge: the output is written all the same
+       * (flagged as not converged in results.txt and statistics.json), so
+       * that a failed run can be inspected; the program then exits with 2.
+       */
+      bool
       run();
 
     private:
@@ -66,6 +83,26 @@ namespace dualcontact
       assemble();
       void
       solve();
+      /** Contact: search, nodes, frames, gaps, B_N, B_T. */
+      void
+      discretize_contact();
+      /** Contact: the dual problem (factorizes every K). */
+      void
+      setup_dual_problem();
+      /** Contact: the QP (or the Coulomb fixed point over QPs). */
+      void
+      solve_contact();
+      /** Contact: displacements from the multipliers, contact results. */
+      void
+      recover();
+      /**
+       * The contact-surface data of every pair for multipliers @p lambda and
+       * displacements @p displacements, with the dual's current slip bounds.
+       */
+      std::vector<std::vector<io::ContactSurfaceNode<dim>>>
+      contact_surfaces(
+        const dealii::Vector<double>              &lambda,
+        const std::vector<dealii::Vector<double>> &displacements) const;
       void
       postprocess();
       /** The VTU/PVTU/PVD files (timed as the phase `Output'). */
@@ -105,6 +142,40 @@ namespace dualcontact
       std::vector<dealii::Vector<double>>                      displacements_;
       std::vector<BodyResults>                                 results_;
       std::vector<std::string>                                 details_;
+
+      /** Per contact pair: the sums and counts of results.txt. */
+      struct PairResults
+      {
+        unsigned int           n_nodes      = 0;
+        unsigned int           n_separated  = 0;
+        unsigned int           n_stick      = 0;
+        unsigned int           n_slip       = 0;
+        double                 normal_force = 0;
+        dealii::Tensor<1, dim> tangential_force;
+        double                 max_pressure = 0;
+        double                 min_gap      = 0;
+        double                 max_gap      = 0;
+        double                 area         = 0;
+      };
+
+      std::vector<ObstacleParameters<dim>>    obstacle_parameters_;
+      std::vector<ContactPairParameters<dim>> pair_parameters_;
+      qp::SolverParameters                    qp_parameters_;
+      qp::SMALSEMParameters                   smalse_parameters_;
+      contact::CoulombParameters              coulomb_parameters_;
+      bool                                    write_coulomb_iterates_ = false;
+      /** Relative tolerance of the separated / stick / slip status. */
+      double status_tolerance_ = 1e-6;
+
+      std::unique_ptr<contact::ContactDiscretization<dim>>  contact_;
+      std::unique_ptr<contact::DualProblem<dim>>            dual_;
+      typename contact::ContactSolver<dim>::Result          contact_result_;
+      double                                                qp_wall_time_ = 0;
+      std::vector<std::vector<io::ContactSurfaceNode<dim>>> surfaces_;
+      /** Per Coulomb iterate (if written): the surfaces of every pair. */
+      std::vector<std::vector<std::vector<io::ContactSurfaceNode<dim>>>>
+                               coulomb_iterates_;
+      std::vector<PairResults> pair_results_;
     };
   } // namespace driver
 } // namespace dualcontact

@@ -11,6 +11,7 @@
 #include <io/mesh_generator.h>
 #include <io/parameter_file.h>
 
+#include <cmath>
 #include <fstream>
 #include <memory>
 #include <sstream>
@@ -44,13 +45,20 @@ namespace dualcontact
       prm.declare_entry(
         "Generator",
         "box",
-        dealii::Patterns::Selection("box|ball|half ball|cylinder|gmsh"),
+        dealii::Patterns::Selection(
+          "box|ball|half ball|quarter ball|cylinder|gmsh"),
         "How the mesh is made. `box': a rectangle (2D) or box (3D) from "
         "`Lower corner' to `Upper corner' with `Subdivisions' cells per "
         "direction; boundary ids 0/1 at x = min/max, 2/3 at y = min/max, 4/5 "
         "at z = min/max. `ball': a disc (2D) or ball (3D) of `Radius' around "
         "the origin; boundary id 0. `half ball': the half x >= 0 of that disc "
         "or ball; boundary id 0 on the curved part, 1 on the cut x = 0. "
+        "`quarter ball': the lower quarter disc x >= 0, y <= 0 (2D) or the "
+        "lower octant x >= 0, y >= 0, z <= 0 (3D) of that ball, whose lowest "
+        "point (0, -R) / (0, 0, -R) touches a plane below it (Hertz contact "
+        "with symmetry planes); boundary id 0 on the curved part, 1 on the "
+        "cut x = 0, 2 on the flat top y = 0 (2D) / z = 0 (3D), 3 on the cut "
+        "y = 0 (3D). "
         "`cylinder' (3D): axis along x from -`Half length' to +`Half length', "
         "`Radius'; boundary id 0 on the hull, 1 at x = -L, 2 at x = +L (2D: "
         "the rectangle [-L, L] x [-R, R], id 0 at y = +-R). `gmsh': read "
@@ -95,6 +103,25 @@ namespace dualcontact
         "quadrilaterals/hexahedra). A relative name is looked up relative to "
         "the working directory, then to the folder of this parameter file, "
         "then to the dualcontact source folder.");
+      prm.declare_entry("Local refinements",
+                        "0",
+                        dealii::Patterns::Integer(0, 20),
+                        "After the global refinements, this many times the "
+                        "cells within `Local refinement radius' (plus one "
+                        "cell diameter) of `Local refinement center' are "
+                        "refined, e.g. towards a contact zone. Hanging "
+                        "nodes are constrained.");
+      prm.declare_entry("Local refinement center",
+                        dim == 2 ? "0, 0" : "0, 0, 0",
+                        dealii::Patterns::List(dealii::Patterns::Double(),
+                                               dim,
+                                               dim),
+                        "The center of the local refinement [m] (dim "
+                        "numbers, placed coordinates).");
+      prm.declare_entry("Local refinement radius",
+                        "0",
+                        dealii::Patterns::Double(0),
+                        "The radius of the local refinement [m] (>= 0).");
       prm.declare_entry("Global refinements",
                         "0",
                         dealii::Patterns::Integer(0, 12),
@@ -120,6 +147,8 @@ namespace dualcontact
         kind_ = Kind::ball;
       else if (generator == "half ball")
         kind_ = Kind::half_ball;
+      else if (generator == "quarter ball")
+        kind_ = Kind::quarter_ball;
       else if (generator == "cylinder")
         kind_ = Kind::cylinder;
       else
@@ -131,9 +160,13 @@ namespace dualcontact
       for (const int n : dealii::Utilities::string_to_int(
              dealii::Utilities::split_string_list(prm.get("Subdivisions"))))
         subdivisions_.push_back(n);
-      radius_        = prm.get_double("Radius");
-      half_length_   = prm.get_double("Half length");
-      n_refinements_ = prm.get_integer("Global refinements");
+      radius_              = prm.get_double("Radius");
+      half_length_         = prm.get_double("Half length");
+      n_refinements_       = prm.get_integer("Global refinements");
+      n_local_refinements_ = prm.get_integer("Local refinements");
+      local_refinement_center_ =
+        parse_point<dim>(prm.get("Local refinement center"));
+      local_refinement_radius_ = prm.get_double("Local refinement radius");
 
       if (kind_ == Kind::box)
         for (unsigned int d = 0; d < dim; ++d)
@@ -143,7 +176,7 @@ namespace dualcontact
                         "the lower corner in every coordinate " +
                         parameter_location(path_, "Upper corner") + "."));
       if (kind_ == Kind::ball || kind_ == Kind::half_ball ||
-          kind_ == Kind::cylinder)
+          kind_ == Kind::quarter_ball || kind_ == Kind::cylinder)
         AssertThrow(radius_ > 0,
                     dealii::ExcMessage("The radius must be positive " +
                                        parameter_location(path_, "Radius") +
@@ -182,6 +215,56 @@ namespace dualcontact
                                                  dealii::Point<dim>(),
                                                  radius_);
           break;
+        case Kind::quarter_ball:
+        {
+          // deal.II's quarter_hyper_ball is the first quadrant/octant;
+          // rotate it below the centre: (x, y) -> (y, -x) in 2D, (x, y, z)
+          // -> (y, x, -z) in 3D (a rotation by 180 degrees about (1, 1, 0)),
+          // both orientation-preserving, so the cells stay valid
+          dealii::GridGenerator::quarter_hyper_ball(triangulation,
+                                                    dealii::Point<dim>(),
+                                                    radius_);
+          dealii::GridTools::transform(
+            [](const dealii::Point<dim> &p)
+            {
+              dealii::Point<dim> q;
+              if constexpr (dim == 2)
+              {
+                q[0] = p[1];
+                q[1] = -p[0];
+              }
+              else
+              {
+                q[0] = p[1];
+                q[1] = p[0];
+                q[2] = -p[2];
+              }
+              return q;
+            },
+            triangulation);
+          triangulation.set_all_manifold_ids(dealii::numbers::flat_manifold_id);
+          const double tolerance = 1e-10 * radius_;
+          for (const auto &cell : triangulation.active_cell_iterators())
+            for (const unsigned int f : cell->face_indices())
+              if (cell->face(f)->at_boundary())
+              {
+                const dealii::Point<dim> c = cell->face(f)->center();
+                if (std::abs(c[0]) < tolerance)
+                  cell->face(f)->set_boundary_id(1);
+                else if (std::abs(c[dim - 1]) < tolerance)
+                  cell->face(f)->set_boundary_id(2);
+                else if (dim == 3 && std::abs(c[1]) < tolerance)
+                  cell->face(f)->set_boundary_id(3);
+                else
+                {
+                  cell->face(f)->set_boundary_id(0);
+                  cell->face(f)->set_all_manifold_ids(0);
+                }
+              }
+          triangulation.set_manifold(
+            0, dealii::SphericalManifold<dim>(dealii::Point<dim>()));
+          break;
+        }
         case Kind::cylinder:
           dealii::GridGenerator::cylinder(triangulation, radius_, half_length_);
           break;
@@ -297,6 +380,14 @@ namespace dualcontact
                                  std::string()));
       place(triangulation, placement);
       triangulation.refine_global(n_refinements_);
+      for (unsigned int step = 0; step < n_local_refinements_; ++step)
+      {
+        for (const auto &cell : triangulation.active_cell_iterators())
+          if (cell->center().distance(local_refinement_center_) <
+              local_refinement_radius_ + cell->diameter())
+            cell->set_refine_flag();
+        triangulation.execute_coarsening_and_refinement();
+      }
     }
 
 
@@ -319,6 +410,10 @@ namespace dualcontact
           text << (dim == 2 ? "half disc" : "half ball") << " of radius "
                << radius_;
           break;
+        case Kind::quarter_ball:
+          text << (dim == 2 ? "quarter disc" : "octant of a ball")
+               << " of radius " << radius_;
+          break;
         case Kind::cylinder:
           text << "cylinder of radius " << radius_ << ", length "
                << 2 * half_length_;
@@ -329,6 +424,10 @@ namespace dualcontact
       }
       text << ", " << n_refinements_ << " global refinement"
            << (n_refinements_ == 1 ? "" : "s");
+      if (n_local_refinements_ > 0)
+        text << ", " << n_local_refinements_ << " local refinement"
+             << (n_local_refinements_ == 1 ? "" : "s") << " within "
+             << local_refinement_radius_ << " m";
       return text.str();
     }
 

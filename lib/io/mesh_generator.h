@@ -29,6 +29,12 @@ namespace dualcontact
      *  - `half ball' (half disc in 2D): GridGenerator::half_hyper_ball, centre
      *    0, `Radius', the part x >= 0; boundary id 0 on the curved surface, 1
      *    on the flat cut x = 0.
+     *  - `quarter ball': the lower quarter disc (2D: x >= 0, y <= 0) or
+     *    lower octant (3D: x >= 0, y >= 0, z <= 0) of the ball of `Radius'
+     *    around 0 (GridGenerator::quarter_hyper_ball, rotated): a Hertz
+     *    body with symmetry planes whose lowest point is (0, -R) / (0, 0,
+     *    -R); boundary id 0 curved, 1 at x = 0, 2 on the flat top, 3 at y =
+     *    0 (3D).
      *  - `cylinder': GridGenerator::cylinder, axis along x from -`Half
      *    length' to +`Half length', `Radius'; boundary id 0 on the hull, 1 at
      *    x = -L, 2 at x = +L.  In 2D this is the rectangle [-L, L] x [-R, R]
@@ -38,6 +44,10 @@ namespace dualcontact
      * is looked for): boundary ids are the physical tags of the boundary lines
      * (2D) or faces (3D), material ids the physical tags of the cells
      * (quadrilaterals/hexahedra only). Generated meshes have material id 0.
+     *
+     * After the global refinements, `Local refinements' times the cells
+     * near `Local refinement center' (within `Local refinement radius' plus
+     * their diameter, placed coordinates) are refined: a contact zone.
      */
     template <int dim>
     class MeshGenerator
@@ -48,6 +58,7 @@ namespace dualcontact
         box,
         ball,
         half_ball,
+        quarter_ball,
         cylinder,
         gmsh
       };
@@ -99,7 +110,10 @@ namespace dualcontact
       double                    radius_      = 1;
       double                    half_length_ = 1;
       std::string               gmsh_file_;
-      unsigned int              n_refinements_ = 0;
+      unsigned int              n_refinements_       = 0;
+      unsigned int              n_local_refinements_ = 0;
+      dealii::Point<dim>        local_refinement_center_;
+      double                    local_refinement_radius_ = 0;
       std::string               path_;
     };
   } // namespace io

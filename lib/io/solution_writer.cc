@@ -1,6 +1,7 @@
 #include <deal.II/base/data_out_base.h>
 #include <deal.II/numerics/data_out.h>
 
+#include <io/contact_surface_writer.h>
 #include <io/elasticity_postprocessor.h>
 #include <io/solution_writer.h>
 
@@ -16,7 +17,8 @@ namespace dualcontact
     write_solution(
       OutputFolder                                              &folder,
       const std::vector<std::unique_ptr<fem::ElasticBody<dim>>> &bodies,
-      const std::vector<dealii::Vector<double>>                 &displacements)
+      const std::vector<dealii::Vector<double>>                 &displacements,
+      const std::vector<std::string> &additional_parts)
     {
       std::vector<std::string> pieces;
       // kept for write_pvtu_record, which needs the field names
@@ -56,22 +58,24 @@ namespace dualcontact
       folder.write("solution.pvtu",
                    [&](std::ostream &out)
                    { first_data_out->write_pvtu_record(out, pieces); });
+      std::vector<std::pair<double, std::string>> parts{
+        {0., std::string("solution.pvtu")}};
+      for (const auto &part : additional_parts)
+        parts.emplace_back(0., part);
       folder.write("solution.pvd",
-                   [](std::ostream &out)
-                   {
-                     dealii::DataOutBase::write_pvd_record(
-                       out, {std::make_pair(0., std::string("solution.pvtu"))});
-                   });
+                   [&parts](std::ostream &out) { write_pvd(out, parts); });
     }
 
 
     template void
     write_solution<2>(OutputFolder &,
                       const std::vector<std::unique_ptr<fem::ElasticBody<2>>> &,
-                      const std::vector<dealii::Vector<double>> &);
+                      const std::vector<dealii::Vector<double>> &,
+                      const std::vector<std::string> &);
     template void
     write_solution<3>(OutputFolder &,
                       const std::vector<std::unique_ptr<fem::ElasticBody<3>>> &,
-                      const std::vector<dealii::Vector<double>> &);
+                      const std::vector<dealii::Vector<double>> &,
+                      const std::vector<std::string> &);
   } // namespace io
 } // namespace dualcontact

@@ -19,14 +19,17 @@ namespace dualcontact
      *    and the fields of io::ElasticityPostprocessor; cells are subdivided
      *    p times for FE_Q(p) and curved with the body's mapping;
      *  - `solution.pvtu': all bodies as the pieces of one data set;
-     *  - `solution.pvd': the PVD record (time 0) of solution.pvtu: the file
-     *    to open in ParaView.
+     *  - `solution.pvd': the PVD record (time 0) of solution.pvtu and of
+     *    the @p additional_parts (e.g. the contact surfaces, written by the
+     *    caller), each one part of the same step: the file to open in
+     *    ParaView.
      */
     template <int dim>
     void
     write_solution(
       OutputFolder                                              &folder,
       const std::vector<std::unique_ptr<fem::ElasticBody<dim>>> &bodies,
-      const std::vector<dealii::Vector<double>>                 &displacements);
+      const std::vector<dealii::Vector<double>>                 &displacements,
+      const std::vector<std::string> &additional_parts = {});
   } // namespace io
 } // namespace dualcontact
