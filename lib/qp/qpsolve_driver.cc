@@ -37,7 +37,8 @@ namespace dualcontact
         std::string solver    = "mprgp";
         double      tolerance = -1.;
         std::string criterion;
-        long        max_iterations = -1;
+        long        max_iterations    = -1;
+        long        stagnation_window = -1;
         std::string x_out;
         std::string json_out;
       };
@@ -93,6 +94,24 @@ namespace dualcontact
             if (o.max_iterations < 1)
               throw UsageError("--max-iter must be >= 1");
           }
+          else if (a == "--stagnation-window")
+          {
+            const std::string v = value();
+            try
+            {
+              std::size_t used    = 0;
+              o.stagnation_window = std::stol(v, &used);
+              if (used != v.size())
+                throw std::invalid_argument(v);
+            }
+            catch (const std::exception &)
+            {
+              throw UsageError("--stagnation-window: '" + v +
+                               "' is not an integer");
+            }
+            if (o.stagnation_window < 0)
+              throw UsageError("--stagnation-window must be >= 0 (0: never)");
+          }
           else if (a == "--x-out")
             o.x_out = value();
           else if (a == "--json-out")
@@ -135,7 +154,7 @@ namespace dualcontact
       return "usage: qpsolve PROBLEM.json --solver " + solver_names() +
              "|cgc [--tol T] [--criterion "
              "projected|reduced|reduced-projected] [--max-iter N] "
-             "[--x-out FILE] [--json-out FILE]\n"
+             "[--stagnation-window N] [--x-out FILE] [--json-out FILE]\n"
              "Exit code 0: converged, 2: not converged, 1: bad input.";
     }
 
@@ -235,6 +254,8 @@ namespace dualcontact
           prm.stopping_criterion = parse_stopping_criterion(options.criterion);
         if (options.max_iterations > 0)
           prm.max_iterations = options.max_iterations;
+        if (options.stagnation_window >= 0)
+          prm.stagnation_window = options.stagnation_window;
         prm.check();
 
         const ProblemData &d = *data;
