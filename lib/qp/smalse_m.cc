@@ -159,6 +159,11 @@ namespace dualcontact
         eq.Tvmult(BtBx, Bx);
         dst.add(rho, BtBx);
       };
+      if (eq.norm_sq > 0.)
+        // lambda_max(A + rho B'B) <= lambda_max(A) + rho ||B||^2: an upper
+        // bound is a safe step length and costs no products
+        inner.lambda_max = lmax_A + rho * eq.norm_sq;
+      else
       {
         const PowerIterationResult r =
           power_iteration<VectorType>(inner.hessian,
