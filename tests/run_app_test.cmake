@@ -2,6 +2,8 @@
 #  MODE=compare: must succeed; WORKDIR/<output>/results.txt is compared with
 #                REF by numdiff (relative 1e-8, absolute 1e-12), where <output>
 #                is the only folder the run created.
+#  MODE=nonconverged: must exit with 2 (the contact solver failed) and still
+#                write results.txt containing `contact.converged = 0'.
 #  MODE=fail:    must exit non-zero, print EXPECT (stdout or stderr), and leave
 #                WORKDIR empty (no partial output).
 file(REMOVE_RECURSE ${WORKDIR})
@@ -23,6 +25,24 @@ if(MODE STREQUAL "fail")
   file(GLOB _left_dirs LIST_DIRECTORIES true ${WORKDIR}/*)
   if(_left OR _left_dirs)
     message(FATAL_ERROR "a failed run left output behind: ${_left} ${_left_dirs}")
+  endif()
+elseif(MODE STREQUAL "nonconverged")
+  if(NOT _rc EQUAL 2)
+    message(FATAL_ERROR "expected exit code 2, got ${_rc}")
+  endif()
+  file(GLOB_RECURSE _results ${WORKDIR}/*results.txt)
+  list(LENGTH _results _n)
+  if(NOT _n EQUAL 1)
+    message(FATAL_ERROR "expected exactly one results.txt, found: ${_results}")
+  endif()
+  file(READ ${_results} _text)
+  string(FIND "${_text}" "contact.converged = 0" _pos)
+  if(_pos EQUAL -1)
+    message(FATAL_ERROR "results.txt does not say contact.converged = 0")
+  endif()
+  string(FIND "${_out}${_err}" "did NOT converge" _pos)
+  if(_pos EQUAL -1)
+    message(FATAL_ERROR "the run did not report the failure")
   endif()
 else()
   if(NOT _rc EQUAL 0)

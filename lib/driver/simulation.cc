@@ -239,6 +239,7 @@ namespace dualcontact
                   << " (||b|| " << last.norm_b << ")";
           if (!last.message.empty())
             message << "; " << last.message;
+          message << ".";
         }
         if (!contact_result_.coulomb_changes.empty())
           message << std::setprecision(3) << " Last Coulomb change of psi: "
