@@ -12,8 +12,8 @@
 #include <cmath>
 #include <iomanip>
 #include <iostream>
-#include <sstream>
 #include <set>
+#include <sstream>
 #include <string>
 
 namespace
@@ -36,7 +36,7 @@ namespace
    */
   template <int dim>
   void
-  check_generator(const std::string                  &generator,
+  check_generator(const std::string                          &generator,
                   const std::set<dealii::types::boundary_id> &expected_ids)
   {
     dealii::ParameterHandler prm;
@@ -70,30 +70,29 @@ namespace
 
     const dealii::Point<dim> center = placement(dealii::Point<dim>());
     dealii::Tensor<1, dim>   axis;
-    axis[0] = 1;
-    axis    = placement.rotate(axis);
+    axis[0]          = 1;
+    axis             = placement.rotate(axis);
     double max_error = 0;
     for (const auto &cell : triangulation.active_cell_iterators())
       for (const auto face : cell->face_indices())
         if (cell->face(face)->at_boundary() &&
             cell->face(face)->boundary_id() == 0)
           for (const auto v : cell->face(face)->vertex_indices())
-            {
-              dealii::Tensor<1, dim> offset = cell->face(face)->vertex(v) -
-                                              center;
-              if (generator == "cylinder")
-                offset -= (offset * axis) * axis;
-              max_error =
-                std::max(max_error, std::abs(offset.norm() - radius));
-            }
+          {
+            dealii::Tensor<1, dim> offset =
+              cell->face(face)->vertex(v) - center;
+            if (generator == "cylinder")
+              offset -= (offset * axis) * axis;
+            max_error = std::max(max_error, std::abs(offset.norm() - radius));
+          }
     if (generator == "box")
       return;
     std::ostringstream error;
     error << std::scientific << std::setprecision(1) << max_error;
     check(max_error < 1e-12,
           std::to_string(dim) + "D " + generator +
-            ": refined boundary on the placed surface (error " +
-            error.str() + ")");
+            ": refined boundary on the placed surface (error " + error.str() +
+            ")");
   }
 } // namespace
 
@@ -105,6 +104,8 @@ main()
   check_generator<2>("half ball", {0, 1});
   check_generator<3>("ball", {0});
   check_generator<3>("half ball", {0, 1});
+  check_generator<2>("quarter ball", {0, 1, 2});
+  check_generator<3>("quarter ball", {0, 1, 2, 3});
   check_generator<2>("cylinder", {0, 1, 2});
   check_generator<3>("cylinder", {0, 1, 2});
   check_generator<2>("box", {0, 1, 2, 3});
