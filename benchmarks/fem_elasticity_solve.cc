@@ -7,8 +7,8 @@
 //                          [SOLVER=cholmod|cholmod-amd|cholmod-metis|umfpack]
 //
 // Prints one line: dim degree cells dofs setup assembly factorize solve
-// nnz(L) GFlop(factorization) peak_MB.  scripts/bench_elasticity runs it over a range of sizes,
-// one process per size so that the peak memory is that size's.
+// nnz(L) GFlop(factorization) peak_MB.  scripts/bench_elasticity runs it over a
+// range of sizes, one process per size so that the peak memory is that size's.
 
 #include <deal.II/base/timer.h>
 #include <deal.II/grid/grid_generator.h>
@@ -29,21 +29,26 @@ template <int dim>
 void
 run(const unsigned int n, const unsigned int degree, const std::string &name)
 {
-  Timer timer;
-  auto  tria = std::make_shared<Triangulation<dim>>();
+  Timer                     timer;
+  auto                      tria = std::make_shared<Triangulation<dim>>();
   std::vector<unsigned int> subdivisions(dim, n);
   subdivisions[0] = 2 * n;
   Point<dim> p2;
   p2[0] = 2;
   for (unsigned int d = 1; d < dim; ++d)
     p2[d] = 1;
-  GridGenerator::subdivided_hyper_rectangle(*tria, subdivisions, Point<dim>(), p2, true);
+  GridGenerator::subdivided_hyper_rectangle(
+    *tria, subdivisions, Point<dim>(), p2, true);
   for (const auto &cell : tria->active_cell_iterators())
     cell->set_material_id(0);
-  fem::ElasticBody<dim> body("box", tria, degree,
+  fem::ElasticBody<dim> body("box",
+                             tria,
+                             degree,
                              {{0, fem::IsotropicMaterial(2e11, 0.3)}});
   body.set_dirichlet_conditions(
-    {{0, ComponentMask(dim, true), std::make_shared<Functions::ZeroFunction<dim>>(dim)}});
+    {{0,
+      ComponentMask(dim, true),
+      std::make_shared<Functions::ZeroFunction<dim>>(dim)}});
   std::vector<double> traction(dim, 0.);
   traction[dim - 1] = -1e6;
   body.set_traction_conditions(
@@ -64,7 +69,7 @@ run(const unsigned int n, const unsigned int degree, const std::string &name)
       fem::CholmodSolver::parse_ordering(name.substr(8)));
   timer.restart();
   solver->initialize(body.stiffness_matrix());
-  const double t_factorize = timer.wall_time();
+  const double   t_factorize = timer.wall_time();
   Vector<double> u;
   timer.restart();
   solver->solve(u, body.load_vector());
@@ -76,34 +81,34 @@ run(const unsigned int n, const unsigned int degree, const std::string &name)
             << body.n_dofs() << std::fixed << std::setprecision(3) << ' '
             << t_setup << ' ' << t_assemble << ' ' << t_factorize << ' '
             << t_solve << ' ' << std::setprecision(0)
-            << solver->statistics().factor_nonzeros << ' ' << std::setprecision(1)
-            << solver->statistics().factor_flops / 1e9 << ' '
-            << usage.ru_maxrss / 1024. << std::endl;
+            << solver->statistics().factor_nonzeros << ' '
+            << std::setprecision(1) << solver->statistics().factor_flops / 1e9
+            << ' ' << usage.ru_maxrss / 1024. << std::endl;
 }
 
 int
 main(int argc, char **argv)
 {
   if (argc < 3)
-    {
-      std::cerr << "usage: bench_fem_elasticity_solve DIM N [DEGREE] [SOLVER]\n";
-      return 1;
-    }
+  {
+    std::cerr << "usage: bench_fem_elasticity_solve DIM N [DEGREE] [SOLVER]\n";
+    return 1;
+  }
   const int          dim    = std::stoi(argv[1]);
   const unsigned int n      = std::stoi(argv[2]);
   const unsigned int degree = argc > 3 ? std::stoi(argv[3]) : 1;
   const std::string  solver = argc > 4 ? argv[4] : "cholmod";
   try
-    {
-      if (dim == 2)
-        run<2>(n, degree, solver);
-      else
-        run<3>(n, degree, solver);
-    }
+  {
+    if (dim == 2)
+      run<2>(n, degree, solver);
+    else
+      run<3>(n, degree, solver);
+  }
   catch (const std::exception &e)
-    {
-      std::cerr << e.what() << std::endl;
-      return 1;
-    }
+  {
+    std::cerr << e.what() << std::endl;
+    return 1;
+  }
   return 0;
 }

@@ -4,11 +4,11 @@
 #include <deal.II/base/exceptions.h>
 
 // ---- REGISTRATION POINT (1 of 2): include the solver headers here. ----
+#include <qp/apgd.h>
 #include <qp/mpgp.h>
 #include <qp/mpgp_bb.h>
 #include <qp/mprgp.h>
 #include <qp/mwpgp.h>
-#include <qp/apgd.h>
 #include <qp/pbbf.h>
 #include <qp/spg_qp.h>
 // ---- end of registration point 1 ----

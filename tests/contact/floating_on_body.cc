@@ -122,8 +122,8 @@ run()
         u(contact.body_offset(b) + i) = result.displacements[b](i);
     Vector<double> bn(n);
     contact.normal_matrix().vmult(bn, u);
-    const Vector<double> c     = contact.normal_bound();
-    double               scale = u.linfty_norm(), penetration = 0, open_pressed = 0;
+    const Vector<double> c = contact.normal_bound();
+    double scale = u.linfty_norm(), penetration = 0, open_pressed = 0;
     for (unsigned int i = 0; i < n; ++i)
     {
       penetration = std::max(penetration, (bn(i) - c(i)) / scale);
