@@ -21,37 +21,14 @@
 
 #include <test_tools.h>
 
+#include "unit_box.h"
+
 #include <iostream>
 
 using namespace dealii;
 using namespace dualcontact;
 
 using test_tools::check;
-
-template <int dim>
-std::unique_ptr<fem::ElasticBody<dim>>
-make_box(const double       bottom,
-         const unsigned int n,
-         const unsigned int degree,
-         const std::string &name)
-{
-  auto       tria = std::make_shared<Triangulation<dim>>();
-  Point<dim> p1, p2;
-  for (unsigned int d = 0; d < dim; ++d)
-    p2[d] = 1;
-  p1[dim - 1] = bottom;
-  p2[dim - 1] = bottom + 1;
-  GridGenerator::subdivided_hyper_rectangle(
-    *tria, std::vector<unsigned int>(dim, n), p1, p2, true);
-  for (const auto &cell : tria->active_cell_iterators())
-    cell->set_material_id(0);
-  return std::make_unique<fem::ElasticBody<dim>>(
-    name,
-    tria,
-    degree,
-    std::map<types::material_id, fem::IsotropicMaterial>{
-      {0, fem::IsotropicMaterial(1e9, 0.3)}});
-}
 
 template <int dim>
 double
@@ -74,7 +51,7 @@ run(const unsigned int degree)
   std::cout << dim << "D Q" << degree << std::endl;
   const types::boundary_id bottom = 2 * (dim - 1), top = 2 * dim - 1;
   {
-    auto body = make_box<dim>(0.1, 4, degree, "box");
+    auto body = make_unit_box<dim>("box", 0.1, 4, degree);
     body->setup();
     Tensor<1, dim> up;
     up[dim - 1] = 1;
@@ -107,7 +84,7 @@ run(const unsigned int degree)
   }
   {
     // Curved foundation: h = 0.2 sin(x_1) (+ 0.1 x_2^2 in 3D) - 0.3
-    auto body = make_box<dim>(0.1, 3, degree, "box");
+    auto body = make_unit_box<dim>("box", 0.1, 3, degree);
     body->setup();
     const std::string expression =
       dim == 2 ? "0.2*sin(x) - 0.3" : "0.2*sin(x) + 0.1*y^2 - 0.3";
@@ -146,8 +123,8 @@ run(const unsigned int degree)
   }
   {
     // Upper box (slave, 3 cells per direction) on a lower box (master, 4).
-    auto lower = make_box<dim>(0, 4, degree, "lower");
-    auto upper = make_box<dim>(1, 3, degree, "upper");
+    auto lower = make_unit_box<dim>("lower", 0, 4, degree);
+    auto upper = make_unit_box<dim>("upper", 1, 3, degree);
     lower->setup();
     upper->setup();
     contact::ContactPair<dim> pair;
@@ -213,7 +190,7 @@ run(const unsigned int degree)
   }
   {
     // Prescribed displacement on the slave's bottom face itself.
-    auto                body = make_box<dim>(0.1, 2, degree, "box");
+    auto                body = make_unit_box<dim>("box", 0.1, 2, degree);
     std::vector<double> value(dim, 0.);
     value[dim - 1] = -0.05;
     value[0]       = 0.02;
@@ -251,7 +228,7 @@ run(const unsigned int degree)
           contact.normal_matrix().linfty_norm());
   }
   {
-    auto body = make_box<dim>(0.5, 2, degree, "box");
+    auto body = make_unit_box<dim>("box", 0.5, 2, degree);
     body->setup();
     Tensor<1, dim> up;
     up[dim - 1] = 1;

@@ -18,36 +18,13 @@
 
 #include <test_tools.h>
 
+#include "unit_box.h"
+
 #include <iostream>
 
 using namespace dealii;
 using namespace dualcontact;
 using test_tools::check;
-
-template <int dim>
-std::unique_ptr<fem::ElasticBody<dim>>
-make_block(const double       bottom,
-           const unsigned int n,
-           const std::string &name,
-           const double       E)
-{
-  auto       tria = std::make_shared<Triangulation<dim>>();
-  Point<dim> p1, p2;
-  for (unsigned int d = 0; d < dim; ++d)
-    p2[d] = 1;
-  p1[dim - 1] = bottom;
-  p2[dim - 1] = bottom + 1;
-  GridGenerator::subdivided_hyper_rectangle(
-    *tria, std::vector<unsigned int>(dim, n), p1, p2, true);
-  for (const auto &cell : tria->active_cell_iterators())
-    cell->set_material_id(0);
-  return std::make_unique<fem::ElasticBody<dim>>(
-    name,
-    tria,
-    1,
-    std::map<types::material_id, fem::IsotropicMaterial>{
-      {0, fem::IsotropicMaterial(E, 0.3)}});
-}
 
 template <int dim>
 void
@@ -56,8 +33,8 @@ run()
   std::cout << dim << "D" << std::endl;
   const double             p = 1e6, tau = 1e5, g = 5e5;
   const types::boundary_id bottom = 2 * (dim - 1), top = 2 * dim - 1;
-  auto                     lower = make_block<dim>(0, 3, "lower", 1e9);
-  auto                     upper = make_block<dim>(1, 4, "upper", 2e9);
+  auto                     lower = make_unit_box<dim>("lower", 0, 3, 1, 1e9);
+  auto                     upper = make_unit_box<dim>("upper", 1, 4, 1, 2e9);
   lower->set_dirichlet_conditions(
     {{bottom,
       ComponentMask(dim, true),
