@@ -350,6 +350,11 @@ namespace dualcontact
               return n.free_sq + n.chopped_sq;
             }()) :
           g.l2_norm();
+      // likewise complementarity: with the plain gradient Ax - b the bound
+      // multiplier estimates -g_j miss B'lambda and are wrong wherever a
+      // bound is inactive (a floating body's contact nodes in contact)
+      if (problem.constraints)
+        stats.kkt.complementarity = problem.constraints->complementarity(x, g);
       if (stats.reason == ConvergenceReason::converged &&
           !(stats.final_criterion <= prm.tolerance))
         stats.reason = ConvergenceReason::stagnation;

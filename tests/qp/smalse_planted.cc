@@ -5,7 +5,8 @@
 //  - SPS Hessian (a graph Laplacian, kernel = constants) made definite on
 //    ker B by a row of ones in B, inner solvers mprgp and pbbf.
 // Asserts: converged, ||x - x*|| <= 1e-6 max(1, ||x*||), ||Bx - c|| <=
-// 1e-8 ||b||, outer iterations >= 1 reported; and that a limit of 3 inner
+// 1e-8 ||b||, outer iterations >= 1 reported, KKT stationarity and
+// complementarity of the Lagrangian small; and that a limit of 3 inner
 // iterations is reported as not converged.
 #include <deal.II/lac/full_matrix.h>
 #include <deal.II/lac/vector.h>
@@ -131,6 +132,13 @@ main()
               error.l2_norm() <= 1e-6 * std::max(1., x_star.l2_norm()) &&
               smalse.equality_residual() <= 1e-8 * stats.norm_b,
             "SMALSE-M " + kind + " / " + inner + ": converged to x*, Bx = c");
+      // KKT residuals of the Lagrangian (stationarity, complementarity with
+      // the multiplier estimates from Ax - b + B'lambda): small at x*
+      check(stats.kkt.stationarity <= 1e-8 * stats.norm_b &&
+              stats.kkt.complementarity <= 1e-8 * stats.norm_b,
+            "SMALSE-M " + kind + " / " + inner + ": KKT stationarity " +
+              std::to_string(stats.kkt.stationarity) + ", complementarity " +
+              std::to_string(stats.kkt.complementarity));
       Vec mult_error(smalse.multipliers());
       mult_error -= nu;
       check(mult_error.l2_norm() <= 1e-5 * std::max(1., nu.l2_norm()),

@@ -1,0 +1,47 @@
+#!/usr/bin/env python3
+"""Runs one benchmark case of dualcontact and records how it went.
+
+Usage: run_case.py PROGRAM CASE_DIR INPUT.prm [TIME_LIMIT_S]
+
+Runs PROGRAM INPUT.prm in CASE_DIR (stdout and stderr to CASE_DIR/log.txt)
+and writes CASE_DIR/run.json: exit code (0 converged, 2 the contact solver
+failed, other: error), whether the time limit stopped it, wall time of the
+process [s], its peak resident memory [MB] and the load average when it
+started.  Prints a one-line summary.
+"""
+import json
+import os
+import resource
+import subprocess
+import sys
+import time
+
+
+def main():
+    program, case_dir, prm = sys.argv[1:4]
+    limit = float(sys.argv[4]) if len(sys.argv) > 4 and float(sys.argv[4]) > 0 else None
+    load = open("/proc/loadavg").read().split()[:3]
+    start = time.time()
+    timeout = False
+    with open(os.path.join(case_dir, "log.txt"), "w") as log:
+        try:
+            code = subprocess.run([program, prm], cwd=case_dir, stdout=log,
+                                  stderr=subprocess.STDOUT, timeout=limit).returncode
+        except subprocess.TimeoutExpired:
+            code, timeout = None, True
+    wall = time.time() - start
+    # the children are run one at a time, so the maximum over all children
+    # is this run's peak
+    peak = resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss / 1024.0
+    record = {"exit_code": code, "timeout": timeout, "wall_time_s": wall,
+              "peak_memory_MB": peak, "load_average": load}
+    with open(os.path.join(case_dir, "run.json"), "w") as f:
+        json.dump(record, f, indent=2)
+    if timeout:
+        print("stopped after %.0f s" % wall)
+    else:
+        print("exit %d, %.1f s, %.0f MB peak, load %s" % (code, wall, peak, load[0]))
+
+
+if __name__ == "__main__":
+    main()
