@@ -12,13 +12,17 @@ out/statistics.json and run.json of a dualcontact run of inputs/cylinder.prm
 (SMALSE-M around the solver).  Prints per formulation a Markdown table:
 columns E [MPa], rows the spectrum (primal), the number of active
 constraints (nodes in contact: primal bounds at the wall; dual normal
-multipliers lambda_N > 0, i.e. bound constraints NOT active) and per solver
+multipliers lambda_N > 0 from contact_N.vtu, i.e. bound constraints NOT
+active), the relative force balance error |gravity + wall forces| /
+|gravity| (dual) and per solver
 "iterations / Hessian products" (dual: "outer / inner / products") or, for
 a run that did not converge, its reason and the relative criterion reached.
 """
 import argparse
 import json
+import math
 import os
+import xml.etree.ElementTree as ET
 
 NAMES = {"mprgp": "MPRGP(S)", "mpgp": "MPGP", "mpgp-bb": "MPGP-BB", "mwpgp": "MwPGP",
          "spg-qp": "SPG-QP", "pbbf": "PBBf", "apgd": "APGD"}
@@ -66,8 +70,7 @@ def primal_table(bench_dir, moduli, solvers):
     # active constraints: from the first converged run of each E
     cells = []
     for E in moduli:
-        counts = sorted({r["statistics"]["active_blocks"]["bound"]["active"]
-                         for (e, s), r in runs.items()
+        counts = sorted({r["n_active_bounds"] for (e, s), r in runs.items()
                          if e == pascal(E) and r["statistics"]["converged"]})
         cells.append("/".join(str(c) for c in counts) if counts else "-")
     print("| active (converged runs) | %s |" % " | ".join(cells))
@@ -85,6 +88,39 @@ def primal_table(bench_dir, moduli, solvers):
                 cells.append("%s after %d / %d" % (failed(q), q["iterations"],
                                                    q["hessian_products"]))
         print("| %s | %s |" % (NAMES.get(s, s), " | ".join(cells)))
+
+
+def in_contact(out_dir):
+    """Nodes with a positive normal multiplier (pressure > 0) on both walls,
+    from contact_1.vtu and contact_2.vtu: in the dual these are the bound
+    constraints lambda_N >= 0 that are NOT active."""
+    count = 0
+    for k in (1, 2):
+        piece = ET.parse(os.path.join(out_dir, "contact_%d.vtu" % k)).getroot().find(
+            "UnstructuredGrid/Piece")
+        for array in piece.find("PointData"):
+            if array.get("Name") == "pressure_Pa":
+                count += sum(1 for v in array.text.split() if float(v) > 0)
+    return count
+
+
+def read_results(path):
+    values = {}
+    for line in open(path):
+        if "=" in line and not line.startswith("#"):
+            key, value = line.split("=", 1)
+            try:
+                values[key.strip()] = [float(v) for v in value.split(",")]
+            except ValueError:
+                pass
+    return values
+
+
+def error_text(log):
+    for line in open(log):
+        if line.startswith("Error:"):
+            return line[len("Error:"):].strip().split(":")[0]
+    return "see " + log
 
 
 def dual_table(bench_dir, moduli, solvers):
@@ -114,11 +150,22 @@ def dual_table(bench_dir, moduli, solvers):
         counts = set()
         for (e, s), (st, run) in cases.items():
             if e == E and st and st["contact"]["converged"]:
-                q = st["contact"]["qp_solves"][-1]
-                b = q["active_blocks"]["bound"]
-                counts.add(b["total"] - b["active"])
+                counts.add(in_contact(os.path.join(bench_dir, "dual_E%s_%s" % (e, s), "out")))
         cells.append("/".join(str(c) for c in sorted(counts)) if counts else "-")
     print("| nodes in contact (converged runs) | %s |" % " | ".join(cells))
+    cells = []
+    for E in moduli:
+        errors = []
+        for (e, s), (st, run) in cases.items():
+            if e == E and st and st["contact"]["converged"]:
+                r = read_results(os.path.join(bench_dir, "dual_E%s_%s" % (e, s), "out",
+                                              "results.txt"))
+                applied = r["body_1.applied_force"]
+                total = [applied[0] + r["pair_1.normal_force"][0],
+                         applied[1] + r["pair_2.normal_force"][0]]
+                errors.append(math.hypot(*total) / math.hypot(*applied))
+        cells.append("%.0e .. %.0e" % (min(errors), max(errors)) if errors else "-")
+    print("| force balance error (converged runs) | %s |" % " | ".join(cells))
     for s in solvers:
         cells = []
         for E in moduli:
@@ -126,7 +173,8 @@ def dual_table(bench_dir, moduli, solvers):
             if run is None:
                 cells.append("not run")
             elif st is None:
-                cells.append("no output (exit %s)" % run["exit_code"])
+                cells.append("**error**, exit %s: %s" % (run["exit_code"], error_text(
+                    os.path.join(bench_dir, "dual_E%s_%s" % (E, s), "log.txt"))))
             else:
                 q = st["contact"]["qp_solves"][-1]
                 counts = "%d / %d / %d" % (q["iterations_by_kind"]["outer"], q["iterations"],
