@@ -1,5 +1,7 @@
 #include <deal.II/base/exceptions.h>
+#include <deal.II/base/timer.h>
 #include <deal.II/lac/full_matrix.h>
+#include <deal.II/lac/lapack_templates.h>
 
 #include <contact/dual_problem.h>
 #include <fem/generalized_inverse.h>
@@ -8,7 +10,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iomanip>
 #include <limits>
+#include <sstream>
 
 namespace dualcontact
 {
@@ -16,17 +20,137 @@ namespace dualcontact
   {
     using namespace dealii;
 
+    void
+    DualProblemParameters::declare_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Dual problem");
+      prm.declare_entry(
+        "Operator",
+        "automatic",
+        Patterns::Selection("automatic|assembled|implicit"),
+        "How F = B K^# B' is applied. assembled: K is factorized with the "
+        "contact dofs C ordered last, the trailing block L of the factor "
+        "(S = L L', S the Schur complement of K on C) gives the dense m x m "
+        "matrix F = W'W, W = L^{-1} B_C', and a product costs m^2 flops; "
+        "needs `set Solver = cholmod' in `subsection Stiffness solver'. "
+        "implicit: one solve with the whole factor per product. automatic: "
+        "assembled when possible within the memory limit, else implicit.");
+      prm.declare_entry("Memory limit",
+                        "2048",
+                        Patterns::Double(0),
+                        "Largest memory [MB] the dense matrices of the "
+                        "assembled operator (F, and per body L and W) may "
+                        "take; `automatic' falls back to implicit above it, "
+                        "`assembled' stops with an error.");
+      prm.leave_subsection();
+    }
+
+
+    void
+    DualProblemParameters::parse_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Dual problem");
+      const std::string name = prm.get("Operator");
+      form = name == "assembled" ? Operator::assembled :
+             name == "implicit"  ? Operator::implicit :
+                                   Operator::automatic;
+      memory_limit = prm.get_double("Memory limit");
+      prm.leave_subsection();
+    }
+
+
+    template <int dim>
+    template <typename Function>
+    void
+    DualProblem<dim>::for_each_in_row(const unsigned int r,
+                                      const Function    &f) const
+    {
+      const unsigned int n_nodes = contact_.n_nodes();
+      if (r < n_nodes)
+      {
+        const auto &B = contact_.normal_matrix();
+        for (auto it = B.begin(r); it != B.end(r); ++it)
+          f(it->column(), it->value());
+      }
+      else
+      {
+        const unsigned int j   = (r - n_nodes) / (dim - 1);
+        const unsigned int k   = (r - n_nodes) % (dim - 1);
+        const unsigned int row = (dim - 1) * frictional_nodes_[j] + k;
+        const auto        &B   = contact_.tangential_matrix();
+        for (auto it = B.begin(row); it != B.end(row); ++it)
+          f(it->column(), it->value());
+      }
+    }
+
+
     template <int dim>
     DualProblem<dim>::DualProblem(
       const std::vector<const fem::ElasticBody<dim> *>             &bodies,
       const ContactDiscretization<dim>                             &contact,
-      const std::function<std::unique_ptr<fem::StiffnessSolver>()> &make_solver)
+      const std::function<std::unique_ptr<fem::StiffnessSolver>()> &make_solver,
+      const DualProblemParameters                                  &parameters)
         : bodies_(bodies)
         , contact_(contact)
     {
+      // Frictional nodes: those of pairs with a friction law.
+      frictional_index_.assign(contact.n_nodes(), -1);
+      for (unsigned int i = 0; i < contact.n_nodes(); ++i)
+        if (contact.pairs()[contact.nodes()[i].pair].friction.has_friction())
+        {
+          frictional_index_[i] = frictional_nodes_.size();
+          frictional_nodes_.push_back(i);
+        }
+      psi_first_.assign(frictional_nodes_.size(), 0.);
+      psi_second_.assign(frictional_nodes_.size(), 0.);
+
+      // The dofs of each body that B touches (C_b) and the rows of B that
+      // touch it; and the memory the assembled form would take.
+      const unsigned int n_bodies = bodies_.size();
+      std::vector<std::vector<types::global_dof_index>> contact_dofs(
+        n_bodies);
+      std::vector<std::vector<unsigned int>> body_rows(n_bodies);
+      {
+        std::vector<unsigned int> body_of_dof(contact.n_dofs());
+        for (unsigned int b = 0; b < n_bodies; ++b)
+          for (unsigned int i = 0; i < bodies_[b]->n_dofs(); ++i)
+            body_of_dof[contact.body_offset(b) + i] = b;
+        std::vector<std::vector<bool>> marked(n_bodies);
+        for (unsigned int b = 0; b < n_bodies; ++b)
+          marked[b].assign(bodies_[b]->n_dofs(), false);
+        for (unsigned int r = 0; r < n_multipliers(); ++r)
+          for_each_in_row(r,
+                          [&](const types::global_dof_index column,
+                              const double                  value)
+                          {
+                            if (value == 0.)
+                              return;
+                            const unsigned int b = body_of_dof[column];
+                            marked[b][column - contact.body_offset(b)] = true;
+                            if (body_rows[b].empty() ||
+                                body_rows[b].back() != r)
+                              body_rows[b].push_back(r);
+                          });
+        for (unsigned int b = 0; b < n_bodies; ++b)
+          for (unsigned int i = 0; i < marked[b].size(); ++i)
+            if (marked[b][i])
+              contact_dofs[b].push_back(i);
+      }
+      const double m = n_multipliers();
+      double       megabytes = m * m;
+      for (unsigned int b = 0; b < n_bodies; ++b)
+      {
+        const double c = contact_dofs[b].size();
+        const double r = body_rows[b].size();
+        megabytes      = std::max(megabytes, m * m + c * c + c * r + r * r);
+      }
+      megabytes *= sizeof(double) / 1048576.;
+
       const unsigned int n_dofs = contact.n_dofs();
       load_.reinit(n_dofs);
-      for (unsigned int b = 0; b < bodies_.size(); ++b)
+      std::vector<fem::StiffnessSolver::SchurFactor> schur(n_bodies);
+      bool assembled = parameters.form != DualProblemParameters::Operator::implicit;
+      for (unsigned int b = 0; b < n_bodies; ++b)
       {
         const types::global_dof_index offset = contact.body_offset(b);
         for (unsigned int i = 0; i < bodies_[b]->n_dofs(); ++i)
@@ -43,20 +167,40 @@ namespace dualcontact
         }
         auto solver = std::make_unique<fem::GeneralizedInverse>(
           make_solver(), modes_.back()->fixing_dofs());
-        solver->initialize(bodies_[b]->stiffness_matrix());
+        if (b == 0 && assembled)
+        {
+          // The decision, once: every body gets the same kind of solver.
+          std::ostringstream reason;
+          if (!solver->offers_schur_factor())
+            reason << "the stiffness solver " << solver->name()
+                   << " offers no Schur factor";
+          else if (megabytes > parameters.memory_limit)
+            reason << std::setprecision(4) << "the dense matrices would take "
+                   << megabytes << " MB, above the limit of "
+                   << parameters.memory_limit << " MB";
+          if (!reason.str().empty())
+          {
+            AssertThrow(parameters.form !=
+                          DualProblemParameters::Operator::assembled,
+                        ExcMessage("`set Operator = assembled' in `subsection "
+                                   "Dual problem' is not possible: " +
+                                   reason.str() + "."));
+            assembled             = false;
+            operator_description_ = "implicit (" + reason.str() + ")";
+          }
+        }
+        if (assembled)
+          solver->initialize_with_schur_factor(bodies_[b]->stiffness_matrix(),
+                                               contact_dofs[b],
+                                               schur[b]);
+        else
+          solver->initialize(bodies_[b]->stiffness_matrix());
         solvers_.push_back(std::move(solver));
       }
-
-      // Frictional nodes: those of pairs with a friction law.
-      frictional_index_.assign(contact.n_nodes(), -1);
-      for (unsigned int i = 0; i < contact.n_nodes(); ++i)
-        if (contact.pairs()[contact.nodes()[i].pair].friction.has_friction())
-        {
-          frictional_index_[i] = frictional_nodes_.size();
-          frictional_nodes_.push_back(i);
-        }
-      psi_first_.assign(frictional_nodes_.size(), 0.);
-      psi_second_.assign(frictional_nodes_.size(), 0.);
+      if (assembled)
+        assemble_operator(schur, body_rows);
+      else if (operator_description_.empty())
+        operator_description_ = "implicit (`set Operator = implicit')";
 
       // d = B K^# f - [c; -o_T]
       work_u_ = load_;
@@ -396,8 +540,131 @@ namespace dualcontact
 
     template <int dim>
     void
+    DualProblem<dim>::assemble_operator(
+      const std::vector<fem::StiffnessSolver::SchurFactor> &schur,
+      const std::vector<std::vector<unsigned int>>         &rows)
+    {
+      Timer                 timer;
+      const types::blas_int m = n_multipliers();
+      F_dense_.assign(static_cast<std::size_t>(m) * m, 0.);
+      std::vector<double>        W, Fb;
+      std::ostringstream         sizes;
+      std::vector<unsigned int>  local_index;
+      for (unsigned int b = 0; b < bodies_.size(); ++b)
+      {
+        const types::blas_int c = schur[b].dofs.size();
+        const types::blas_int r = rows[b].size();
+        sizes << (b == 0 ? "" : ", ") << c;
+        if (c == 0 || r == 0)
+          continue;
+        // W = (B_b)_C' as a dense c x r matrix, then W = L^{-1} W.
+        const types::global_dof_index offset = contact_.body_offset(b);
+        local_index.assign(bodies_[b]->n_dofs(),
+                           numbers::invalid_unsigned_int);
+        for (types::blas_int k = 0; k < c; ++k)
+          local_index[schur[b].dofs[k]] = k;
+        W.assign(static_cast<std::size_t>(c) * r, 0.);
+        for (types::blas_int q = 0; q < r; ++q)
+          for_each_in_row(rows[b][q],
+                          [&](const types::global_dof_index column,
+                              const double                  value)
+                          {
+                            if (column < offset ||
+                                column >= offset + bodies_[b]->n_dofs())
+                              return;
+                            const unsigned int k =
+                              local_index[column - offset];
+                            if (k != numbers::invalid_unsigned_int)
+                              W[static_cast<std::size_t>(q) * c + k] += value;
+                          });
+        types::blas_int info = 0;
+        trtrs("L", "N", "N", &c, &r, schur[b].lower.data(), &c, W.data(), &c,
+              &info);
+        AssertThrow(info == 0,
+                    ExcMessage("Dual operator: the Schur factor of body " +
+                               std::to_string(b + 1) + " is singular."));
+        // F_b = W'W (lower triangle), scattered into F.
+        Fb.assign(static_cast<std::size_t>(r) * r, 0.);
+        const double one = 1., zero = 0.;
+        syrk("L", "T", &r, &c, &one, W.data(), &c, &zero, Fb.data(), &r);
+        for (types::blas_int q = 0; q < r; ++q)
+          for (types::blas_int p = q; p < r; ++p)
+          {
+            const double value = Fb[static_cast<std::size_t>(q) * r + p];
+            F_dense_[static_cast<std::size_t>(rows[b][q]) * m + rows[b][p]] +=
+              value;
+            if (p != q)
+              F_dense_[static_cast<std::size_t>(rows[b][p]) * m +
+                       rows[b][q]] += value;
+          }
+      }
+      assembly_time_ = timer.wall_time();
+      std::ostringstream line;
+      line << "assembled (" << m << " x " << m
+           << " dense; Schur complements of size " << sizes.str() << ")";
+      operator_description_ = line.str();
+    }
+
+
+    template <int dim>
+    double
+    DualProblem<dim>::stiffness_setup_time() const
+    {
+      double time = 0;
+      for (const auto &solver : solvers_)
+        time += solver->statistics().setup_time;
+      return time;
+    }
+
+
+    template <int dim>
+    double
+    DualProblem<dim>::stiffness_solve_time() const
+    {
+      double time = 0;
+      for (const auto &solver : solvers_)
+        time += solver->statistics().solve_time;
+      return time;
+    }
+
+
+    template <int dim>
+    bool
+    DualProblem<dim>::is_assembled() const
+    {
+      return !F_dense_.empty();
+    }
+
+
+    template <int dim>
+    const std::string &
+    DualProblem<dim>::operator_description() const
+    {
+      return operator_description_;
+    }
+
+
+    template <int dim>
+    double
+    DualProblem<dim>::assembly_time() const
+    {
+      return assembly_time_;
+    }
+
+
+    template <int dim>
+    void
     DualProblem<dim>::apply_F(VectorType &dst, const VectorType &src) const
     {
+      if (is_assembled())
+      {
+        const types::blas_int m = n_multipliers(), one = 1;
+        const double          alpha = 1., beta = 0.;
+        dst.reinit(m, true);
+        gemv("N", &m, &m, &alpha, F_dense_.data(), &m, src.begin(), &one,
+             &beta, dst.begin(), &one);
+        return;
+      }
       Vector<double> u;
       apply_Bt(src, u);
       apply_K_inverse(u);

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <deal.II/base/parameter_handler.h>
 #include <deal.II/lac/vector.h>
 
 #include <contact/contact_discretization.h>
@@ -10,12 +11,42 @@
 
 #include <functional>
 #include <memory>
+#include <string>
 #include <vector>
 
 namespace dualcontact
 {
   namespace contact
   {
+    /**
+     * How the dual operator F = B K^# B' is applied (subsection
+     * `Dual problem`).
+     */
+    struct DualProblemParameters
+    {
+      enum class Operator
+      {
+        /** assembled when the stiffness solver offers a Schur factor and
+         *  the dense data fit the memory limit, else implicit */
+        automatic,
+        /** a dense m x m matrix W'W, W = L^{-1} B_C' with L the Cholesky
+         *  factor of the Schur complement of K on the contact dofs C */
+        assembled,
+        /** one K^# solve (a forward and a backward substitution with the
+         *  whole factor) per product */
+        implicit
+      };
+      Operator form = Operator::automatic;
+      /** Limit [MB] for the dense matrices of the assembled form. */
+      double memory_limit = 2048;
+
+      static void
+      declare_parameters(dealii::ParameterHandler &prm);
+      void
+      parse_parameters(dealii::ParameterHandler &prm);
+    };
+
+
     /**
      * The dual of the contact problem of a scene, for one set of slip bounds
      * (one Tresca problem; the Coulomb loop changes the bounds):
@@ -50,12 +81,14 @@ namespace dualcontact
       /**
        * Factorizes every body's K with a solver made by @p make_solver
        * (wrapped in a generalized inverse where the body has rigid-body
-       * modes) and builds d, G, e.
+       * modes) and builds d, G, e; in the assembled form also the dense F.
        */
       DualProblem(const std::vector<const fem::ElasticBody<dim> *> &bodies,
                   const ContactDiscretization<dim>                 &contact,
                   const std::function<std::unique_ptr<fem::StiffnessSolver>()>
-                    &make_solver);
+                                              &make_solver,
+                  const DualProblemParameters &parameters =
+                    DualProblemParameters());
 
       ~DualProblem();
 
@@ -141,11 +174,48 @@ namespace dualcontact
       recover(const VectorType                    &lambda,
               std::vector<dealii::Vector<double>> &displacements) const;
 
-      /** Number of K^# applications so far (two per F product). */
+      /** Number of K^# applications so far (one per implicit F product). */
       unsigned long
       n_stiffness_solves() const;
 
+      /** Wall time [s] of the bodies' factorizations (with Schur factors). */
+      double
+      stiffness_setup_time() const;
+
+      /** Wall time [s] of all K^# solves so far (over all bodies). */
+      double
+      stiffness_solve_time() const;
+
+      /** Whether F is held as a dense matrix (see DualProblemParameters). */
+      bool
+      is_assembled() const;
+
+      /**
+       * One line on the form of F: "assembled (m x m; Schur complements of
+       * sizes ...)" or "implicit (...)", with the reason for the choice.
+       */
+      const std::string &
+      operator_description() const;
+
+      /** Wall time [s] of assembling F (Schur factors excluded). */
+      double
+      assembly_time() const;
+
     private:
+      /** Calls @p f(column, value) for the entries of row @p r of B. */
+      template <typename Function>
+      void
+      for_each_in_row(const unsigned int r, const Function &f) const;
+
+      /**
+       * F = sum_b W_b'W_b with W_b = L_b^{-1} (B_b)_C' from the bodies'
+       * Schur factors.
+       */
+      void
+      assemble_operator(
+        const std::vector<fem::StiffnessSolver::SchurFactor> &schur,
+        const std::vector<std::vector<unsigned int>>         &rows);
+
       void
       apply_K_inverse(dealii::Vector<double> &x) const;
       void
@@ -175,6 +245,10 @@ namespace dualcontact
       VectorType                     e_orthonormal_;
       std::vector<double>            psi_first_, psi_second_;
       mutable unsigned long          n_stiffness_solves_ = 0;
+      /** The assembled F, m x m column-major (empty if implicit). */
+      std::vector<double> F_dense_;
+      std::string         operator_description_;
+      double              assembly_time_ = 0;
       mutable dealii::Vector<double> work_u_, work_t_;
     };
   } // namespace contact

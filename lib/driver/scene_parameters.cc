@@ -132,6 +132,7 @@ namespace dualcontact
       prm.leave_subsection();
 
       fem::StiffnessSolver::declare_parameters(prm);
+      contact::DualProblemParameters::declare_parameters(prm);
       qp::SolverParameters::declare_parameters(prm);
       qp::SMALSEMParameters::declare_parameters(prm);
       contact::CoulombParameters::declare_parameters(prm);

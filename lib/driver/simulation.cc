@@ -121,6 +121,7 @@ namespace dualcontact
       qp_parameters_.parse_parameters(prm);
       smalse_parameters_.parse_parameters(prm);
       coulomb_parameters_.parse_parameters(prm);
+      dual_parameters_.parse_parameters(prm);
 
       for (unsigned int b = 0; b < n_bodies; ++b)
         solvers_.push_back(fem::StiffnessSolver::create(prm));
@@ -376,7 +377,8 @@ namespace dualcontact
       dual_ = std::make_unique<contact::DualProblem<dim>>(
         bodies,
         *contact_,
-        [&prm]() { return fem::StiffnessSolver::create(prm); });
+        [&prm]() { return fem::StiffnessSolver::create(prm); },
+        dual_parameters_);
       std::ostringstream line;
       line << std::setprecision(4) << dual_->n_multipliers() << " multipliers ("
            << dual_->n_contact_nodes() << " normal, "
@@ -384,6 +386,7 @@ namespace dualcontact
            << " tangential), " << dual_->n_rigid_body_modes()
            << " rigid-body modes, lambda_max(F) " << dual_->scale() << " m/N";
       details_.push_back(line.str());
+      details_.push_back("Dual operator: " + dual_->operator_description());
     }
 
 
@@ -713,6 +716,10 @@ namespace dualcontact
         contact["n_rigid_body_modes"] = dual_->n_rigid_body_modes();
         contact["lambda_max_F"]       = dual_->scale();
         contact["n_stiffness_solves"] = dual_->n_stiffness_solves();
+        contact["stiffness_setup_time_s"] = dual_->stiffness_setup_time();
+        contact["stiffness_solve_time_s"] = dual_->stiffness_solve_time();
+        contact["dual_operator"]          = dual_->operator_description();
+        contact["dual_operator_assembly_time_s"] = dual_->assembly_time();
         contact["qp_wall_time_s"]     = qp_wall_time_;
         contact["coulomb_changes"]    = contact_result_.coulomb_changes;
         nlohmann::json solves         = nlohmann::json::array();

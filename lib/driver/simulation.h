@@ -163,6 +163,7 @@ namespace dualcontact
       qp::SolverParameters                    qp_parameters_;
       qp::SMALSEMParameters                   smalse_parameters_;
       contact::CoulombParameters              coulomb_parameters_;
+      contact::DualProblemParameters          dual_parameters_;
       bool                                    write_coulomb_iterates_ = false;
       /** Relative tolerance of the separated / stick / slip status. */
       double status_tolerance_ = 1e-6;

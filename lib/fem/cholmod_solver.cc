@@ -72,6 +72,15 @@ namespace dualcontact
     void
     CholmodSolver::initialize(const dealii::SparseMatrix<double> &matrix)
     {
+      factorize(matrix, nullptr);
+    }
+
+
+    void
+    CholmodSolver::factorize(const dealii::SparseMatrix<double> &matrix,
+                             const std::vector<long>            *permutation,
+                             const bool                          numeric)
+    {
       AssertThrow(matrix.m() == matrix.n(),
                   dealii::ExcMessage("CHOLMOD: the matrix is not square."));
       dealii::Timer   timer;
@@ -116,7 +125,30 @@ namespace dualcontact
       }
       column_start[n] = k;
 
-      data_->factor = cholmod_l_analyze(A, &c);
+      if (permutation == nullptr)
+        data_->factor = cholmod_l_analyze(A, &c);
+      else
+      {
+        AssertDimension(permutation->size(), static_cast<std::size_t>(n));
+        // Use the permutation exactly as given: one method, no
+        // postordering (it could move the trailing dofs).
+        const int  nmethods  = c.nmethods;
+        const int  ordering  = c.method[0].ordering;
+        const int  postorder = c.postorder;
+        c.nmethods           = 1;
+        c.method[0].ordering = CHOLMOD_GIVEN;
+        c.postorder          = 0;
+        data_->factor        = cholmod_l_analyze_p(
+          A,
+          const_cast<SuiteSparse_long *>(
+            reinterpret_cast<const SuiteSparse_long *>(permutation->data())),
+          nullptr,
+          0,
+          &c);
+        c.nmethods           = nmethods;
+        c.method[0].ordering = ordering;
+        c.postorder          = postorder;
+      }
       if (data_->factor == nullptr || c.status < CHOLMOD_OK)
       {
         cholmod_l_free_sparse(&A, &c);
@@ -124,6 +156,11 @@ namespace dualcontact
                     dealii::ExcMessage(
                       "CHOLMOD: symbolic analysis failed (status " +
                       std::to_string(c.status) + ")."));
+      }
+      if (!numeric)
+      {
+        cholmod_l_free_sparse(&A, &c);
+        return;
       }
       cholmod_l_factorize(A, data_->factor, &c);
       const int status = c.status;
@@ -179,6 +216,91 @@ namespace dualcontact
       cholmod_l_free_dense(&solution, &c);
       statistics_.solve_time += timer.wall_time();
       ++statistics_.n_solves;
+    }
+
+
+    bool
+    CholmodSolver::offers_schur_factor() const
+    {
+      return true;
+    }
+
+
+    void
+    CholmodSolver::initialize_with_schur_factor(
+      const dealii::SparseMatrix<double>                 &matrix,
+      const std::vector<dealii::types::global_dof_index> &dofs,
+      SchurFactor                                        &schur)
+    {
+      static_assert(sizeof(long) == sizeof(SuiteSparse_long),
+                    "CHOLMOD's long integer is not long");
+      dealii::Timer         timer;
+      const std::size_t     n = matrix.m();
+      const std::size_t     m = dofs.size();
+      std::vector<bool>     last(n, false);
+      for (const auto dof : dofs)
+      {
+        AssertIndexRange(dof, n);
+        AssertThrow(!last[dof],
+                    dealii::ExcMessage("CHOLMOD: a Schur complement dof is "
+                                       "given twice."));
+        last[dof] = true;
+      }
+
+      // The configured fill-reducing ordering of the whole matrix, then the
+      // dofs of the Schur complement moved to the end in the given order.
+      factorize(matrix, nullptr, /*numeric=*/false);
+      std::vector<long> permutation;
+      permutation.reserve(n);
+      const auto *order = static_cast<const SuiteSparse_long *>(
+        data_->factor->Perm);
+      for (std::size_t k = 0; k < n; ++k)
+        if (!last[order[k]])
+          permutation.push_back(order[k]);
+      for (const auto dof : dofs)
+        permutation.push_back(dof);
+      factorize(matrix, &permutation);
+
+      const cholmod_factor *L = data_->factor;
+      AssertThrow(L->is_super && L->is_ll && L->xtype == CHOLMOD_REAL,
+                  dealii::ExcMessage("CHOLMOD: expected a real supernodal "
+                                     "LL' factor."));
+      const auto *perm = static_cast<const SuiteSparse_long *>(L->Perm);
+      for (std::size_t k = 0; k < m; ++k)
+        AssertThrow(perm[n - m + k] ==
+                      static_cast<SuiteSparse_long>(dofs[k]),
+                    dealii::ExcMessage("CHOLMOD did not keep the given "
+                                       "ordering of the Schur complement."));
+
+      // Supernode s holds columns super[s] .. super[s+1]-1 as a dense
+      // column-major block with rows s[pi[s]] .. s[pi[s+1]-1] (sorted, the
+      // first ones those of the diagonal block) starting at x[px[s]].
+      schur.dofs = dofs;
+      schur.lower.assign(m * m, 0.);
+      const auto *super = static_cast<const SuiteSparse_long *>(L->super);
+      const auto *pi    = static_cast<const SuiteSparse_long *>(L->pi);
+      const auto *px    = static_cast<const SuiteSparse_long *>(L->px);
+      const auto *rows  = static_cast<const SuiteSparse_long *>(L->s);
+      const auto *x     = static_cast<const double *>(L->x);
+      const auto  first = static_cast<SuiteSparse_long>(n - m);
+      for (std::size_t sn = 0; sn < L->nsuper; ++sn)
+      {
+        if (super[sn + 1] <= first)
+          continue;
+        const SuiteSparse_long n_rows = pi[sn + 1] - pi[sn];
+        for (SuiteSparse_long j = std::max(super[sn], first);
+             j < super[sn + 1];
+             ++j)
+          for (SuiteSparse_long r = 0; r < n_rows; ++r)
+          {
+            const SuiteSparse_long row = rows[pi[sn] + r];
+            if (row < j)
+              continue; // upper part of the diagonal block: not referenced
+            schur.lower[(j - first) * m + (row - first)] =
+              x[px[sn] + (j - super[sn]) * n_rows + r];
+          }
+      }
+      statistics_.setup_time = timer.wall_time();
     }
 
 

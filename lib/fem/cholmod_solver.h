@@ -44,6 +44,22 @@ namespace dualcontact
       solve(dealii::Vector<double>       &x,
             const dealii::Vector<double> &b) const override;
 
+      bool
+      offers_schur_factor() const override;
+
+      /**
+       * Orders @p dofs last (the others keep the order the configured
+       * ordering gives them, without postordering), factorizes, and reads
+       * the trailing block of the supernodal factor into @p schur.  Moving a
+       * few boundary dofs to the end changes the fill little: eliminating
+       * the rest first only removes paths through them.
+       */
+      void
+      initialize_with_schur_factor(
+        const dealii::SparseMatrix<double>                 &matrix,
+        const std::vector<dealii::types::global_dof_index> &dofs,
+        SchurFactor                                        &schur) override;
+
       std::string
       name() const override;
 
@@ -53,6 +69,16 @@ namespace dualcontact
     private:
       void
       free_factor();
+
+      /**
+       * Analyse and (if @p numeric) factorize @p matrix; with
+       * @p permutation (size n) that fill-reducing permutation is used as
+       * given, else the configured ordering.
+       */
+      void
+      factorize(const dealii::SparseMatrix<double> &matrix,
+                const std::vector<long>            *permutation,
+                const bool                          numeric = true);
 
       Ordering ordering_;
       /** Opaque CHOLMOD objects (cholmod_common, cholmod_factor). */

@@ -16,9 +16,46 @@ namespace dualcontact
     void
     GeneralizedInverse::initialize(const dealii::SparseMatrix<double> &matrix)
     {
+      initialize_reduced(matrix, nullptr, nullptr);
+    }
+
+
+    bool
+    GeneralizedInverse::offers_schur_factor() const
+    {
+      return solver_->offers_schur_factor();
+    }
+
+
+    void
+    GeneralizedInverse::initialize_with_schur_factor(
+      const dealii::SparseMatrix<double>                 &matrix,
+      const std::vector<dealii::types::global_dof_index> &dofs,
+      SchurFactor                                        &schur)
+    {
+      std::vector<bool> fixed(matrix.m(), false);
+      for (const auto dof : fixing_dofs_)
+        fixed[dof] = true;
+      std::vector<dealii::types::global_dof_index> kept;
+      for (const auto dof : dofs)
+        if (!fixed[dof])
+          kept.push_back(dof);
+      initialize_reduced(matrix, &kept, &schur);
+    }
+
+
+    void
+    GeneralizedInverse::initialize_reduced(
+      const dealii::SparseMatrix<double>                 &matrix,
+      const std::vector<dealii::types::global_dof_index> *schur_dofs,
+      SchurFactor                                        *schur)
+    {
       if (fixing_dofs_.empty())
       {
-        solver_->initialize(matrix);
+        if (schur_dofs != nullptr)
+          solver_->initialize_with_schur_factor(matrix, *schur_dofs, *schur);
+        else
+          solver_->initialize(matrix);
         statistics_ = solver_->statistics();
         return;
       }
@@ -33,7 +70,10 @@ namespace dualcontact
         for (auto it = reduced_.begin(i); it != reduced_.end(i); ++it)
           if ((fixed[i] || fixed[it->column()]) && it->column() != i)
             it->value() = 0.;
-      solver_->initialize(reduced_);
+      if (schur_dofs != nullptr)
+        solver_->initialize_with_schur_factor(reduced_, *schur_dofs, *schur);
+      else
+        solver_->initialize(reduced_);
       statistics_ = solver_->statistics();
     }
 

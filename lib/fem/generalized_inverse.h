@@ -40,10 +40,30 @@ namespace dualcontact
       solve(dealii::Vector<double>       &x,
             const dealii::Vector<double> &b) const override;
 
+      bool
+      offers_schur_factor() const override;
+
+      /**
+       * The Schur factor of the inner solver on @p dofs without the fixing
+       * dofs (where K^# is zero): (K^#)_CC = L^{-T} L^{-1} on the kept dofs.
+       */
+      void
+      initialize_with_schur_factor(
+        const dealii::SparseMatrix<double>                 &matrix,
+        const std::vector<dealii::types::global_dof_index> &dofs,
+        SchurFactor                                        &schur) override;
+
       std::string
       name() const override;
 
     private:
+      /** Factorize K_rr (and its Schur factor on @p schur_dofs if given). */
+      void
+      initialize_reduced(
+        const dealii::SparseMatrix<double>                 &matrix,
+        const std::vector<dealii::types::global_dof_index> *schur_dofs,
+        SchurFactor                                        *schur);
+
       std::unique_ptr<StiffnessSolver>             solver_;
       std::vector<dealii::types::global_dof_index> fixing_dofs_;
       dealii::SparseMatrix<double>                 reduced_;

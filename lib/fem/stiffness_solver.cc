@@ -13,6 +13,29 @@ namespace dualcontact
     }
 
 
+    bool
+    StiffnessSolver::offers_schur_factor() const
+    {
+      return false;
+    }
+
+
+    void
+    StiffnessSolver::initialize_with_schur_factor(
+      const dealii::SparseMatrix<double> &,
+      const std::vector<dealii::types::global_dof_index> &,
+      SchurFactor &)
+    {
+      AssertThrow(false,
+                  dealii::ExcMessage("The stiffness solver `" + name() +
+                                     "' cannot factor a Schur complement; "
+                                     "use `set Solver = cholmod' in "
+                                     "`subsection Stiffness solver', or "
+                                     "`set Operator = implicit' in "
+                                     "`subsection Dual problem'."));
+    }
+
+
     void
     StiffnessSolver::declare_parameters(dealii::ParameterHandler &prm)
     {

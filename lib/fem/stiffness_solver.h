@@ -5,6 +5,7 @@
 #include <deal.II/lac/vector.h>
 
 #include <memory>
+#include <vector>
 #include <string>
 
 namespace dualcontact
@@ -35,6 +36,29 @@ namespace dualcontact
         unsigned int iterations      = 0; ///< last solve (iterative solvers)
       };
 
+      /**
+       * The Cholesky factor of the Schur complement of K onto a few dofs C
+       * (the dofs the contact matrices touch):
+       *   S = K_CC - K_CI K_II^{-1} K_IC = L L',   so   (K^{-1})_CC = L^{-T} L^{-1}.
+       * The dual operator F = B K^{-1} B' only ever reads the block
+       * (K^{-1})_CC, so with L it can be assembled as a dense matrix
+       * W'W, W = L^{-1} B_C', and a Hessian product of the dual QP costs
+       * m^2 flops (m multipliers) instead of a forward and a backward
+       * substitution with the whole factor.  A direct solver gets L for free
+       * by ordering C last: L is then the trailing block of its factor.
+       */
+      struct SchurFactor
+      {
+        /**
+         * The dofs (indices of the matrix given to initialize()) that the
+         * rows and columns of L stand for, in order.  For a generalized
+         * inverse the fixing dofs are left out: K^# is zero there.
+         */
+        std::vector<dealii::types::global_dof_index> dofs;
+        /** L, lower triangular, dofs.size() x dofs.size(), column-major. */
+        std::vector<double> lower;
+      };
+
       virtual ~StiffnessSolver() = default;
 
       /** Analyse and factorize @p matrix (kept by reference where needed). */
@@ -45,6 +69,21 @@ namespace dualcontact
       virtual void
       solve(dealii::Vector<double>       &x,
             const dealii::Vector<double> &b) const = 0;
+
+      /** Whether initialize_with_schur_factor() is offered. */
+      virtual bool
+      offers_schur_factor() const;
+
+      /**
+       * Like initialize(), and also compute the SchurFactor onto @p dofs
+       * (distinct indices; their order is kept).  solve() works as after
+       * initialize().  Throws unless offers_schur_factor().
+       */
+      virtual void
+      initialize_with_schur_factor(
+        const dealii::SparseMatrix<double>                 &matrix,
+        const std::vector<dealii::types::global_dof_index> &dofs,
+        SchurFactor                                        &schur);
 
       /** A short name, e.g. "cholmod". */
       virtual std::string
