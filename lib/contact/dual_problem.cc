@@ -36,7 +36,7 @@ namespace dualcontact
         "implicit: one solve with the whole factor per product. automatic: "
         "assembled when possible within the memory limit, else implicit.");
       prm.declare_entry("Memory limit",
-                        "2048",
+                        "4096",
                         Patterns::Double(0),
                         "Largest memory [MB] the dense matrices of the "
                         "assembled operator (F, and per body L and W) may "
@@ -51,10 +51,10 @@ namespace dualcontact
     {
       prm.enter_subsection("Dual problem");
       const std::string name = prm.get("Operator");
-      form = name == "assembled" ? Operator::assembled :
-             name == "implicit"  ? Operator::implicit :
-                                   Operator::automatic;
-      memory_limit = prm.get_double("Memory limit");
+      form                   = name == "assembled" ? Operator::assembled :
+                               name == "implicit"  ? Operator::implicit :
+                                                     Operator::automatic;
+      memory_limit           = prm.get_double("Memory limit");
       prm.leave_subsection();
     }
 
@@ -107,9 +107,8 @@ namespace dualcontact
       // The dofs of each body that B touches (C_b) and the rows of B that
       // touch it; and the memory the assembled form would take.
       const unsigned int n_bodies = bodies_.size();
-      std::vector<std::vector<types::global_dof_index>> contact_dofs(
-        n_bodies);
-      std::vector<std::vector<unsigned int>> body_rows(n_bodies);
+      std::vector<std::vector<types::global_dof_index>> contact_dofs(n_bodies);
+      std::vector<std::vector<unsigned int>>            body_rows(n_bodies);
       {
         std::vector<unsigned int> body_of_dof(contact.n_dofs());
         for (unsigned int b = 0; b < n_bodies; ++b)
@@ -136,20 +135,25 @@ namespace dualcontact
             if (marked[b][i])
               contact_dofs[b].push_back(i);
       }
-      const double m = n_multipliers();
-      double       megabytes = m * m;
+      // Peak of the assembled form: every body's L (held until F is
+      // assembled), F, and one body's W and F_b at a time.
+      const double m         = n_multipliers();
+      double       megabytes = m * m, largest_body = 0;
       for (unsigned int b = 0; b < n_bodies; ++b)
       {
         const double c = contact_dofs[b].size();
         const double r = body_rows[b].size();
-        megabytes      = std::max(megabytes, m * m + c * c + c * r + r * r);
+        megabytes += c * c;
+        largest_body = std::max(largest_body, c * r + r * r);
       }
+      megabytes += largest_body;
       megabytes *= sizeof(double) / 1048576.;
 
       const unsigned int n_dofs = contact.n_dofs();
       load_.reinit(n_dofs);
       std::vector<fem::StiffnessSolver::SchurFactor> schur(n_bodies);
-      bool assembled = parameters.form != DualProblemParameters::Operator::implicit;
+      bool                                           assembled =
+        parameters.form != DualProblemParameters::Operator::implicit;
       for (unsigned int b = 0; b < n_bodies; ++b)
       {
         const types::global_dof_index offset = contact.body_offset(b);
@@ -541,15 +545,15 @@ namespace dualcontact
     template <int dim>
     void
     DualProblem<dim>::assemble_operator(
-      const std::vector<fem::StiffnessSolver::SchurFactor> &schur,
-      const std::vector<std::vector<unsigned int>>         &rows)
+      std::vector<fem::StiffnessSolver::SchurFactor> &schur,
+      const std::vector<std::vector<unsigned int>>   &rows)
     {
       Timer                 timer;
       const types::blas_int m = n_multipliers();
       F_dense_.assign(static_cast<std::size_t>(m) * m, 0.);
-      std::vector<double>        W, Fb;
-      std::ostringstream         sizes;
-      std::vector<unsigned int>  local_index;
+      std::vector<double>       W, Fb;
+      std::ostringstream        sizes;
+      std::vector<unsigned int> local_index;
       for (unsigned int b = 0; b < bodies_.size(); ++b)
       {
         const types::blas_int c = schur[b].dofs.size();
@@ -559,8 +563,7 @@ namespace dualcontact
           continue;
         // W = (B_b)_C' as a dense c x r matrix, then W = L^{-1} W.
         const types::global_dof_index offset = contact_.body_offset(b);
-        local_index.assign(bodies_[b]->n_dofs(),
-                           numbers::invalid_unsigned_int);
+        local_index.assign(bodies_[b]->n_dofs(), numbers::invalid_unsigned_int);
         for (types::blas_int k = 0; k < c; ++k)
           local_index[schur[b].dofs[k]] = k;
         W.assign(static_cast<std::size_t>(c) * r, 0.);
@@ -572,17 +575,25 @@ namespace dualcontact
                             if (column < offset ||
                                 column >= offset + bodies_[b]->n_dofs())
                               return;
-                            const unsigned int k =
-                              local_index[column - offset];
+                            const unsigned int k = local_index[column - offset];
                             if (k != numbers::invalid_unsigned_int)
                               W[static_cast<std::size_t>(q) * c + k] += value;
                           });
         types::blas_int info = 0;
-        trtrs("L", "N", "N", &c, &r, schur[b].lower.data(), &c, W.data(), &c,
+        trtrs("L",
+              "N",
+              "N",
+              &c,
+              &r,
+              schur[b].lower.data(),
+              &c,
+              W.data(),
+              &c,
               &info);
         AssertThrow(info == 0,
                     ExcMessage("Dual operator: the Schur factor of body " +
                                std::to_string(b + 1) + " is singular."));
+        std::vector<double>().swap(schur[b].lower); // not needed any more
         // F_b = W'W (lower triangle), scattered into F.
         Fb.assign(static_cast<std::size_t>(r) * r, 0.);
         const double one = 1., zero = 0.;
@@ -594,8 +605,8 @@ namespace dualcontact
             F_dense_[static_cast<std::size_t>(rows[b][q]) * m + rows[b][p]] +=
               value;
             if (p != q)
-              F_dense_[static_cast<std::size_t>(rows[b][p]) * m +
-                       rows[b][q]] += value;
+              F_dense_[static_cast<std::size_t>(rows[b][p]) * m + rows[b][q]] +=
+                value;
           }
       }
       assembly_time_ = timer.wall_time();
@@ -661,8 +672,17 @@ namespace dualcontact
         const types::blas_int m = n_multipliers(), one = 1;
         const double          alpha = 1., beta = 0.;
         dst.reinit(m, true);
-        gemv("N", &m, &m, &alpha, F_dense_.data(), &m, src.begin(), &one,
-             &beta, dst.begin(), &one);
+        gemv("N",
+             &m,
+             &m,
+             &alpha,
+             F_dense_.data(),
+             &m,
+             src.begin(),
+             &one,
+             &beta,
+             dst.begin(),
+             &one);
         return;
       }
       Vector<double> u;

@@ -38,7 +38,7 @@ namespace dualcontact
       };
       Operator form = Operator::automatic;
       /** Limit [MB] for the dense matrices of the assembled form. */
-      double memory_limit = 2048;
+      double memory_limit = 4096;
 
       static void
       declare_parameters(dealii::ParameterHandler &prm);
@@ -83,12 +83,12 @@ namespace dualcontact
        * (wrapped in a generalized inverse where the body has rigid-body
        * modes) and builds d, G, e; in the assembled form also the dense F.
        */
-      DualProblem(const std::vector<const fem::ElasticBody<dim> *> &bodies,
-                  const ContactDiscretization<dim>                 &contact,
-                  const std::function<std::unique_ptr<fem::StiffnessSolver>()>
-                                              &make_solver,
-                  const DualProblemParameters &parameters =
-                    DualProblemParameters());
+      DualProblem(
+        const std::vector<const fem::ElasticBody<dim> *> &bodies,
+        const ContactDiscretization<dim>                 &contact,
+        const std::function<std::unique_ptr<fem::StiffnessSolver>()>
+                                    &make_solver,
+        const DualProblemParameters &parameters = DualProblemParameters());
 
       ~DualProblem();
 
@@ -212,9 +212,8 @@ namespace dualcontact
        * Schur factors.
        */
       void
-      assemble_operator(
-        const std::vector<fem::StiffnessSolver::SchurFactor> &schur,
-        const std::vector<std::vector<unsigned int>>         &rows);
+      assemble_operator(std::vector<fem::StiffnessSolver::SchurFactor> &schur,
+                        const std::vector<std::vector<unsigned int>>   &rows);
 
       void
       apply_K_inverse(dealii::Vector<double> &x) const;
@@ -241,14 +240,14 @@ namespace dualcontact
       /** Products with F spent on the power iteration. */
       unsigned int n_power_products_ = 0;
       /** Orthonormalized G and the correspondingly transformed e. */
-      std::vector<VectorType>        G_orthonormal_;
-      VectorType                     e_orthonormal_;
-      std::vector<double>            psi_first_, psi_second_;
-      mutable unsigned long          n_stiffness_solves_ = 0;
+      std::vector<VectorType> G_orthonormal_;
+      VectorType              e_orthonormal_;
+      std::vector<double>     psi_first_, psi_second_;
+      mutable unsigned long   n_stiffness_solves_ = 0;
       /** The assembled F, m x m column-major (empty if implicit). */
-      std::vector<double> F_dense_;
-      std::string         operator_description_;
-      double              assembly_time_ = 0;
+      std::vector<double>            F_dense_;
+      std::string                    operator_description_;
+      double                         assembly_time_ = 0;
       mutable dealii::Vector<double> work_u_, work_t_;
     };
   } // namespace contact

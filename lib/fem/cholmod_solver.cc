@@ -132,9 +132,9 @@ namespace dualcontact
         AssertDimension(permutation->size(), static_cast<std::size_t>(n));
         // Use the permutation exactly as given: one method, no
         // postordering (it could move the trailing dofs).
-        const int  nmethods  = c.nmethods;
-        const int  ordering  = c.method[0].ordering;
-        const int  postorder = c.postorder;
+        const int nmethods   = c.nmethods;
+        const int ordering   = c.method[0].ordering;
+        const int postorder  = c.postorder;
         c.nmethods           = 1;
         c.method[0].ordering = CHOLMOD_GIVEN;
         c.postorder          = 0;
@@ -234,10 +234,10 @@ namespace dualcontact
     {
       static_assert(sizeof(long) == sizeof(SuiteSparse_long),
                     "CHOLMOD's long integer is not long");
-      dealii::Timer         timer;
-      const std::size_t     n = matrix.m();
-      const std::size_t     m = dofs.size();
-      std::vector<bool>     last(n, false);
+      dealii::Timer     timer;
+      const std::size_t n = matrix.m();
+      const std::size_t m = dofs.size();
+      std::vector<bool> last(n, false);
       for (const auto dof : dofs)
       {
         AssertIndexRange(dof, n);
@@ -252,8 +252,8 @@ namespace dualcontact
       factorize(matrix, nullptr, /*numeric=*/false);
       std::vector<long> permutation;
       permutation.reserve(n);
-      const auto *order = static_cast<const SuiteSparse_long *>(
-        data_->factor->Perm);
+      const auto *order =
+        static_cast<const SuiteSparse_long *>(data_->factor->Perm);
       for (std::size_t k = 0; k < n; ++k)
         if (!last[order[k]])
           permutation.push_back(order[k]);
@@ -267,8 +267,7 @@ namespace dualcontact
                                      "LL' factor."));
       const auto *perm = static_cast<const SuiteSparse_long *>(L->Perm);
       for (std::size_t k = 0; k < m; ++k)
-        AssertThrow(perm[n - m + k] ==
-                      static_cast<SuiteSparse_long>(dofs[k]),
+        AssertThrow(perm[n - m + k] == static_cast<SuiteSparse_long>(dofs[k]),
                     dealii::ExcMessage("CHOLMOD did not keep the given "
                                        "ordering of the Schur complement."));
 
@@ -288,8 +287,7 @@ namespace dualcontact
         if (super[sn + 1] <= first)
           continue;
         const SuiteSparse_long n_rows = pi[sn + 1] - pi[sn];
-        for (SuiteSparse_long j = std::max(super[sn], first);
-             j < super[sn + 1];
+        for (SuiteSparse_long j = std::max(super[sn], first); j < super[sn + 1];
              ++j)
           for (SuiteSparse_long r = 0; r < n_rows; ++r)
           {

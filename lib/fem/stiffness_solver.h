@@ -5,8 +5,8 @@
 #include <deal.II/lac/vector.h>
 
 #include <memory>
-#include <vector>
 #include <string>
+#include <vector>
 
 namespace dualcontact
 {
@@ -39,8 +39,8 @@ namespace dualcontact
       /**
        * The Cholesky factor of the Schur complement of K onto a few dofs C
        * (the dofs the contact matrices touch):
-       *   S = K_CC - K_CI K_II^{-1} K_IC = L L',   so   (K^{-1})_CC = L^{-T} L^{-1}.
-       * The dual operator F = B K^{-1} B' only ever reads the block
+       *   S = K_CC - K_CI K_II^{-1} K_IC = L L',   so   (K^{-1})_CC = L^{-T}
+       * L^{-1}. The dual operator F = B K^{-1} B' only ever reads the block
        * (K^{-1})_CC, so with L it can be assembled as a dense matrix
        * W'W, W = L^{-1} B_C', and a Hessian product of the dual QP costs
        * m^2 flops (m multipliers) instead of a forward and a backward

@@ -36,15 +36,14 @@ run(const unsigned int degree)
   std::cout << dim << "D, Q" << degree << std::endl;
   const double             p = 1e6, tau = 1e5, g = 5e5;
   const types::boundary_id bottom = 2 * (dim - 1), top = 2 * dim - 1;
-  auto lower = make_unit_box<dim>("lower",
-                                  0,
-                                  2,
-                                  degree,
-                                  1e9,
-                                  [](const Point<dim> &center) {
-                                    return center[dim - 1] > 0.5 &&
-                                           center[0] < 0.5;
-                                  });
+  auto                     lower =
+    make_unit_box<dim>("lower",
+                       0,
+                       2,
+                       degree,
+                       1e9,
+                       [](const Point<dim> &center)
+                       { return center[dim - 1] > 0.5 && center[0] < 0.5; });
   auto upper = make_unit_box<dim>("upper", 1, 3, degree, 2e9);
   lower->set_dirichlet_conditions(
     {{bottom,
@@ -76,8 +75,9 @@ run(const unsigned int degree)
   const auto cholmod = [] { return std::make_unique<fem::CholmodSolver>(); };
 
   contact::DualProblemParameters assembled_parameters, implicit_parameters;
-  assembled_parameters.form = contact::DualProblemParameters::Operator::assembled;
-  implicit_parameters.form  = contact::DualProblemParameters::Operator::implicit;
+  assembled_parameters.form =
+    contact::DualProblemParameters::Operator::assembled;
+  implicit_parameters.form = contact::DualProblemParameters::Operator::implicit;
   contact::DualProblem<dim> assembled(bodies,
                                       contact,
                                       cholmod,
@@ -97,7 +97,7 @@ run(const unsigned int degree)
   // products with random vectors
   std::mt19937                           rng(7);
   std::uniform_real_distribution<double> uniform(-1, 1);
-  const unsigned int                     m = implicit.n_multipliers();
+  const unsigned int                     m     = implicit.n_multipliers();
   double                                 worst = 0;
   for (unsigned int trial = 0; trial < 5; ++trial)
   {
@@ -160,9 +160,8 @@ run(const unsigned int degree)
   contact::DualProblemParameters limited;
   limited.memory_limit = 0;
   contact::DualProblem<dim> fallback(bodies, contact, cholmod, limited);
-  check(!fallback.is_assembled() &&
-          fallback.operator_description().find("above the limit") !=
-            std::string::npos,
+  check(!fallback.is_assembled() && fallback.operator_description().find(
+                                      "above the limit") != std::string::npos,
         "automatic with a zero memory limit: " +
           fallback.operator_description(),
         0);

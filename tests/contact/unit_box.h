@@ -15,13 +15,13 @@
 
 template <int dim>
 std::unique_ptr<dualcontact::fem::ElasticBody<dim>>
-make_unit_box(const std::string &name,
-              const double       bottom,
-              const unsigned int n,
-              const unsigned int degree,
-              const double       E = 1e9,
-              const std::function<bool(const dealii::Point<dim> &)>
-                &refine_cell_at = {})
+make_unit_box(
+  const std::string                                     &name,
+  const double                                           bottom,
+  const unsigned int                                     n,
+  const unsigned int                                     degree,
+  const double                                           E              = 1e9,
+  const std::function<bool(const dealii::Point<dim> &)> &refine_cell_at = {})
 {
   using namespace dealii;
   auto       tria = std::make_shared<Triangulation<dim>>();
