@@ -470,12 +470,14 @@ namespace dualcontact
         {
           ++r.n_nodes;
           r.max_pressure = std::max(r.max_pressure, node.pressure);
-          if (node.status == 0)
+          if (node.status == io::contact_status::separated)
             ++r.n_separated;
-          else if (node.status == 1)
+          else if (node.status == io::contact_status::stick)
             ++r.n_stick;
-          else
+          else if (node.status == io::contact_status::slip)
             ++r.n_slip;
+          else
+            ++r.n_contact;
         }
       }
     }
@@ -516,6 +518,7 @@ namespace dualcontact
         out.position = node.position;
         out.normal   = node.normal;
         out.pressure = lambda(i) / node.weight;
+        out.weight   = node.weight;
         out.gap      = c(i) - bn(i);
         for (unsigned int k = 0; k + 1 < dim; ++k)
           out.slip += bt((dim - 1) * i + k) * node.tangents[k];
@@ -552,8 +555,11 @@ namespace dualcontact
             utilization = psi_first[j] > 0 ? norm / psi_first[j] : 1;
           }
         }
-        out.status =
-          separated ? 0 : (utilization >= 1 - status_tolerance_ ? 2 : 1);
+        out.status = separated ? io::contact_status::separated :
+                     j < 0     ? io::contact_status::frictionless_contact :
+                     utilization >= 1 - status_tolerance_ ?
+                             io::contact_status::slip :
+                             io::contact_status::stick;
         surfaces[node.pair].push_back(out);
       }
       return surfaces;
@@ -642,6 +648,7 @@ namespace dualcontact
         out << prefix << "n_separated = " << r.n_separated << "\n";
         out << prefix << "n_stick = " << r.n_stick << "\n";
         out << prefix << "n_slip = " << r.n_slip << "\n";
+        out << prefix << "n_contact = " << r.n_contact << "\n";
         out << prefix << "area = " << format_number(r.area) << "\n";
         out << prefix << "min_initial_gap = " << format_number(r.min_gap)
             << "\n";
@@ -740,6 +747,7 @@ namespace dualcontact
              {"n_separated", r.n_separated},
              {"n_stick", r.n_stick},
              {"n_slip", r.n_slip},
+             {"n_contact", r.n_contact},
              {"area", r.area},
              {"min_initial_gap_m", r.min_gap},
              {"max_initial_gap_m", r.max_gap},

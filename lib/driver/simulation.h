@@ -150,6 +150,7 @@ namespace dualcontact
         unsigned int           n_separated  = 0;
         unsigned int           n_stick      = 0;
         unsigned int           n_slip       = 0;
+        unsigned int           n_contact    = 0; ///< frictionless, touching
         double                 normal_force = 0;
         dealii::Tensor<1, dim> tangential_force;
         double                 max_pressure = 0;

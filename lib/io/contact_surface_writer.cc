@@ -74,6 +74,7 @@ namespace dualcontact
              [](const auto &node) { return node.tangential_traction; });
       vector("slip_m", [](const auto &node) { return node.slip; });
       scalar("gap_m", [](const auto &node) { return node.gap; });
+      scalar("weight", [](const auto &node) { return node.weight; });
       out << "<DataArray type=\"Int32\" Name=\"status\" format=\"ascii\">\n";
       for (const auto &node : nodes)
         out << node.status << "\n";
