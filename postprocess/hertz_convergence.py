@@ -30,7 +30,10 @@ fraction), which differs from P by the error of the polygonal loaded surface.
 What is measured per run (from results.txt, statistics.json and the pair's
 contact_1.vtu, which has per contact node the pressure p_i = lambda_N,i / w_i,
 the area weight w_i = int phi_i ds and the status):
-  force:  pair_1.normal_force / applied load - 1;
+  force:  the resultant sum_i p_i w_i n_i of the nodal contact forces along
+          the applied load, / applied load - 1 (for a rigid plane it is
+          pair_1.normal_force; on a curved master the normals tilt and
+          sum_i lambda_N,i exceeds the load by O((a/R)^2), see `force');
   a_h:    the midpoint between the outermost node in contact and the nearest
           separated node beyond it; error a_h / a - 1;
   peak:   max_i p_i / p0 - 1;
@@ -190,6 +193,18 @@ def evaluate(prm, workdir):
         r = numpy.abs(points[:, 0])
     else:
         r = numpy.hypot(points[:, 0], points[:, 1])
+    # The resultant of the contact forces lambda_N,i n_i (the force the slave
+    # exerts on the master) along the applied load.  pair_1.normal_force of
+    # results.txt is sum_i lambda_N,i, each along its own normal: on a curved
+    # master (two bodies) the normals tilt by about x/R2 and that sum exceeds
+    # the load by O((a/R)^2); the resultant is what equilibrium fixes.
+    load = numpy.zeros(3)
+    for b in range(1, n_bodies + 1):
+        vector = results[f"body_{b}.applied_force"]
+        load[:len(vector)] += vector
+    direction = load / numpy.linalg.norm(load)
+    resultant = float(numpy.sum((pressure * weight)[:, None]
+                                * fields["normal"], axis=0) @ direction)
     touching = status != 0
     if not touching.any():
         raise ValueError(f"{folder}: no contact node is in contact")
@@ -209,7 +224,8 @@ def evaluate(prm, workdir):
         "applied": applied,
         "share": closed.fraction * closed.P,
         "force": force,
-        "force_error": force / applied - 1,
+        "force_resultant": resultant,
+        "force_error": resultant / applied - 1,
         "a_h": a_h,
         "r_in": r_in,
         "r_out": r_out,
@@ -247,7 +263,7 @@ def table(rows):
     """Markdown table of one case's rows (sorted by level), with rates
     (observed orders in the contact-edge node spacing h)."""
     dim = rows[0][1]["dim"]
-    columns = ["level", "dofs", "contact nodes", "h [m]", "a_h [m]",
+    columns = ["level", "dofs", "in contact", "h [m]", "a_h [m]",
                "err a", "rate", "err p0", "rate", "L2 nodal", "rate"]
     if dim == 2:
         columns += ["L2 interp", "rate"]

@@ -12,8 +12,9 @@ form is evaluated for the load the discretized model carries (the bodies'
 applied forces in results.txt), which differs from P by the error of the
 polygonal loaded surface (3D).
 
-Asserted: the total normal contact force (pair_1.normal_force) equals the
-applied load to 1e-8 relative; the contact radius / half-width within
+Asserted: the total normal contact force (the resultant of the nodal
+contact forces p_i w_i n_i of contact_1.vtu along the load; for a rigid plane
+pair_1.normal_force) equals the applied load to 1e-8 relative; the contact radius / half-width within
 --radius (default 5 %) of a; the peak nodal pressure within --peak (default
 10 %) of p0; and, with --l2, the relative L2 error of the nodal pressures
 (nodal quadrature with the area weights w_i) below that limit.  The limits
@@ -59,7 +60,8 @@ def main(argv):
           f"p0 = {row['p0']:.6g} Pa; measured a_h = {row['a_h']:.6g} m (last "
           f"contact node {row['r_in']:.6g}, first separated "
           f"{row['r_out']:.6g}), peak {row['peak']:.6g} Pa, contact force "
-          f"{row['force']:.12g}, node spacing h = {row['h']:.4g} m, "
+          f"resultant {row['force_resultant']:.12g} (sum of lambda_N "
+          f"{row['force']:.12g}), node spacing h = {row['h']:.4g} m, "
           f"{row['n_contact']} of {row['n_nodes']} nodes in contact, "
           f"L2 (nodal quadrature) {row['l2_nodal']:.4e}"
           + (f", L2 (interpolant) {row['l2_interp']:.4e}"
