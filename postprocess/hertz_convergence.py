@@ -331,7 +331,7 @@ def main(argv):
         tail = document.split(end)[1]
         block = begin + "\n\n"
         if command:
-            block += f"Produced by `{command}`.\n\n"
+            block += f"Produced by: {command}.\n\n"
         block += output + "\n" + end
         with open(markdown, "w") as f:
             f.write(head + block + tail)
