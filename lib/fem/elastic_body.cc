@@ -134,7 +134,15 @@ namespace dualcontact
       constraints_.close();
 
       DynamicSparsityPattern dsp(dof_handler_.n_dofs());
-      DoFTools::make_sparsity_pattern(dof_handler_, dsp, constraints_, false);
+      // every cell, also on a parallel::shared::Triangulation (where
+      // DoFTools::make_sparsity_pattern would visit the locally owned cells
+      // only): the body's K is the whole matrix on every process
+      std::vector<types::global_dof_index> cell_dofs(fe_.n_dofs_per_cell());
+      for (const auto &cell : dof_handler_.active_cell_iterators())
+      {
+        cell->get_dof_indices(cell_dofs);
+        constraints_.add_entries_local_to_global(cell_dofs, dsp, false);
+      }
       sparsity_.copy_from(dsp);
       stiffness_.reinit(sparsity_);
       load_.reinit(dof_handler_.n_dofs());

@@ -1,5 +1,6 @@
 #include <fem/cholmod_solver.h>
 #include <fem/stiffness_solver.h>
+#include <fem/trilinos_solver.h>
 #include <fem/umfpack_solver.h>
 
 namespace dualcontact
@@ -43,12 +44,16 @@ namespace dualcontact
       prm.declare_entry(
         "Solver",
         "cholmod",
-        dealii::Patterns::Selection("cholmod|umfpack"),
+        dealii::Patterns::Selection("cholmod|umfpack|mumps|amg"),
         "How K^{-1} is applied. cholmod: supernodal sparse Cholesky "
         "(SuiteSparse CHOLMOD, long-integer interface), the fastest on one "
         "process in 2D and 3D. umfpack: sparse LU (deal.II's "
         "SparseDirectUMFPACK); fine in 2D, slow in 3D (190 s against 7 s for "
-        "CHOLMOD on a 92k-dof matrix).");
+        "CHOLMOD on a 92k-dof matrix). mumps: distributed sparse LU (MUMPS "
+        "through Trilinos Amesos). amg: conjugate gradients preconditioned "
+        "by Trilinos ML algebraic multigrid, to `CG tolerance'. cholmod and "
+        "umfpack run on one process only; under MPI (mpirun -np N, N > 1) "
+        "choose mumps or amg.");
       prm.declare_entry(
         "Ordering",
         "automatic",
@@ -56,6 +61,28 @@ namespace dualcontact
         "Fill-reducing ordering of CHOLMOD. automatic: CHOLMOD's default "
         "(AMD, then METIS if AMD gives much fill); amd; metis; nested "
         "dissection (CHOLMOD's NESDIS).");
+      prm.declare_entry("CG tolerance",
+                        "1e-12",
+                        dealii::Patterns::Double(0., 1.),
+                        "Solver = amg: CG stops when ||K x - b|| <= this "
+                        "times ||b|| [-]. The dual operator B K^{-1} B' is "
+                        "applied to this accuracy, so keep it well below the "
+                        "QP tolerance.");
+      prm.declare_entry("CG max iterations",
+                        "10000",
+                        dealii::Patterns::Integer(1),
+                        "Solver = amg: iteration limit of CG; reaching it "
+                        "is an error.");
+      prm.declare_entry("AMG aggregation threshold",
+                        "1e-4",
+                        dealii::Patterns::Double(0., 1.),
+                        "Solver = amg: ML's aggregation threshold [-] (the "
+                        "strength of a connection that lets two nodes join "
+                        "one aggregate).");
+      prm.declare_entry("AMG smoother sweeps",
+                        "2",
+                        dealii::Patterns::Integer(1),
+                        "Solver = amg: Chebyshev smoother sweeps per level.");
       prm.leave_subsection();
     }
 
@@ -64,9 +91,27 @@ namespace dualcontact
     StiffnessSolver::create(dealii::ParameterHandler &prm)
     {
       prm.enter_subsection("Stiffness solver");
-      const std::string solver   = prm.get("Solver");
-      const std::string ordering = prm.get("Ordering");
+      const std::string          solver   = prm.get("Solver");
+      const std::string          ordering = prm.get("Ordering");
+      TrilinosSolver::Parameters trilinos;
+      trilinos.method = solver == "mumps" ? TrilinosSolver::Method::mumps :
+                                            TrilinosSolver::Method::amg_cg;
+      trilinos.cg_tolerance      = prm.get_double("CG tolerance");
+      trilinos.cg_max_iterations = prm.get_integer("CG max iterations");
+      trilinos.aggregation_threshold =
+        prm.get_double("AMG aggregation threshold");
+      trilinos.smoother_sweeps = prm.get_integer("AMG smoother sweeps");
       prm.leave_subsection();
+      if (solver == "mumps" || solver == "amg")
+        return std::make_unique<TrilinosSolver>(trilinos);
+      AssertThrow(!dealii::Utilities::MPI::job_supports_mpi() ||
+                    dealii::Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD) ==
+                      1,
+                  dealii::ExcMessage(
+                    "The stiffness solver `" + solver +
+                    "' runs on one process only; under MPI use `set Solver "
+                    "= mumps' or `set Solver = amg' in `subsection "
+                    "Stiffness solver'."));
       if (solver == "cholmod")
         return std::make_unique<CholmodSolver>(
           CholmodSolver::parse_ordering(ordering));

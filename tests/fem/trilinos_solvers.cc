@@ -1,0 +1,206 @@
+// The Trilinos stiffness solvers (MUMPS through Amesos, AMG-preconditioned
+// CG) against CHOLMOD, under mpirun with 1 and 2 processes: a 3D bar (Q2,
+// distorted cells, clamped at one end, traction at the other) and a 2D
+// plate (Q1), each on a parallel::shared::Triangulation partitioned by METIS
+// so that the rows of a process are its subdomain's dofs.
+//  - MUMPS: relative difference to CHOLMOD < 1e-10 (both direct; the
+//    measured differences are ~1e-15);
+//  - AMG-CG to a relative residual of 1e-12: relative difference < 1e-8
+//    (the error is bounded by cond(K) times the residual);
+//  - the whole solution on every process (gathered), the same on all of
+//    them; a second solve reuses the factorization / hierarchy;
+//  - the rows default to an even split when none are given, and the
+//    distributed interface (Trilinos vectors) gives the same solution;
+//  - AMG-CG with an iteration limit of 2 reports that it did not converge.
+
+#include <deal.II/base/mpi.h>
+#include <deal.II/distributed/shared_tria.h>
+#include <deal.II/grid/grid_generator.h>
+#include <deal.II/grid/grid_tools.h>
+
+#include <fem/cholmod_solver.h>
+#include <fem/elastic_body.h>
+#include <fem/trilinos_solver.h>
+
+#include <iostream>
+#include <sstream>
+
+#include "../test_tools.h"
+
+using namespace dealii;
+using namespace dualcontact;
+
+namespace
+{
+  /** Largest difference of @p u over the processes (0 if all agree). */
+  double
+  spread_over_processes(const Vector<double> &u)
+  {
+    Vector<double> min(u), max(u);
+    Utilities::MPI::min(ArrayView<const double>(u.begin(), u.size()),
+                        MPI_COMM_WORLD,
+                        ArrayView<double>(min.begin(), min.size()));
+    Utilities::MPI::max(ArrayView<const double>(u.begin(), u.size()),
+                        MPI_COMM_WORLD,
+                        ArrayView<double>(max.begin(), max.size()));
+    max -= min;
+    return max.linfty_norm();
+  }
+
+  template <int dim>
+  void
+  check_body(const std::string &name, const unsigned int degree)
+  {
+    auto tria = std::make_shared<parallel::shared::Triangulation<dim>>(
+      MPI_COMM_WORLD,
+      Triangulation<dim>::none,
+      false,
+      parallel::shared::Triangulation<dim>::partition_metis);
+    std::vector<unsigned int> subdivisions(dim, 3);
+    subdivisions[0] = 8;
+    Point<dim> upper;
+    for (unsigned int d = 0; d < dim; ++d)
+      upper[d] = d == 0 ? 4 : 1;
+    GridGenerator::subdivided_hyper_rectangle(
+      *tria, subdivisions, Point<dim>(), upper, true);
+    // the same distortion on every process (fixed seed)
+    GridTools::distort_random(0.2, *tria, true, 7);
+    const fem::IsotropicMaterial material(2e11, 0.3);
+    fem::ElasticBody<dim>        body(name, tria, degree, {{0, material}});
+    body.set_dirichlet_conditions(
+      {{0,
+        ComponentMask(dim, true),
+        std::make_shared<Functions::ZeroFunction<dim>>(dim)}});
+    std::vector<double> traction(dim, 1e6);
+    traction[1] = -2e6;
+    body.set_traction_conditions(
+      {{1, std::make_shared<Functions::ConstantFunction<dim>>(traction)}});
+    body.setup();
+    body.assemble();
+    std::cout << name << ": " << body.n_dofs() << " dofs, "
+              << body.dof_handler().n_locally_owned_dofs()
+              << " owned by this process" << std::endl;
+
+    fem::CholmodSolver cholmod;
+    Vector<double>     reference;
+    body.solve(cholmod, reference);
+
+    for (const auto method : {fem::TrilinosSolver::Method::mumps,
+                              fem::TrilinosSolver::Method::amg_cg})
+    {
+      fem::TrilinosSolver::Parameters parameters;
+      parameters.method = method;
+      fem::TrilinosSolver solver(parameters);
+      solver.set_block_size(dim);
+      solver.set_locally_owned_rows(body.dof_handler().locally_owned_dofs());
+      Vector<double> u;
+      body.solve(solver, u);
+      Vector<double> again;
+      solver.solve(again, body.load_vector());
+      body.distribute(again);
+      const double spread = spread_over_processes(u);
+      u -= reference;
+      again -= reference;
+      const double bound =
+        method == fem::TrilinosSolver::Method::mumps ? 1e-10 : 1e-8;
+      const std::string what = name + ", " + solver.name();
+      test_tools::check(u.l2_norm() / reference.l2_norm() < bound,
+                        what + ": relative difference to CHOLMOD",
+                        u.l2_norm() / reference.l2_norm());
+      test_tools::check(again.l2_norm() / reference.l2_norm() < bound,
+                        what + ": second solve, relative difference",
+                        again.l2_norm() / reference.l2_norm());
+      test_tools::check(spread == 0,
+                        what + ": spread of the solution over processes",
+                        spread);
+      test_tools::check(solver.statistics().n_solves == 2,
+                        what + ": solves counted",
+                        solver.statistics().n_solves);
+      test_tools::check(solver.locally_owned_rows() ==
+                          body.dof_handler().locally_owned_dofs(),
+                        what + ": rows = the subdomain's dofs",
+                        solver.locally_owned_rows().n_elements());
+      if (method == fem::TrilinosSolver::Method::amg_cg)
+        test_tools::check(solver.statistics().iterations > 0 &&
+                            solver.statistics().iterations < 1000,
+                          what + ": CG iterations",
+                          solver.statistics().iterations);
+    }
+
+    // rows split evenly (no partition given), the distributed interface
+    {
+      fem::TrilinosSolver::Parameters parameters;
+      fem::TrilinosSolver             solver(parameters);
+      solver.initialize(body.stiffness_matrix());
+      const IndexSet &rows = solver.locally_owned_rows();
+      const auto      n_rows =
+        Utilities::MPI::sum(rows.n_elements(), MPI_COMM_WORLD);
+      test_tools::check(rows.is_contiguous() && n_rows == body.n_dofs(),
+                        name + ", even split: rows of all processes",
+                        n_rows);
+      TrilinosWrappers::MPI::Vector b(rows, MPI_COMM_WORLD), x(b);
+      for (const auto row : rows)
+        b(row) = body.load_vector()(row);
+      b.compress(VectorOperation::insert);
+      solver.solve(x, b);
+      double local = 0;
+      for (const auto row : rows)
+      {
+        const double value =
+          body.constraints().is_constrained(row) ? 0. : x(row) - reference(row);
+        local += value * value;
+      }
+      const double error =
+        std::sqrt(Utilities::MPI::sum(local, MPI_COMM_WORLD)) /
+        reference.l2_norm();
+      test_tools::check(error < 1e-10,
+                        name + ", distributed interface: relative difference",
+                        error);
+    }
+
+    // AMG-CG that cannot converge says so
+    {
+      fem::TrilinosSolver::Parameters parameters;
+      parameters.method            = fem::TrilinosSolver::Method::amg_cg;
+      parameters.cg_max_iterations = 2;
+      fem::TrilinosSolver solver(parameters);
+      std::string         message;
+      try
+      {
+        Vector<double> u;
+        body.solve(solver, u);
+      }
+      catch (const std::exception &e)
+      {
+        message = e.what();
+      }
+      test_tools::check(message.find("did not converge") != std::string::npos &&
+                          message.find("CG max iterations") !=
+                            std::string::npos,
+                        name + ", amg with 2 iterations: error reported",
+                        message.empty() ? "(none)" : "yes");
+    }
+  }
+} // namespace
+
+
+int
+main(int argc, char *argv[])
+{
+  Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+  try
+  {
+    check_body<3>("3D bar, Q2", 2);
+    check_body<2>("2D plate, Q1", 1);
+  }
+  catch (const std::exception &e)
+  {
+    std::cout << "  FAIL exception: " << e.what() << std::endl;
+    ++test_tools::failures;
+  }
+  // every process must pass
+  const int failures =
+    Utilities::MPI::sum(test_tools::failures, MPI_COMM_WORLD);
+  test_tools::failures = failures;
+  return test_tools::finish();
+}
