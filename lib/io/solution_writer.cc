@@ -1,4 +1,6 @@
 #include <deal.II/base/data_out_base.h>
+#include <deal.II/base/mpi.h>
+#include <deal.II/distributed/tria_base.h>
 #include <deal.II/numerics/data_out.h>
 
 #include <io/contact_surface_writer.h>
@@ -20,7 +22,29 @@ namespace dualcontact
       const std::vector<dealii::Vector<double>>                 &displacements,
       const std::vector<std::string> &additional_parts)
     {
+      // DataOut writes the locally owned cells: on a parallel
+      // triangulation one piece per process and body
+      unsigned int n_ranks = 1, rank = 0;
+      if (!bodies.empty())
+        if (const auto *parallel =
+              dynamic_cast<const dealii::parallel::TriangulationBase<dim> *>(
+                &bodies.front()->triangulation()))
+        {
+          n_ranks = dealii::Utilities::MPI::n_mpi_processes(
+            parallel->get_communicator());
+          rank = dealii::Utilities::MPI::this_mpi_process(
+            parallel->get_communicator());
+        }
+      const auto piece_name =
+        [n_ranks](const unsigned int b, const unsigned int r)
+      {
+        return "body_" + std::to_string(b + 1) +
+               (n_ranks > 1 ? "_rank_" + std::to_string(r) : "") + ".vtu";
+      };
       std::vector<std::string> pieces;
+      for (unsigned int b = 0; b < bodies.size(); ++b)
+        for (unsigned int r = 0; r < n_ranks; ++r)
+          pieces.push_back(piece_name(b, r));
       // kept for write_pvtu_record, which needs the field names
       // (postprocessor first: the DataOut refers to it and goes first)
       std::unique_ptr<ElasticityPostprocessor<dim>> first_postprocessor;
@@ -44,17 +68,17 @@ namespace dualcontact
         data_out->build_patches(body.mapping(),
                                 body.fe().degree,
                                 dealii::DataOut<dim>::curved_inner_cells);
-        const std::string name = "body_" + std::to_string(b + 1) + ".vtu";
-        folder.write(name,
+        folder.write(piece_name(b, rank),
                      [&data_out](std::ostream &out)
                      { data_out->write_vtu(out); });
-        pieces.push_back(name);
         if (b == 0)
         {
           first_data_out      = std::move(data_out);
           first_postprocessor = std::move(postprocessor);
         }
       }
+      if (rank != 0)
+        return;
       folder.write("solution.pvtu",
                    [&](std::ostream &out)
                    { first_data_out->write_pvtu_record(out, pieces); });

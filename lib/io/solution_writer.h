@@ -23,6 +23,11 @@ namespace dualcontact
      *    the @p additional_parts (e.g. the contact surfaces, written by the
      *    caller), each one part of the same step: the file to open in
      *    ParaView.
+     *
+     * Under MPI (bodies on a parallel::shared::Triangulation of more than
+     * one process) every process calls this and writes the cells it owns,
+     * `body_N_rank_R.vtu' (R = 0, 1, ...); process 0 writes solution.pvtu,
+     * whose pieces are all of them, and solution.pvd.
      */
     template <int dim>
     void

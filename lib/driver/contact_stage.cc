@@ -1,0 +1,297 @@
+#include <deal.II/base/mpi.h>
+
+#include <driver/contact_stage.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <functional>
+#include <iomanip>
+#include <sstream>
+
+namespace dualcontact
+{
+  namespace driver
+  {
+    template <int dim>
+    ContactStage<dim>::ContactStage(dealii::ParameterHandler &prm,
+                                    Scene<dim>               &scene)
+        : prm_(prm)
+        , scene_(scene)
+    {
+      prm.enter_subsection("Output");
+      write_coulomb_iterates_ = prm.get_bool("Write Coulomb iterates");
+      status_tolerance_       = prm.get_double("Contact status tolerance");
+      prm.leave_subsection();
+      qp_parameters_.parse_parameters(prm);
+      smalse_parameters_.parse_parameters(prm);
+      coulomb_parameters_.parse_parameters(prm);
+      dual_parameters_.parse_parameters(prm);
+    }
+
+
+    template <int dim>
+    ContactStage<dim>::~ContactStage() = default;
+
+
+    template <int dim>
+    void
+    ContactStage<dim>::discretize(std::vector<std::string> &details)
+    {
+      const std::vector<const fem::ElasticBody<dim> *> bodies = scene_.bodies();
+      std::vector<contact::ContactPair<dim>>           pairs;
+      for (const auto &parameters : scene_.pair_parameters())
+        pairs.push_back(parameters.pair);
+      contact_ =
+        std::make_unique<contact::ContactDiscretization<dim>>(bodies, pairs);
+      for (unsigned int p = 0; p < scene_.pair_parameters().size(); ++p)
+      {
+        const auto        &summary = contact_->pair_summaries()[p];
+        const auto        &pair    = scene_.pair_parameters()[p].pair;
+        std::ostringstream line;
+        line << std::setprecision(4) << summary.name << " (Body "
+             << pair.slave_body + 1 << " boundary " << pair.slave_boundary
+             << " on " << scene_.pair_parameters()[p].master_description;
+        if (pair.obstacle)
+          line << ": " << pair.obstacle->description();
+        else
+          line << " boundary " << pair.master_boundary;
+        line << "): " << summary.n_nodes << " contact nodes, gap "
+             << summary.min_gap << " .. " << summary.max_gap << " m, area "
+             << summary.area << (dim == 2 ? " m" : " m^2");
+        details.push_back(line.str());
+      }
+    }
+
+
+    template <int dim>
+    void
+    ContactStage<dim>::setup_dual_problem(std::vector<std::string> &details)
+    {
+      const std::vector<const fem::ElasticBody<dim> *> bodies = scene_.bodies();
+      dealii::ParameterHandler                        &prm    = prm_;
+      dual_ = std::make_unique<contact::DualProblem<dim>>(
+        bodies,
+        *contact_,
+        // one solver per body, in body order (a fem::TrilinosSolver gets
+        // the body's rows; a generalized inverse drops the fixing dofs and
+        // with them this partition: the solver then splits evenly)
+        [&prm, &bodies, b = 0u]() mutable
+        {
+          auto solver = fem::StiffnessSolver::create(prm);
+          if (b < bodies.size())
+            configure_solver(*solver, *bodies[b++]);
+          return solver;
+        },
+        dual_parameters_);
+      std::ostringstream line;
+      line << std::setprecision(4) << dual_->n_multipliers() << " multipliers ("
+           << dual_->n_contact_nodes() << " normal, "
+           << dual_->n_multipliers() - dual_->n_contact_nodes()
+           << " tangential), " << dual_->n_rigid_body_modes()
+           << " rigid-body modes, lambda_max(F) " << dual_->scale() << " m/N";
+      details.push_back(line.str());
+      details.push_back("Dual operator: " + dual_->operator_description());
+    }
+
+
+    template <int dim>
+    void
+    ContactStage<dim>::solve(std::vector<std::string> &details)
+    {
+      contact::ContactSolver<dim> solver(*dual_,
+                                         qp_parameters_,
+                                         smalse_parameters_,
+                                         coulomb_parameters_);
+      std::function<void(const typename contact::ContactSolver<dim>::Result &)>
+        on_iterate;
+      if (write_coulomb_iterates_ && dual_->has_coulomb_friction())
+        on_iterate = [this](const auto &iterate)
+        {
+          coulomb_iterates_.push_back(
+            contact_surfaces(iterate.lambda, iterate.displacements));
+        };
+      result_ = solver.solve(on_iterate);
+
+      qp_wall_time_ = 0;
+      for (unsigned int k = 0; k < result_.qp_statistics.size(); ++k)
+      {
+        const auto        &q = result_.qp_statistics[k];
+        std::ostringstream line;
+        line << std::setprecision(3) << "QP " << k + 1 << ": " << q.solver
+             << ", " << qp::to_string(q.reason) << ", " << q.iterations
+             << " iterations";
+        if (q.n_outer > 0)
+          line << " (" << q.n_outer << " SMALSE-M outer)";
+        line << ", " << q.n_hessian_products << " Hessian products, "
+             << q.wall_time << " s, criterion " << q.final_criterion;
+        if (k < result_.coulomb_changes.size())
+          line << ", Coulomb change of psi " << result_.coulomb_changes[k];
+        details.push_back(line.str());
+        qp_wall_time_ += q.wall_time;
+      }
+      details.push_back(
+        (result_.converged ? "" : "NOT CONVERGED: ") + result_.reason + ", " +
+        std::to_string(dual_->n_stiffness_solves()) + " stiffness solves");
+    }
+
+
+    template <int dim>
+    void
+    ContactStage<dim>::recover()
+    {
+      // the contact solver recovered the displacements already; recovering
+      // here again (one K^# per body) keeps the phases' timings apart
+      dual_->recover(result_.lambda, scene_.displacements());
+      surfaces_ = contact_surfaces(result_.lambda, scene_.displacements());
+      // the owner of each node: the process owning its first slave dof (a
+      // sum over processes of "mine": every node has exactly one owner)
+      surface_owners_.assign(scene_.pair_parameters().size(), {});
+      {
+        const unsigned int rank =
+          dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD);
+        std::vector<unsigned int> owners;
+        for (const auto &node : contact_->nodes())
+        {
+          const auto &pair = scene_.pair_parameters()[node.pair].pair;
+          owners.push_back(scene_.body(pair.slave_body)
+                               .dof_handler()
+                               .locally_owned_dofs()
+                               .is_element(node.dofs[0]) ?
+                             rank :
+                             0);
+        }
+        std::vector<unsigned int> total(owners.size());
+        dealii::Utilities::MPI::sum(owners, MPI_COMM_WORLD, total);
+        for (unsigned int i = 0; i < total.size(); ++i)
+          surface_owners_[contact_->nodes()[i].pair].push_back(total[i]);
+      }
+
+      pair_results_.assign(scene_.pair_parameters().size(), PairResults());
+      for (unsigned int p = 0; p < scene_.pair_parameters().size(); ++p)
+      {
+        PairResults &r       = pair_results_[p];
+        const auto  &summary = contact_->pair_summaries()[p];
+        r.min_gap            = summary.min_gap;
+        r.max_gap            = summary.max_gap;
+        r.area               = summary.area;
+      }
+      const unsigned int n = contact_->n_nodes();
+      for (unsigned int i = 0; i < n; ++i)
+      {
+        const auto  &node = contact_->nodes()[i];
+        PairResults &r    = pair_results_[node.pair];
+        r.normal_force += result_.lambda(i);
+        const int j = dual_->frictional_index(i);
+        if (j >= 0)
+          for (unsigned int k = 0; k + 1 < dim; ++k)
+            r.tangential_force +=
+              result_.lambda(n + (dim - 1) * j + k) * node.tangents[k];
+      }
+      for (unsigned int p = 0; p < surfaces_.size(); ++p)
+      {
+        PairResults &r = pair_results_[p];
+        for (const auto &node : surfaces_[p])
+        {
+          ++r.n_nodes;
+          r.max_pressure = std::max(r.max_pressure, node.pressure);
+          if (node.status == io::contact_status::separated)
+            ++r.n_separated;
+          else if (node.status == io::contact_status::stick)
+            ++r.n_stick;
+          else if (node.status == io::contact_status::slip)
+            ++r.n_slip;
+          else
+            ++r.n_contact;
+        }
+      }
+    }
+
+
+    template <int dim>
+    typename ContactStage<dim>::Surfaces
+    ContactStage<dim>::contact_surfaces(
+      const dealii::Vector<double>              &lambda,
+      const std::vector<dealii::Vector<double>> &displacements) const
+    {
+      const unsigned int     n = contact_->n_nodes();
+      dealii::Vector<double> u(contact_->n_dofs());
+      for (unsigned int b = 0; b < displacements.size(); ++b)
+        for (unsigned int k = 0; k < displacements[b].size(); ++k)
+          u(contact_->body_offset(b) + k) = displacements[b](k);
+      dealii::Vector<double> bn(n), bt((dim - 1) * n);
+      contact_->normal_matrix().vmult(bn, u);
+      contact_->tangential_matrix().vmult(bt, u);
+      bt += contact_->tangential_offset();
+      const dealii::Vector<double> c = contact_->normal_bound();
+
+      std::vector<double> max_lambda(scene_.pair_parameters().size(), 0.);
+      for (unsigned int i = 0; i < n; ++i)
+        max_lambda[contact_->nodes()[i].pair] =
+          std::max(max_lambda[contact_->nodes()[i].pair], lambda(i));
+
+      const auto &psi_first  = dual_->slip_bounds_first();
+      const auto &psi_second = dual_->slip_bounds_second();
+      std::vector<std::vector<io::ContactSurfaceNode<dim>>> surfaces(
+        scene_.pair_parameters().size());
+      for (unsigned int i = 0; i < n; ++i)
+      {
+        const auto                 &node = contact_->nodes()[i];
+        const contact::FrictionLaw &law =
+          scene_.pair_parameters()[node.pair].pair.friction;
+        io::ContactSurfaceNode<dim> out;
+        out.position = node.position;
+        out.normal   = node.normal;
+        out.pressure = lambda(i) / node.weight;
+        out.weight   = node.weight;
+        out.gap      = c(i) - bn(i);
+        for (unsigned int k = 0; k + 1 < dim; ++k)
+          out.slip += bt((dim - 1) * i + k) * node.tangents[k];
+
+        const bool separated =
+          !(lambda(i) > status_tolerance_ * max_lambda[node.pair]);
+        const int j           = dual_->frictional_index(i);
+        double    utilization = 1; // |lambda_T| / bound, 1 = on the boundary
+        if (j >= 0)
+        {
+          std::array<double, dim - 1> lt;
+          for (unsigned int k = 0; k + 1 < dim; ++k)
+          {
+            lt[k] = lambda(n + (dim - 1) * j + k);
+            out.tangential_traction += lt[k] / node.weight * node.tangents[k];
+          }
+          if (dim == 3 && law.is_orthotropic())
+          {
+            double sum = 0;
+            for (unsigned int k = 0; k + 1 < dim; ++k)
+            {
+              const double bound = k == 0 ? psi_first[j] : psi_second[j];
+              sum += bound > 0 ? std::pow(lt[k] / bound, 2) :
+                                 (lt[k] != 0 ? 1e300 : 1);
+            }
+            utilization = std::sqrt(sum);
+          }
+          else
+          {
+            double norm = 0;
+            for (unsigned int k = 0; k + 1 < dim; ++k)
+              norm += lt[k] * lt[k];
+            norm        = std::sqrt(norm);
+            utilization = psi_first[j] > 0 ? norm / psi_first[j] : 1;
+          }
+        }
+        out.status = separated ? io::contact_status::separated :
+                     j < 0     ? io::contact_status::frictionless_contact :
+                     utilization >= 1 - status_tolerance_ ?
+                             io::contact_status::slip :
+                             io::contact_status::stick;
+        surfaces[node.pair].push_back(out);
+      }
+      return surfaces;
+    }
+
+
+    template class ContactStage<2>;
+    template class ContactStage<3>;
+  } // namespace driver
+} // namespace dualcontact

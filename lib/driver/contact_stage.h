@@ -1,0 +1,159 @@
+#pragma once
+
+#include <deal.II/base/parameter_handler.h>
+#include <deal.II/base/tensor.h>
+#include <deal.II/lac/vector.h>
+
+#include <contact/contact_discretization.h>
+#include <contact/contact_solver.h>
+#include <contact/dual_problem.h>
+#include <driver/scene.h>
+#include <io/contact_surface_writer.h>
+#include <qp/smalse_m.h>
+#include <qp/solver_parameters.h>
+
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace dualcontact
+{
+  namespace driver
+  {
+    /**
+     * The contact part of a run, on the bodies of a Scene: contact search
+     * (nodes, frames, gaps, B_N, B_T), the dual problem (factorizes every
+     * K), the QP or the Coulomb fixed point over QPs, recovery of the
+     * displacements, and what is derived from the multipliers: the
+     * contact-surface data of every pair (io::ContactSurfaceNode) and the
+     * per-pair sums and counts of results.txt (PairResults).
+     *
+     * Parameters: `QP solver', `QP solver/SMALSE-M', `Coulomb', `Dual
+     * problem', and in
+     * `Output' the `Write Coulomb iterates' switch and the `Contact status
+     * tolerance'.  Each phase method appends console lines to @p details.
+     */
+    template <int dim>
+    class ContactStage
+    {
+    public:
+      /** Per contact pair: the sums and counts of results.txt. */
+      struct PairResults
+      {
+        unsigned int           n_nodes      = 0;
+        unsigned int           n_separated  = 0;
+        unsigned int           n_stick      = 0;
+        unsigned int           n_slip       = 0;
+        unsigned int           n_contact    = 0; ///< frictionless, touching
+        double                 normal_force = 0;
+        dealii::Tensor<1, dim> tangential_force;
+        double                 max_pressure = 0;
+        double                 min_gap      = 0;
+        double                 max_gap      = 0;
+        double                 area         = 0;
+      };
+
+      /** Contact surfaces of every pair (one vector of nodes per pair). */
+      using Surfaces = std::vector<std::vector<io::ContactSurfaceNode<dim>>>;
+
+      /**
+       * Read the parameters; @p prm is kept to make the stiffness solvers
+       * (subsection `Stiffness solver') in setup_dual_problem().
+       */
+      ContactStage(dealii::ParameterHandler &prm, Scene<dim> &scene);
+      ~ContactStage();
+
+      /** Contact search phase: nodes, frames, gaps, B_N, B_T. */
+      void
+      discretize(std::vector<std::string> &details);
+      /** Factorization phase: the dual problem (factorizes every K). */
+      void
+      setup_dual_problem(std::vector<std::string> &details);
+      /** QP phase: the QP (or the Coulomb fixed point over QPs). */
+      void
+      solve(std::vector<std::string> &details);
+      /**
+       * Recovery phase: the displacements of the scene's bodies from the
+       * multipliers, the contact surfaces and the pair results.
+       */
+      void
+      recover();
+
+      const qp::SolverParameters &
+      qp_parameters() const
+      {
+        return qp_parameters_;
+      }
+      const typename contact::ContactSolver<dim>::Result &
+      result() const
+      {
+        return result_;
+      }
+      const contact::DualProblem<dim> &
+      dual() const
+      {
+        return *dual_;
+      }
+      /** Sum of the QP solves' wall times [s]. */
+      double
+      qp_wall_time() const
+      {
+        return qp_wall_time_;
+      }
+      const Surfaces &
+      surfaces() const
+      {
+        return surfaces_;
+      }
+      /** Per Coulomb iterate (if written): the surfaces of every pair. */
+      const std::vector<Surfaces> &
+      coulomb_iterates() const
+      {
+        return coulomb_iterates_;
+      }
+      /**
+       * Per pair and node of surfaces(): the process that owns the node's
+       * first slave dof (0 on one process).
+       */
+      const std::vector<std::vector<unsigned int>> &
+      surface_owners() const
+      {
+        return surface_owners_;
+      }
+      const std::vector<PairResults> &
+      pair_results() const
+      {
+        return pair_results_;
+      }
+
+    private:
+      /**
+       * The contact-surface data of every pair for multipliers @p lambda and
+       * displacements @p displacements, with the dual's current slip bounds.
+       */
+      Surfaces
+      contact_surfaces(
+        const dealii::Vector<double>              &lambda,
+        const std::vector<dealii::Vector<double>> &displacements) const;
+
+      dealii::ParameterHandler      &prm_;
+      Scene<dim>                    &scene_;
+      qp::SolverParameters           qp_parameters_;
+      qp::SMALSEMParameters          smalse_parameters_;
+      contact::CoulombParameters     coulomb_parameters_;
+      contact::DualProblemParameters dual_parameters_;
+      bool                           write_coulomb_iterates_ = false;
+      /** Relative tolerance of the separated / stick / slip status. */
+      double status_tolerance_ = 1e-6;
+
+      std::unique_ptr<contact::ContactDiscretization<dim>> contact_;
+      std::unique_ptr<contact::DualProblem<dim>>           dual_;
+      typename contact::ContactSolver<dim>::Result         result_;
+      double                                               qp_wall_time_ = 0;
+      Surfaces                                             surfaces_;
+      std::vector<std::vector<unsigned int>>               surface_owners_;
+      std::vector<Surfaces>                                coulomb_iterates_;
+      std::vector<PairResults>                             pair_results_;
+    };
+  } // namespace driver
+} // namespace dualcontact

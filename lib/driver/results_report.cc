@@ -1,0 +1,362 @@
+#include <deal.II/base/mpi.h>
+#include <deal.II/base/utilities.h>
+
+#include <driver/results_report.h>
+#include <io/contact_surface_writer.h>
+#include <io/solution_writer.h>
+
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <iomanip>
+#include <sstream>
+
+namespace dualcontact
+{
+  namespace driver
+  {
+    namespace
+    {
+      std::string
+      format_number(const double value)
+      {
+        std::ostringstream text;
+        text << std::setprecision(12) << std::scientific << value;
+        return text.str();
+      }
+
+      /**
+       * Components below 1e-10 * @p scale are round-off of a zero (e.g. the
+       * reaction along an unloaded direction): print them as 0 so that the
+       * reference comparison does not depend on round-off.
+       */
+      template <int dim>
+      std::string
+      format_vector(const dealii::Tensor<1, dim> &vector, const double scale)
+      {
+        std::string text;
+        for (unsigned int d = 0; d < dim; ++d)
+          text +=
+            (d == 0 ? "" : ", ") +
+            format_number(std::abs(vector[d]) < 1e-10 * scale ? 0. : vector[d]);
+        return text;
+      }
+
+      template <int dim>
+      std::vector<double>
+      to_vector(const dealii::Tensor<1, dim> &tensor)
+      {
+        std::vector<double> values(dim);
+        for (unsigned int d = 0; d < dim; ++d)
+          values[d] = tensor[d];
+        return values;
+      }
+    } // namespace
+
+
+    template <int dim>
+    ResultsReport<dim>::ResultsReport(const Scene<dim>        &scene,
+                                      const ContactStage<dim> *contact,
+                                      const std::string       &parameter_file)
+        : scene_(scene)
+        , contact_(contact)
+        , parameter_file_(parameter_file)
+    {
+    }
+
+
+    template <int dim>
+    std::string
+    ResultsReport<dim>::results_text() const
+    {
+      std::ostringstream out;
+      out << "# dualcontact results, SI units"
+          << (dim == 2 ? " (2D plane strain: per metre of thickness)" : "")
+          << "\n";
+      out << "dimension = " << dim << "\n";
+      out << "n_bodies = " << scene_.n_bodies() << "\n";
+      double total_energy = 0, total_work = 0;
+      for (unsigned int b = 0; b < scene_.n_bodies(); ++b)
+      {
+        const auto       &r      = scene_.results()[b];
+        const std::string prefix = "body_" + std::to_string(b + 1) + ".";
+        // the size of the forces in this body, to recognize round-off
+        // zeros: the largest resultant, or energy / displacement when
+        // nothing is loaded (prescribed displacements only)
+        double force_scale = r.applied_force.norm();
+        for (const auto &[id, force] : r.reaction_forces)
+          force_scale = std::max(force_scale, force.norm());
+        if (r.max_displacement > 0)
+          force_scale =
+            std::max(force_scale, r.strain_energy / r.max_displacement);
+        out << prefix
+            << "n_cells = " << scene_.body(b).triangulation().n_active_cells()
+            << "\n";
+        out << prefix << "n_dofs = " << scene_.body(b).n_dofs() << "\n";
+        out << prefix << "strain_energy = " << format_number(r.strain_energy)
+            << "\n";
+        out << prefix << "external_work = " << format_number(r.external_work)
+            << "\n";
+        out << prefix
+            << "max_displacement = " << format_number(r.max_displacement)
+            << "\n";
+        out << prefix << "applied_force = "
+            << format_vector<dim>(r.applied_force, force_scale) << "\n";
+        for (const auto &[id, force] : r.reaction_forces)
+          out << prefix << "reaction_force.boundary_" << id << " = "
+              << format_vector<dim>(force, force_scale) << "\n";
+        total_energy += r.strain_energy;
+        total_work += r.external_work;
+      }
+      out << "total.strain_energy = " << format_number(total_energy) << "\n";
+      out << "total.external_work = " << format_number(total_work) << "\n";
+      if (contact_ != nullptr)
+      {
+        out << "contact.converged = " << (contact_->result().converged ? 1 : 0)
+            << "\n";
+        out << "contact.n_qp_solves = "
+            << contact_->result().qp_statistics.size() << "\n";
+        out << "contact.n_multipliers = " << contact_->dual().n_multipliers()
+            << "\n";
+      }
+      const std::vector<typename ContactStage<dim>::PairResults> pair_results =
+        contact_ != nullptr ?
+          contact_->pair_results() :
+          std::vector<typename ContactStage<dim>::PairResults>();
+      for (unsigned int p = 0; p < pair_results.size(); ++p)
+      {
+        const auto       &r      = pair_results[p];
+        const std::string prefix = "pair_" + std::to_string(p + 1) + ".";
+        const double      scale =
+          std::max(r.normal_force, r.tangential_force.norm());
+        out << prefix << "n_nodes = " << r.n_nodes << "\n";
+        out << prefix << "n_separated = " << r.n_separated << "\n";
+        out << prefix << "n_stick = " << r.n_stick << "\n";
+        out << prefix << "n_slip = " << r.n_slip << "\n";
+        out << prefix << "n_contact = " << r.n_contact << "\n";
+        out << prefix << "area = " << format_number(r.area) << "\n";
+        out << prefix << "min_initial_gap = " << format_number(r.min_gap)
+            << "\n";
+        out << prefix << "max_initial_gap = " << format_number(r.max_gap)
+            << "\n";
+        out << prefix << "normal_force = " << format_number(r.normal_force)
+            << "\n";
+        out << prefix << "tangential_force = "
+            << format_vector<dim>(r.tangential_force, scale) << "\n";
+        out << prefix << "max_pressure = " << format_number(r.max_pressure)
+            << "\n";
+      }
+      return out.str();
+    }
+
+
+    template <int dim>
+    std::string
+    ResultsReport<dim>::statistics_json(const dealii::TimerOutput &timer) const
+    {
+      nlohmann::json json;
+      json["program"]        = "dualcontact";
+      json["version"]        = DUALCONTACT_VERSION;
+      json["parameter_file"] = parameter_file_;
+      json["dimension"]      = dim;
+      json["fe_degree"]      = scene_.fe_degree();
+      json["mpi_processes"] =
+        dealii::Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD);
+
+      nlohmann::json timing;
+      for (const auto &[section, seconds] :
+           timer.get_summary_data(dealii::TimerOutput::total_wall_time))
+        timing[section] = seconds;
+      json["wall_time_s"] = timing;
+
+      nlohmann::json bodies = nlohmann::json::array();
+      for (unsigned int b = 0; b < scene_.n_bodies(); ++b)
+      {
+        const auto    &r          = scene_.results()[b];
+        const auto    &statistics = scene_.solver(b).statistics();
+        nlohmann::json body;
+        body["name"]    = scene_.body(b).name();
+        body["mesh"]    = scene_.body_parameters()[b].mesh.description();
+        body["n_cells"] = scene_.body(b).triangulation().n_active_cells();
+        body["n_dofs"]  = scene_.body(b).n_dofs();
+        body["stiffness_solver"] = {{"name", scene_.solver(b).name()},
+                                    {"setup_time_s", statistics.setup_time},
+                                    {"solve_time_s", statistics.solve_time},
+                                    {"n_solves", statistics.n_solves},
+                                    {"factor_nonzeros",
+                                     statistics.factor_nonzeros},
+                                    {"factor_flops", statistics.factor_flops},
+                                    {"iterations", statistics.iterations}};
+        nlohmann::json reactions;
+        for (const auto &[id, force] : r.reaction_forces)
+          reactions[std::to_string(id)] = to_vector<dim>(force);
+        body["results"] = {{"strain_energy", r.strain_energy},
+                           {"external_work", r.external_work},
+                           {"max_displacement_m", r.max_displacement},
+                           {"displacement_l2_norm",
+                            scene_.displacements()[b].l2_norm()},
+                           {"applied_force", to_vector<dim>(r.applied_force)},
+                           {"reaction_force_by_boundary_id", reactions}};
+        bodies.push_back(body);
+      }
+      json["bodies"] = bodies;
+
+      if (contact_ != nullptr)
+      {
+        nlohmann::json contact;
+        contact["converged"]          = contact_->result().converged;
+        contact["reason"]             = contact_->result().reason;
+        contact["n_multipliers"]      = contact_->dual().n_multipliers();
+        contact["n_rigid_body_modes"] = contact_->dual().n_rigid_body_modes();
+        contact["lambda_max_F"]       = contact_->dual().scale();
+        contact["n_stiffness_solves"] = contact_->dual().n_stiffness_solves();
+        contact["stiffness_setup_time_s"] =
+          contact_->dual().stiffness_setup_time();
+        contact["stiffness_solve_time_s"] =
+          contact_->dual().stiffness_solve_time();
+        contact["dual_operator"] = contact_->dual().operator_description();
+        contact["dual_operator_assembly_time_s"] =
+          contact_->dual().assembly_time();
+        contact["qp_wall_time_s"]  = contact_->qp_wall_time();
+        contact["coulomb_changes"] = contact_->result().coulomb_changes;
+        nlohmann::json solves      = nlohmann::json::array();
+        for (const auto &q : contact_->result().qp_statistics)
+          solves.push_back(nlohmann::json::parse(q.to_json()));
+        contact["qp_solves"]        = solves;
+        nlohmann::json pairs        = nlohmann::json::array();
+        const auto    &pair_results = contact_->pair_results();
+        for (unsigned int p = 0; p < pair_results.size(); ++p)
+        {
+          const auto &r    = pair_results[p];
+          const auto &pair = scene_.pair_parameters()[p].pair;
+          pairs.push_back(
+            {{"name", pair.name},
+             {"slave_body", pair.slave_body + 1},
+             {"slave_boundary_id", pair.slave_boundary},
+             {"master", scene_.pair_parameters()[p].master_description},
+             {"n_nodes", r.n_nodes},
+             {"n_separated", r.n_separated},
+             {"n_stick", r.n_stick},
+             {"n_slip", r.n_slip},
+             {"n_contact", r.n_contact},
+             {"area", r.area},
+             {"min_initial_gap_m", r.min_gap},
+             {"max_initial_gap_m", r.max_gap},
+             {"normal_force", r.normal_force},
+             {"tangential_force", to_vector<dim>(r.tangential_force)},
+             {"max_pressure_Pa", r.max_pressure}});
+        }
+        contact["pairs"] = pairs;
+        json["contact"]  = contact;
+      }
+      json["units"] = dim == 2 ? "SI; forces in N/m and energies in J/m "
+                                 "(plane strain, per metre of thickness)" :
+                                 "SI; forces in N, energies in J";
+      return json.dump(2) + "\n";
+    }
+
+
+    template <int dim>
+    void
+    ResultsReport<dim>::write_output(io::OutputFolder &folder,
+                                     const bool        write_vtu) const
+    {
+      const unsigned int n_ranks =
+        dealii::Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD);
+      const unsigned int rank =
+        dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD);
+      const typename ContactStage<dim>::Surfaces              no_surfaces;
+      const std::vector<typename ContactStage<dim>::Surfaces> no_iterates;
+      const auto                                             &surfaces =
+        contact_ != nullptr ? contact_->surfaces() : no_surfaces;
+      const auto &iterates =
+        contact_ != nullptr ? contact_->coulomb_iterates() : no_iterates;
+
+      // The contact surfaces: one file per pair; under MPI one piece per
+      // pair and process (the nodes whose slave dofs the process owns), with
+      // contact_N.pvd as the master file of the pair's pieces.
+      std::vector<std::string> contact_files;
+      for (unsigned int p = 0; p < surfaces.size(); ++p)
+      {
+        const std::string stem = "contact_" + std::to_string(p + 1);
+        if (n_ranks == 1)
+        {
+          folder.write(stem + ".vtu",
+                       [&](std::ostream &out)
+                       { io::write_contact_surface<dim>(out, surfaces[p]); });
+          contact_files.push_back(stem + ".vtu");
+          continue;
+        }
+        std::vector<io::ContactSurfaceNode<dim>> own;
+        for (unsigned int i = 0; i < surfaces[p].size(); ++i)
+          if (contact_->surface_owners()[p][i] == rank)
+            own.push_back(surfaces[p][i]);
+        folder.write(stem + "_rank_" + std::to_string(rank) + ".vtu",
+                     [&](std::ostream &out)
+                     { io::write_contact_surface<dim>(out, own); });
+        std::vector<std::pair<double, std::string>> pieces;
+        for (unsigned int r = 0; r < n_ranks; ++r)
+        {
+          pieces.emplace_back(0., stem + "_rank_" + std::to_string(r) + ".vtu");
+          contact_files.push_back(pieces.back().second);
+        }
+        if (rank == 0)
+          folder.write(stem + ".pvd",
+                       [&](std::ostream &out) { io::write_pvd(out, pieces); });
+      }
+      // Coulomb iterates (process 0, whole surfaces)
+      if (rank == 0 && !iterates.empty())
+      {
+        std::vector<std::pair<double, std::string>> series;
+        for (unsigned int k = 0; k < iterates.size(); ++k)
+          for (unsigned int p = 0; p < iterates[k].size(); ++p)
+          {
+            const std::string name = "contact_" + std::to_string(p + 1) +
+                                     "_iterate_" + std::to_string(k + 1) +
+                                     ".vtu";
+            folder.write(name,
+                         [&](std::ostream &out) {
+                           io::write_contact_surface<dim>(out, iterates[k][p]);
+                         });
+            series.emplace_back(k + 1, name);
+          }
+        folder.write("coulomb_iterates.pvd",
+                     [&](std::ostream &out) { io::write_pvd(out, series); });
+      }
+      if (write_vtu)
+        io::write_solution<dim>(folder,
+                                scene_.elastic_bodies(),
+                                scene_.displacements(),
+                                contact_files);
+    }
+
+
+    template <int dim>
+    void
+    ResultsReport<dim>::write_records(io::OutputFolder               &folder,
+                                      const dealii::ParameterHandler &prm,
+                                      const dealii::TimerOutput &timer) const
+    {
+      folder.write("results.txt",
+                   [this](std::ostream &out) { out << results_text(); });
+      folder.write("statistics.json",
+                   [&](std::ostream &out) { out << statistics_json(timer); });
+      folder.write("used_parameters.prm",
+                   [&](std::ostream &out)
+                   {
+                     out << "# Parameters used by dualcontact "
+                         << DUALCONTACT_VERSION << " for " << parameter_file_
+                         << "\n";
+                     prm.print_parameters(
+                       out,
+                       dealii::ParameterHandler::ShortPRM |
+                         dealii::ParameterHandler::KeepDeclarationOrder);
+                   });
+      folder.commit();
+    }
+
+
+    template class ResultsReport<2>;
+    template class ResultsReport<3>;
+  } // namespace driver
+} // namespace dualcontact

@@ -1,0 +1,67 @@
+#pragma once
+
+#include <deal.II/base/parameter_handler.h>
+#include <deal.II/base/timer.h>
+
+#include <driver/contact_stage.h>
+#include <driver/scene.h>
+#include <io/output_folder.h>
+
+#include <string>
+
+namespace dualcontact
+{
+  namespace driver
+  {
+    /**
+     * What a run writes, from a Scene and (scenes with contact pairs) its
+     * ContactStage: the VTU/PVTU/PVD files of the bodies and contact
+     * surfaces, results.txt (the numbers reference tests compare),
+     * statistics.json (timings, solver records) and used_parameters.prm.
+     * Everything goes through an io::OutputFolder, which renames the files
+     * to their final names only when all are written.
+     */
+    template <int dim>
+    class ResultsReport
+    {
+    public:
+      /** @p contact is null for a scene without contact pairs. */
+      ResultsReport(const Scene<dim>        &scene,
+                    const ContactStage<dim> *contact,
+                    const std::string       &parameter_file);
+
+      /**
+       * The VTU/PVTU/PVD files (bodies if @p write_vtu, contact always).
+       * Under MPI every process calls this and writes its pieces: of every
+       * body (io::write_solution) and of every contact surface
+       * (contact_N_rank_R.vtu, the nodes whose slave dofs it owns);
+       * process 0 also writes the master files (solution.pvtu,
+       * contact_N.pvd, solution.pvd listing every piece), the Coulomb
+       * iterates (whole) and the records.
+       */
+      void
+      write_output(io::OutputFolder &folder, const bool write_vtu) const;
+
+      /**
+       * results.txt, statistics.json (with the phase times of @p timer),
+       * used_parameters.prm (@p prm), then commit @p folder.
+       */
+      void
+      write_records(io::OutputFolder               &folder,
+                    const dealii::ParameterHandler &prm,
+                    const dealii::TimerOutput      &timer) const;
+
+      /** The text of results.txt. */
+      std::string
+      results_text() const;
+      /** The text of statistics.json. */
+      std::string
+      statistics_json(const dealii::TimerOutput &timer) const;
+
+    private:
+      const Scene<dim>        &scene_;
+      const ContactStage<dim> *contact_;
+      const std::string        parameter_file_;
+    };
+  } // namespace driver
+} // namespace dualcontact

@@ -1,0 +1,220 @@
+#include <deal.II/base/mpi.h>
+#include <deal.II/distributed/shared_tria.h>
+
+#include <driver/scene.h>
+#include <fem/trilinos_solver.h>
+#include <io/file_locator.h>
+
+#include <iomanip>
+#include <sstream>
+
+namespace dualcontact
+{
+  namespace driver
+  {
+    template <int dim>
+    void
+    configure_solver(fem::StiffnessSolver        &solver,
+                     const fem::ElasticBody<dim> &body)
+    {
+      if (auto *trilinos = dynamic_cast<fem::TrilinosSolver *>(&solver))
+      {
+        trilinos->set_block_size(dim);
+        trilinos->set_locally_owned_rows(
+          body.dof_handler().locally_owned_dofs());
+      }
+    }
+
+
+    template <int dim>
+    Scene<dim>::Scene(dealii::ParameterHandler &prm,
+                      const std::string        &parameter_file)
+    {
+      prm.enter_subsection("Discretization");
+      fe_degree_ = prm.get_integer("Finite element degree");
+      prm.leave_subsection();
+
+      const std::string  folder   = io::folder_of(parameter_file);
+      const unsigned int n_bodies = prm.get_integer("Number of bodies");
+      body_parameters_.resize(n_bodies);
+      for (unsigned int b = 0; b < n_bodies; ++b)
+      {
+        const std::string name = "Body " + std::to_string(b + 1);
+        prm.enter_subsection(name);
+        body_parameters_[b].parse_parameters(prm, name, folder);
+        prm.leave_subsection();
+      }
+
+      const unsigned int n_obstacles = prm.get_integer("Number of obstacles");
+      obstacle_parameters_.resize(n_obstacles);
+      for (unsigned int n = 0; n < n_obstacles; ++n)
+      {
+        const std::string name = "Obstacle " + std::to_string(n + 1);
+        prm.enter_subsection(name);
+        obstacle_parameters_[n].parse_parameters(prm, name);
+        prm.leave_subsection();
+      }
+      const unsigned int n_pairs = prm.get_integer("Number of contact pairs");
+      pair_parameters_.resize(n_pairs);
+      for (unsigned int n = 0; n < n_pairs; ++n)
+      {
+        const std::string name = "Contact pair " + std::to_string(n + 1);
+        prm.enter_subsection(name);
+        pair_parameters_[n].parse_parameters(prm,
+                                             name,
+                                             n_bodies,
+                                             obstacle_parameters_);
+        prm.leave_subsection();
+      }
+
+      for (unsigned int b = 0; b < n_bodies; ++b)
+        solvers_.push_back(fem::StiffnessSolver::create(prm));
+    }
+
+
+    template <int dim>
+    std::vector<const fem::ElasticBody<dim> *>
+    Scene<dim>::bodies() const
+    {
+      std::vector<const fem::ElasticBody<dim> *> bodies;
+      for (const auto &body : bodies_)
+        bodies.push_back(body.get());
+      return bodies;
+    }
+
+
+    template <int dim>
+    void
+    Scene<dim>::create_meshes(std::vector<std::string> &details)
+    {
+      const unsigned int n_ranks =
+        dealii::Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD);
+      for (auto &parameters : body_parameters_)
+      {
+        // under MPI every process holds the whole mesh, partitioned by METIS
+        // into one subdomain per process (the dofs of each subdomain are
+        // numbered contiguously: the rows the process owns)
+        std::shared_ptr<dealii::Triangulation<dim>> triangulation;
+        if (n_ranks > 1)
+          triangulation =
+            std::make_shared<dealii::parallel::shared::Triangulation<dim>>(
+              MPI_COMM_WORLD,
+              dealii::Triangulation<dim>::none,
+              false,
+              dealii::parallel::shared::Triangulation<dim>::partition_metis);
+        else
+          triangulation = std::make_shared<dealii::Triangulation<dim>>();
+        parameters.mesh.create(*triangulation,
+                               parameters.placement,
+                               parameters.name);
+        const unsigned int b          = triangulations_.size();
+        bool               in_contact = false;
+        for (const auto &pair : pair_parameters_)
+          in_contact = in_contact || pair.involves_body(b);
+        parameters.check_mesh(*triangulation, in_contact);
+        details.push_back(
+          parameters.name + ": " + parameters.mesh.description() + ", " +
+          std::to_string(triangulation->n_active_cells()) + " cells" +
+          (n_ranks > 1 ? ", METIS partition into " + std::to_string(n_ranks) +
+                           " subdomains" :
+                         ""));
+        triangulations_.push_back(triangulation);
+      }
+      for (const auto &pair : pair_parameters_)
+        pair.check_mesh(triangulations_);
+    }
+
+
+    template <int dim>
+    void
+    Scene<dim>::setup(std::vector<std::string> &details)
+    {
+      for (unsigned int b = 0; b < body_parameters_.size(); ++b)
+      {
+        const BodyParameters<dim> &parameters = body_parameters_[b];
+        auto                       body =
+          std::make_unique<fem::ElasticBody<dim>>(parameters.name,
+                                                  triangulations_[b],
+                                                  fe_degree_,
+                                                  parameters.materials);
+        body->set_dirichlet_conditions(parameters.dirichlet);
+        body->set_traction_conditions(parameters.tractions);
+        if (parameters.has_body_force)
+          body->set_body_force(parameters.body_force);
+        body->setup();
+        std::string line =
+          parameters.name + ": " + std::to_string(body->n_dofs()) + " dofs";
+        if (dealii::Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD) > 1)
+        {
+          const auto owned = dealii::Utilities::MPI::min_max_avg(
+            body->dof_handler().n_locally_owned_dofs(), MPI_COMM_WORLD);
+          line += " (" + std::to_string(static_cast<unsigned long>(owned.min)) +
+                  " .. " +
+                  std::to_string(static_cast<unsigned long>(owned.max)) +
+                  " per process)";
+        }
+        details.push_back(line);
+        bodies_.push_back(std::move(body));
+      }
+    }
+
+
+    template <int dim>
+    void
+    Scene<dim>::assemble()
+    {
+      for (auto &body : bodies_)
+        body->assemble();
+    }
+
+
+    template <int dim>
+    void
+    Scene<dim>::solve(std::vector<std::string> &details)
+    {
+      displacements_.resize(bodies_.size());
+      for (unsigned int b = 0; b < bodies_.size(); ++b)
+      {
+        configure_solver(*solvers_[b], *bodies_[b]);
+        bodies_[b]->solve(*solvers_[b], displacements_[b]);
+        const auto        &statistics = solvers_[b]->statistics();
+        std::ostringstream line;
+        line << std::setprecision(3) << bodies_[b]->name() << ": "
+             << solvers_[b]->name() << ", setup " << statistics.setup_time
+             << " s, solve " << statistics.solve_time << " s";
+        if (statistics.factor_nonzeros > 0)
+          line << ", factor nonzeros " << statistics.factor_nonzeros;
+        if (statistics.iterations > 0)
+          line << ", " << statistics.iterations << " iterations";
+        details.push_back(line.str());
+      }
+    }
+
+
+    template <int dim>
+    void
+    Scene<dim>::postprocess()
+    {
+      results_.resize(bodies_.size());
+      for (unsigned int b = 0; b < bodies_.size(); ++b)
+      {
+        const fem::ElasticBody<dim>  &body = *bodies_[b];
+        const dealii::Vector<double> &u    = displacements_[b];
+        BodyResults                  &r    = results_[b];
+        r.strain_energy                    = body.strain_energy(u);
+        r.external_work                    = body.external_work(u);
+        r.max_displacement                 = body.max_displacement(u);
+        r.applied_force                    = body.applied_force();
+        r.reaction_forces                  = body.reaction_forces(u);
+      }
+    }
+
+
+    template void
+    configure_solver<2>(fem::StiffnessSolver &, const fem::ElasticBody<2> &);
+    template void
+    configure_solver<3>(fem::StiffnessSolver &, const fem::ElasticBody<3> &);
+    template class Scene<2>;
+    template class Scene<3>;
+  } // namespace driver
+} // namespace dualcontact

@@ -1,0 +1,160 @@
+#pragma once
+
+#include <deal.II/base/parameter_handler.h>
+#include <deal.II/base/tensor.h>
+#include <deal.II/grid/tria.h>
+#include <deal.II/lac/vector.h>
+
+#include <driver/body_parameters.h>
+#include <driver/contact_pair_parameters.h>
+#include <driver/obstacle_parameters.h>
+#include <fem/elastic_body.h>
+#include <fem/stiffness_solver.h>
+
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace dualcontact
+{
+  namespace driver
+  {
+    /**
+     * Prepare @p solver for the stiffness matrix of @p body: a
+     * fem::TrilinosSolver (mumps, amg) gets the body's locally owned dofs as
+     * its rows and dim unknowns per node; other solvers need nothing.
+     */
+    template <int dim>
+    void
+    configure_solver(fem::StiffnessSolver        &solver,
+                     const fem::ElasticBody<dim> &body);
+
+
+    /**
+     * The bodies of a scene and what is computed on each of them without
+     * contact: the parameters of bodies, obstacles and contact pairs (read
+     * and checked by the constructor, before anything is computed), the
+     * meshes (checked against the parameters), the assembled systems, one
+     * stiffness solve per body (scenes without contact pairs), and the
+     * derived per-body results (energies, forces, reactions).
+     *
+     * Simulation drives the phases; ContactStage computes the displacements
+     * instead of solve() when the scene has contact pairs; SimulationReport
+     * writes what this class holds.  Each phase method appends lines for the
+     * console to @p details.
+     */
+    template <int dim>
+    class Scene
+    {
+    public:
+      /** Per body: what was computed from the solution. */
+      struct BodyResults
+      {
+        double                 strain_energy    = 0;
+        double                 external_work    = 0;
+        double                 max_displacement = 0;
+        dealii::Tensor<1, dim> applied_force;
+        std::map<dealii::types::boundary_id, dealii::Tensor<1, dim>>
+          reaction_forces;
+      };
+
+      /**
+       * Read subsections `Discretization', `Body N', `Obstacle N', `Contact
+       * pair N' of @p prm and make one stiffness solver per body
+       * (`Stiffness solver').  Relative file names are looked up relative to
+       * the folder of @p parameter_file too.
+       */
+      Scene(dealii::ParameterHandler &prm, const std::string &parameter_file);
+
+      /** Mesh phase: build and check every body's mesh. */
+      void
+      create_meshes(std::vector<std::string> &details);
+      /** Setup phase: dofs and constraints of every body. */
+      void
+      setup(std::vector<std::string> &details);
+      /** Assembly phase: K and f of every body (condensed). */
+      void
+      assemble();
+      /** Solve phase (no contact): u = K^{-1} f per body. */
+      void
+      solve(std::vector<std::string> &details);
+      /** Postprocessing phase: BodyResults of every body. */
+      void
+      postprocess();
+
+      bool
+      has_contact() const
+      {
+        return !pair_parameters_.empty();
+      }
+      unsigned int
+      fe_degree() const
+      {
+        return fe_degree_;
+      }
+      unsigned int
+      n_bodies() const
+      {
+        return body_parameters_.size();
+      }
+      const std::vector<BodyParameters<dim>> &
+      body_parameters() const
+      {
+        return body_parameters_;
+      }
+      const std::vector<ContactPairParameters<dim>> &
+      pair_parameters() const
+      {
+        return pair_parameters_;
+      }
+      /** The bodies (after setup()). */
+      std::vector<const fem::ElasticBody<dim> *>
+      bodies() const;
+      /** The bodies as owned (for io::write_solution). */
+      const std::vector<std::unique_ptr<fem::ElasticBody<dim>>> &
+      elastic_bodies() const
+      {
+        return bodies_;
+      }
+      const fem::ElasticBody<dim> &
+      body(const unsigned int b) const
+      {
+        return *bodies_[b];
+      }
+      /** Each body's stiffness solver (used by solve() only). */
+      const fem::StiffnessSolver &
+      solver(const unsigned int b) const
+      {
+        return *solvers_[b];
+      }
+      /** Per body the displacement (set by solve() or by contact). */
+      std::vector<dealii::Vector<double>> &
+      displacements()
+      {
+        return displacements_;
+      }
+      const std::vector<dealii::Vector<double>> &
+      displacements() const
+      {
+        return displacements_;
+      }
+      const std::vector<BodyResults> &
+      results() const
+      {
+        return results_;
+      }
+
+    private:
+      unsigned int                            fe_degree_ = 1;
+      std::vector<BodyParameters<dim>>        body_parameters_;
+      std::vector<ObstacleParameters<dim>>    obstacle_parameters_;
+      std::vector<ContactPairParameters<dim>> pair_parameters_;
+      std::vector<std::shared_ptr<dealii::Triangulation<dim>>> triangulations_;
+      std::vector<std::unique_ptr<fem::ElasticBody<dim>>>      bodies_;
+      std::vector<std::unique_ptr<fem::StiffnessSolver>>       solvers_;
+      std::vector<dealii::Vector<double>>                      displacements_;
+      std::vector<BodyResults>                                 results_;
+    };
+  } // namespace driver
+} // namespace dualcontact

@@ -1,0 +1,160 @@
+#!/usr/bin/env python3
+"""Runs one input of dualcontact under mpirun with 1 and 2 processes and
+asserts that the answers agree.
+
+Usage: compare_ranks.py DUALCONTACT MPIRUN INPUT.prm WORKDIR [TOLERANCE]
+
+Both runs must converge (exit 0, contact.converged = 1).  Asserted, with
+relative tolerance TOLERANCE (default 1e-8) for the reals:
+  - per contact pair: normal force, tangential force, max pressure;
+    the active sets: n_nodes, n_separated, n_stick, n_slip exactly;
+  - per body: strain energy, external work, max displacement
+    (results.txt) and the Euclidean norm of the displacement vector
+    (statistics.json, bodies[].results.displacement_l2_norm);
+  - the total normal force of the first pair equals the applied load
+    (body_1.applied_force, its norm) to TOLERANCE in both runs, when the
+    scene has one body and one pair (a Hertz scene);
+  - the 2-process run wrote one piece of every body per process
+    (body_N_rank_R.vtu) and solution.pvtu refers to all of them, and one
+    piece of every contact surface per process (contact_N_rank_R.vtu),
+    listed in contact_N.pvd, together holding all n_nodes nodes.
+The input's QP tolerance must be well below TOLERANCE (the runs differ by
+round-off in the stiffness solves, and the QP stops at its tolerance).
+"""
+import json
+import os
+import re
+import shutil
+import subprocess
+import sys
+import time
+
+
+def read_results(path):
+    values = {}
+    with open(path) as f:
+        for line in f:
+            if line.startswith("#") or "=" not in line:
+                continue
+            key, value = line.split("=", 1)
+            values[key.strip()] = [float(v) for v in value.split(",")]
+    return values
+
+
+def run(app, mpirun, prm, workdir, ranks):
+    folder = os.path.join(workdir, f"np{ranks}")
+    shutil.rmtree(folder, ignore_errors=True)
+    os.makedirs(folder)
+    env = dict(os.environ)
+    env.update({"OMPI_ALLOW_RUN_AS_ROOT": "1",
+                "OMPI_ALLOW_RUN_AS_ROOT_CONFIRM": "1",
+                "OMPI_MCA_rmaps_base_oversubscribe": "1",
+                "OMP_NUM_THREADS": "1", "OPENBLAS_NUM_THREADS": "1"})
+    command = [mpirun, "--allow-run-as-root", "--oversubscribe", "-np",
+               str(ranks), app, os.path.abspath(prm)]
+    start = time.time()
+    process = subprocess.run(command, cwd=folder, env=env,
+                             capture_output=True, text=True)
+    seconds = time.time() - start
+    print(f"--- {ranks} process(es), {seconds:.2f} s: {' '.join(command)}")
+    print(process.stdout)
+    if process.returncode != 0:
+        print(process.stderr)
+        sys.exit(f"FAIL: the run with {ranks} process(es) exited with "
+                 f"{process.returncode}")
+    output = None
+    for line in process.stdout.splitlines():
+        m = re.match(r"Output written to `(.*)/':", line)
+        if m:
+            output = os.path.join(folder, m.group(1))
+    if output is None:
+        sys.exit("FAIL: no `Output written to' line")
+    results = read_results(os.path.join(output, "results.txt"))
+    with open(os.path.join(output, "statistics.json")) as f:
+        statistics = json.load(f)
+    return output, results, statistics
+
+
+def main():
+    app, mpirun, prm, workdir = sys.argv[1:5]
+    tolerance = float(sys.argv[5]) if len(sys.argv) > 5 else 1e-8
+    runs = [run(app, mpirun, prm, workdir, ranks) for ranks in (1, 2)]
+    failures = 0
+
+    def check(ok, text):
+        nonlocal failures
+        print(("  ok   " if ok else "  FAIL ") + text)
+        failures += 0 if ok else 1
+
+    (out1, r1, s1), (out2, r2, s2) = runs
+    check(s1["mpi_processes"] == 1 and s2["mpi_processes"] == 2,
+          f"mpi_processes: {s1['mpi_processes']}, {s2['mpi_processes']}")
+    check(r1["contact.converged"] == [1] and r2["contact.converged"] == [1],
+          "both contact solves converged")
+
+    exact = re.compile(r"pair_\d+\.n_(nodes|separated|stick|slip|contact)$")
+    real = re.compile(r"(pair_\d+\.(normal_force|tangential_force|"
+                      r"max_pressure)|body_\d+\.(strain_energy|"
+                      r"external_work|max_displacement))$")
+    for key in sorted(r1):
+        if exact.match(key):
+            check(r1[key] == r2[key], f"{key}: {r1[key][0]:g} and "
+                  f"{r2[key][0]:g}")
+        elif real.match(key):
+            a, b = r1[key], r2[key]
+            scale = max(max(abs(v) for v in a), 1e-300)
+            diff = max(abs(x - y) for x, y in zip(a, b)) / scale
+            check(diff <= tolerance, f"{key}: relative difference {diff:.2e}"
+                  f" (values {a[0]:.12e}, ...)")
+    for b1, b2 in zip(s1["bodies"], s2["bodies"]):
+        n1 = b1["results"]["displacement_l2_norm"]
+        n2 = b2["results"]["displacement_l2_norm"]
+        diff = abs(n1 - n2) / n1
+        check(diff <= tolerance, f"{b1['name']}: |u| {n1:.12e}, relative "
+              f"difference {diff:.2e}")
+
+    if "pair_1.normal_force" in r1 and "pair_2.normal_force" not in r1 \
+            and "body_2.n_dofs" not in r1:
+        for ranks, r in ((1, r1), (2, r2)):
+            load = sum(v * v for v in r["body_1.applied_force"]) ** 0.5
+            force = r["pair_1.normal_force"][0]
+            diff = abs(force - load) / load
+            check(diff <= tolerance, f"{ranks} process(es): normal force "
+                  f"{force:.12e} = applied load {load:.12e}, relative "
+                  f"difference {diff:.2e}")
+
+    n_bodies = int(r2["n_bodies"][0])
+    with open(os.path.join(out2, "solution.pvtu")) as f:
+        pvtu = f.read()
+    for body in range(1, n_bodies + 1):
+        for rank in (0, 1):
+            name = f"body_{body}_rank_{rank}.vtu"
+            check(os.path.isfile(os.path.join(out2, name)) and name in pvtu,
+                  f"2 processes: {name} written and in solution.pvtu")
+
+    pair = 1
+    while f"pair_{pair}.n_nodes" in r2:
+        n_nodes = 0
+        with open(os.path.join(out2, f"contact_{pair}.pvd")) as f:
+            master = f.read()
+        for rank in (0, 1):
+            name = f"contact_{pair}_rank_{rank}.vtu"
+            path = os.path.join(out2, name)
+            ok = os.path.isfile(path) and name in master
+            if ok:
+                with open(path) as f:
+                    n_nodes += int(re.search(r'NumberOfPoints="(\d+)"',
+                                             f.read()).group(1))
+            check(ok, f"2 processes: {name} written and in "
+                  f"contact_{pair}.pvd")
+        check(n_nodes == r2[f"pair_{pair}.n_nodes"][0],
+              f"2 processes: the pieces of contact pair {pair} hold "
+              f"{n_nodes} nodes, n_nodes = {r2[f'pair_{pair}.n_nodes'][0]:g}")
+        pair += 1
+
+    print("all checks passed" if failures == 0 else "FAILED")
+    sys.exit(0 if failures == 0 else 1)
+
+
+if __name__ == "__main__":
+    main()
