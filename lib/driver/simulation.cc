@@ -122,27 +122,15 @@ namespace dualcontact
         console_ << line.str() << std::endl;
       }
 
+      // every process writes its pieces (io::write_solution is collective);
+      // process 0 also the master files and the records
       const ResultsReport<dim> report(scene, contact_.get(), parameter_file_);
-      // process 0 first (it creates the folder), then the others add their
-      // pieces of the bodies (ResultsReport::write_output)
+      run_phase("Output",
+                [&]() { report.write_output(*output_folder_, write_vtu_); });
       if (is_output_rank_)
-      {
-        run_phase("Output",
-                  [&]() { report.write_output(*output_folder_, write_vtu_); });
         report.write_records(*output_folder_, prm_, timer_);
-      }
-      if (dealii::Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD) > 1)
-      {
-        int ierr = MPI_Barrier(MPI_COMM_WORLD);
-        AssertThrowMPI(ierr);
-        if (!is_output_rank_)
-        {
-          report.write_output(*output_folder_, write_vtu_);
-          output_folder_->commit();
-        }
-        ierr = MPI_Barrier(MPI_COMM_WORLD);
-        AssertThrowMPI(ierr);
-      }
+      else
+        output_folder_->commit();
 
       std::string files;
       for (const auto &name : output_folder_->file_names())

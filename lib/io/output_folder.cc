@@ -82,13 +82,17 @@ namespace dualcontact
         missing.push_back(folder);
       for (auto folder = missing.rbegin(); folder != missing.rend(); ++folder)
       {
+        // under MPI several processes may create it at once: a folder that
+        // exists when create_directory() is called is not an error (and not
+        // ours to remove)
         std::error_code error;
-        fs::create_directory(*folder, error);
+        const bool      created = fs::create_directory(*folder, error);
         AssertThrow(!error,
                     dealii::ExcMessage("Cannot create the output folder `" +
                                        folder->string() +
                                        "': " + error.message()));
-        created_folders_.push_back(folder->string());
+        if (created)
+          created_folders_.push_back(folder->string());
       }
     }
 

@@ -3,8 +3,8 @@
 // distorted cells, clamped at one end, traction at the other) and a 2D
 // plate (Q1), each on a parallel::shared::Triangulation partitioned by METIS
 // so that the rows of a process are its subdomain's dofs.
-//  - MUMPS: relative difference to CHOLMOD < 1e-10 (both direct; the
-//    measured differences are ~1e-15);
+//  - MUMPS: relative difference to CHOLMOD < 1e-10 (both direct; measured
+//    5e-13 in 3D, the round-off of a matrix with condition ~1e5 to 1e6);
 //  - AMG-CG to a relative residual of 1e-12: relative difference < 1e-8
 //    (the error is bounded by cond(K) times the residual);
 //  - the whole solution on every process (gathered), the same on all of
@@ -56,13 +56,17 @@ namespace
       Triangulation<dim>::none,
       false,
       parallel::shared::Triangulation<dim>::partition_metis);
-    std::vector<unsigned int> subdivisions(dim, 3);
-    subdivisions[0] = 8;
+    // 3D: 8 x 3 x 3 Q2 cells (2499 dofs); 2D: 40 x 10 Q1 cells (902 dofs),
+    // enough for several AMG levels
+    std::vector<unsigned int> subdivisions(dim, dim == 3 ? 3 : 10);
+    subdivisions[0] = dim == 3 ? 8 : 40;
     Point<dim> upper;
     for (unsigned int d = 0; d < dim; ++d)
       upper[d] = d == 0 ? 4 : 1;
     GridGenerator::subdivided_hyper_rectangle(
       *tria, subdivisions, Point<dim>(), upper, true);
+    for (const auto &cell : tria->active_cell_iterators())
+      cell->set_material_id(0);
     // the same distortion on every process (fixed seed)
     GridTools::distort_random(0.2, *tria, true, 7);
     const fem::IsotropicMaterial material(2e11, 0.3);
@@ -172,7 +176,10 @@ namespace
       }
       catch (const std::exception &e)
       {
-        message = e.what();
+        // deal.II wraps the text of its messages: compare without breaks
+        std::istringstream words(e.what());
+        for (std::string word; words >> word;)
+          message += word + " ";
       }
       test_tools::check(message.find("did not converge") != std::string::npos &&
                           message.find("CG max iterations") !=
