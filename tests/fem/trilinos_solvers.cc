@@ -56,10 +56,11 @@ namespace
       Triangulation<dim>::none,
       false,
       parallel::shared::Triangulation<dim>::partition_metis);
-    // 3D: 8 x 3 x 3 Q2 cells (2499 dofs); 2D: 40 x 10 Q1 cells (902 dofs),
-    // enough for several AMG levels
-    std::vector<unsigned int> subdivisions(dim, dim == 3 ? 3 : 10);
-    subdivisions[0] = dim == 3 ? 8 : 40;
+    // 3D: 8 x 3 x 3 Q2 cells (2499 dofs); 2D: 60 x 20 Q1 cells (2562
+    // dofs): both above deal.II's ML coarse-grid size (2000), so that AMG
+    // has more than one level and CG iterates
+    std::vector<unsigned int> subdivisions(dim, dim == 3 ? 3 : 20);
+    subdivisions[0] = dim == 3 ? 8 : 60;
     Point<dim> upper;
     for (unsigned int d = 0; d < dim; ++d)
       upper[d] = d == 0 ? 4 : 1;
