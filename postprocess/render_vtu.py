@@ -19,6 +19,13 @@ surface, as points coloured by FIELD, or plain grey without a field).
 --edges: show the cell edges.  --points S: draw INPUT as points of S pixels
 (a contact surface file holds only its nodes).  The colour bar is titled by the field.
 Written to be reused by every benchmark report (doc/benchmarks/).
+
+Packages: Debian's paraview, python3-paraview, xvfb.  In Debian 12
+python3-paraview conflicts with python3-vtk9, which libvtk9-dev (a build
+dependency of dualcontact, scripts/setup) needs: installing one removes the
+other.  Render on a machine (or container) without libvtk9-dev, or swap the
+packages for the rendering and run scripts/setup afterwards (it puts
+libvtk9-dev back, and the VTK read-back test io/vtu_output needs it).
 """
 import argparse
 import os
