@@ -1,0 +1,24 @@
+// fclibsolve: solve an FCLIB frictional contact problem with dualcontact's
+// QP solvers (issue 7).  Thin: everything is in fclib::FclibSolveDriver.
+#include <fclib/fclibsolve_driver.h>
+
+#include <iostream>
+#include <string>
+#include <vector>
+
+int
+main(int argc, char **argv)
+{
+  try
+  {
+    const std::vector<std::string> arguments(argv + 1, argv + argc);
+    return dualcontact::fclib::FclibSolveDriver().run(arguments,
+                                                      std::cout,
+                                                      std::cerr);
+  }
+  catch (const std::exception &e)
+  {
+    std::cerr << "fclibsolve: " << e.what() << std::endl;
+    return 1;
+  }
+}

@@ -1,0 +1,34 @@
+#pragma once
+
+#include <deal.II/lac/vector.h>
+
+#include <fclib/local_problem.h>
+
+namespace dualcontact
+{
+  namespace fclib
+  {
+    /**
+     * The accuracy measure of the frictional contact community (FCLIB,
+     * Siconos):
+     *
+     *   ||r - P_K(r - u - mu ||u_t|| e_n)|| / max(||q||, ||r||, ||u||),
+     *
+     * u = W r + q, P_K the projection onto the product of the Coulomb cones
+     * K_i = {||r_t|| <= mu_i r_n} (normal first), norms Euclidean over all
+     * contacts.  It is zero exactly at a solution of the Coulomb problem
+     * (with De Saxce's shift), so it measures what the QP criteria of the
+     * fixed point or the cone relaxation do not.  The denominator is
+     * replaced by 1 if it is zero.
+     */
+    double
+    fclib_error(const LocalProblem &problem, const dealii::Vector<double> &r);
+
+    /**
+     * P_K(z) for one cone of aperture @p mu, in place: @p z has the normal
+     * component first and dim - 1 tangential ones (dim = 2 or 3).
+     */
+    void
+    project_on_coulomb_cone(double *z, const unsigned int dim, const double mu);
+  } // namespace fclib
+} // namespace dualcontact

@@ -1,0 +1,431 @@
+#include <deal.II/base/exceptions.h>
+
+#include <fclib/fclib_file.h>
+
+#include <hdf5.h>
+
+#include <filesystem>
+#include <fstream>
+#include <memory>
+#include <sstream>
+
+extern "C"
+{
+#include <fclib.h>
+}
+
+namespace dualcontact
+{
+  namespace fclib
+  {
+    namespace
+    {
+      /** Triplets of an FCLIB matrix in any of its three storages. */
+      Triplets
+      to_triplets(const fclib_matrix &A, const std::string &what)
+      {
+        AssertThrow(A.m >= 0 && A.n >= 0,
+                    dealii::ExcMessage(what + ": negative matrix size"));
+        Triplets t(A.m, A.n);
+        try
+        {
+          if (A.nz >= 0) // triplets: i row, p column (see the header)
+            for (int k = 0; k < A.nz; ++k)
+              t.add(A.i[k], A.p[k], A.x[k]);
+          else if (A.nz == -1) // compressed columns
+            for (int j = 0; j < A.n; ++j)
+              for (int k = A.p[j]; k < A.p[j + 1]; ++k)
+                t.add(A.i[k], j, A.x[k]);
+          else if (A.nz == -2) // compressed rows
+            for (int r = 0; r < A.m; ++r)
+              for (int k = A.p[r]; k < A.p[r + 1]; ++k)
+                t.add(r, A.i[k], A.x[k]);
+          else
+            AssertThrow(false,
+                        dealii::ExcMessage("unknown storage nz = " +
+                                           std::to_string(A.nz)));
+        }
+        catch (const dealii::ExceptionBase &e)
+        {
+          AssertThrow(false,
+                      dealii::ExcMessage(what + ": " + exception_message(e)));
+        }
+        return t;
+      }
+
+
+      /** An FCLIB matrix (compressed columns) owning its arrays. */
+      struct CscMatrix
+      {
+        explicit CscMatrix(const dealii::SparseMatrix<double> &A)
+        {
+          const unsigned int                                        n = A.n();
+          std::vector<std::vector<std::pair<unsigned int, double>>> cols(n);
+          for (unsigned int r = 0; r < A.m(); ++r)
+            for (auto it = A.begin(r); it != A.end(r); ++it)
+              if (it->value() != 0.)
+                cols[it->column()].emplace_back(r, it->value());
+          p.push_back(0);
+          for (unsigned int j = 0; j < n; ++j)
+          {
+            for (const auto &[r, v] : cols[j])
+            {
+              i.push_back(r);
+              x.push_back(v);
+            }
+            p.push_back(i.size());
+          }
+          if (i.empty()) // HDF5 cannot write empty data sets
+          {
+            i.push_back(0);
+            x.push_back(0.);
+            p.back() = 1;
+            for (auto &v : p)
+              v = (&v == &p.front()) ? 0 : 1;
+          }
+          matrix.nzmax = x.size();
+          matrix.m     = A.m();
+          matrix.n     = n;
+          matrix.p     = p.data();
+          matrix.i     = i.data();
+          matrix.x     = x.data();
+          matrix.nz    = -1;
+          matrix.info  = nullptr;
+        }
+        std::vector<int>    p, i;
+        std::vector<double> x;
+        fclib_matrix        matrix;
+      };
+
+
+      /** The title/description strings of an FCLIB info record. */
+      struct Info
+      {
+        Info(const std::string &t, const std::string &d, const std::string &m)
+            : title(t)
+            , description(d)
+            , math(m)
+        {
+          info.title       = title.data();
+          info.description = description.data();
+          info.math_info   = math.data();
+        }
+        std::string title, description, math;
+        fclib_info  info;
+      };
+
+
+      std::string
+      title_of(const fclib_info *info)
+      {
+        return (info && info->title) ? std::string(info->title) : "";
+      }
+
+
+      void
+      check_is_form(const std::string &path, const Form expected)
+      {
+        const Form form = form_of(path);
+        AssertThrow(form == expected,
+                    dealii::ExcMessage("FCLIB file `" + path + "' holds a " +
+                                       to_string(form) + " problem, not a " +
+                                       to_string(expected) + " one"));
+      }
+
+
+      void
+      remove_existing(const std::string &path)
+      {
+        std::error_code error;
+        std::filesystem::remove(path, error);
+        std::ofstream probe(path);
+        AssertThrow(probe.good(),
+                    dealii::ExcMessage("Cannot write the FCLIB file `" + path +
+                                       "'"));
+        probe.close();
+        std::filesystem::remove(path, error);
+      }
+    } // namespace
+
+
+    std::string
+    exception_message(const dealii::ExceptionBase &e)
+    {
+      std::ostringstream info;
+      e.print_info(info);
+      std::string text = info.str();
+      // ExcMessage prints "    The violated condition was: ... Additional
+      // information: <text>" in some versions; keep the text only
+      const std::string marker = "Additional information:";
+      const auto        at     = text.find(marker);
+      if (at != std::string::npos)
+        text = text.substr(at + marker.size());
+      const auto first = text.find_first_not_of(" \n\t");
+      const auto last  = text.find_last_not_of(" \n\t");
+      return first == std::string::npos ? "" :
+                                          text.substr(first, last - first + 1);
+    }
+
+
+    std::string
+    to_string(const Form form)
+    {
+      return form == Form::local ? "local" : "global";
+    }
+
+
+    Form
+    form_of(const std::string &path)
+    {
+      AssertThrow(std::ifstream(path).good(),
+                  dealii::ExcMessage("Cannot open the FCLIB file `" + path +
+                                     "'"));
+      // HDF5 prints its error stack for failed calls: silence it, the
+      // message here says what went wrong
+      H5E_auto2_t old_function;
+      void       *old_data;
+      H5Eget_auto2(H5E_DEFAULT, &old_function, &old_data);
+      H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
+      const htri_t is_hdf5 = H5Fis_hdf5(path.c_str());
+      int          found   = -1;
+      if (is_hdf5 > 0)
+      {
+        const hid_t file = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+        if (file >= 0)
+        {
+          if (H5Lexists(file, "/fclib_local", H5P_DEFAULT) > 0)
+            found = 0;
+          else if (H5Lexists(file, "/fclib_global", H5P_DEFAULT) > 0)
+            found = 1;
+          H5Fclose(file);
+        }
+      }
+      H5Eset_auto2(H5E_DEFAULT, old_function, old_data);
+      AssertThrow(is_hdf5 > 0,
+                  dealii::ExcMessage("`" + path + "' is not an HDF5 file"));
+      AssertThrow(found >= 0,
+                  dealii::ExcMessage(
+                    "`" + path +
+                    "' holds neither /fclib_local nor /fclib_global: not an "
+                    "FCLIB problem"));
+      return found == 0 ? Form::local : Form::global;
+    }
+
+
+    LocalProblem
+    read_local(const std::string &path)
+    {
+      check_is_form(path, Form::local);
+      std::unique_ptr<fclib_local, void (*)(fclib_local *)> p(
+        fclib_read_local(path.c_str()), fclib_delete_local);
+      AssertThrow(p && p->W && p->q && p->mu,
+                  dealii::ExcMessage("libfclib could not read the local "
+                                     "problem in `" +
+                                     path + "'"));
+      AssertThrow(!p->V && !p->R,
+                  dealii::ExcMessage(
+                    "FCLIB file `" + path +
+                    "': local problems with equality "
+                    "constraints (V, R, s) are not supported"));
+      AssertThrow(p->spacedim == 2 || p->spacedim == 3,
+                  dealii::ExcMessage("FCLIB file `" + path +
+                                     "': space dimension " +
+                                     std::to_string(p->spacedim)));
+      const unsigned int n = p->W->m, nc = n / p->spacedim;
+      AssertThrow(n % p->spacedim == 0,
+                  dealii::ExcMessage("FCLIB file `" + path + "': W has " +
+                                     std::to_string(n) +
+                                     " rows, not a multiple of the dimension"));
+      dealii::Vector<double> q(p->q, p->q + n);
+      std::vector<double>    mu(p->mu, p->mu + nc);
+      try
+      {
+        return LocalProblem(
+          p->spacedim, to_triplets(*p->W, "W"), q, mu, title_of(p->info));
+      }
+      catch (const dealii::ExceptionBase &e)
+      {
+        AssertThrow(false,
+                    dealii::ExcMessage("FCLIB file `" + path +
+                                       "': " + exception_message(e)));
+      }
+      return {};
+    }
+
+
+    GlobalProblem
+    read_global(const std::string &path)
+    {
+      check_is_form(path, Form::global);
+      std::unique_ptr<fclib_global, void (*)(fclib_global *)> p(
+        fclib_read_global(path.c_str()), fclib_delete_global);
+      AssertThrow(p && p->M && p->H && p->f && p->w && p->mu,
+                  dealii::ExcMessage("libfclib could not read the global "
+                                     "problem in `" +
+                                     path + "'"));
+      AssertThrow(!p->G,
+                  dealii::ExcMessage("FCLIB file `" + path +
+                                     "': global problems with equality "
+                                     "constraints (G, b) are not supported"));
+      AssertThrow(p->spacedim == 2 || p->spacedim == 3,
+                  dealii::ExcMessage("FCLIB file `" + path +
+                                     "': space dimension " +
+                                     std::to_string(p->spacedim)));
+      const unsigned int n = p->M->m, m = p->H->n;
+      AssertThrow(m % p->spacedim == 0,
+                  dealii::ExcMessage("FCLIB file `" + path + "': H has " +
+                                     std::to_string(m) +
+                                     " columns, not a multiple of the "
+                                     "dimension"));
+      try
+      {
+        return GlobalProblem(p->spacedim,
+                             to_triplets(*p->M, "M"),
+                             to_triplets(*p->H, "H"),
+                             dealii::Vector<double>(p->f, p->f + n),
+                             dealii::Vector<double>(p->w, p->w + m),
+                             std::vector<double>(p->mu,
+                                                 p->mu + m / p->spacedim),
+                             title_of(p->info));
+      }
+      catch (const dealii::ExceptionBase &e)
+      {
+        AssertThrow(false,
+                    dealii::ExcMessage("FCLIB file `" + path +
+                                       "': " + exception_message(e)));
+      }
+      return {};
+    }
+
+
+    LocalProblem
+    read_as_local(const std::string &path)
+    {
+      if (form_of(path) == Form::local)
+        return read_local(path);
+      return read_global(path).reduce_to_local();
+    }
+
+
+    void
+    write_local(const std::string            &path,
+                const LocalProblem           &problem,
+                const dealii::Vector<double> &r,
+                const std::string            &description)
+    {
+      remove_existing(path);
+      CscMatrix           W(problem.W());
+      std::vector<double> q(problem.q().begin(), problem.q().end());
+      std::vector<double> mu(problem.mu());
+      Info info(problem.title().empty() ? "dualcontact" : problem.title(),
+                description,
+                "local Coulomb frictional contact, u = W r + q");
+      fclib_local local{};
+      local.W        = &W.matrix;
+      local.mu       = mu.data();
+      local.q        = q.data();
+      local.spacedim = problem.spacedim();
+      local.info     = &info.info;
+      AssertThrow(fclib_write_local(&local, path.c_str()) == 1,
+                  dealii::ExcMessage("libfclib could not write `" + path +
+                                     "'"));
+      if (r.size() > 0)
+      {
+        AssertThrow(r.size() == problem.size(),
+                    dealii::ExcMessage("FCLIB solution of wrong size"));
+        dealii::Vector<double> u;
+        problem.velocity(u, r);
+        std::vector<double> rr(r.begin(), r.end()), uu(u.begin(), u.end());
+        fclib_solution      solution{};
+        solution.r = rr.data();
+        solution.u = uu.data();
+        AssertThrow(fclib_write_solution(&solution, path.c_str()) == 1,
+                    dealii::ExcMessage("libfclib could not write the solution "
+                                       "into `" +
+                                       path + "'"));
+      }
+    }
+
+
+    void
+    write_global(const std::string            &path,
+                 const GlobalProblem          &problem,
+                 const dealii::Vector<double> &r,
+                 const std::string            &description)
+    {
+      remove_existing(path);
+      // M in full (both triangles): the reader mirrors only upper-only data
+      CscMatrix           M(problem.M()), H(problem.H());
+      std::vector<double> f(problem.f().begin(), problem.f().end());
+      std::vector<double> w(problem.w().begin(), problem.w().end());
+      std::vector<double> mu(problem.mu());
+      Info info(problem.title().empty() ? "dualcontact" : problem.title(),
+                description,
+                "global Coulomb frictional contact, M v = H r + f, "
+                "u = H'v + w");
+      fclib_global global{};
+      global.M        = &M.matrix;
+      global.H        = &H.matrix;
+      global.mu       = mu.data();
+      global.f        = f.data();
+      global.w        = w.data();
+      global.spacedim = problem.spacedim();
+      global.info     = &info.info;
+      AssertThrow(fclib_write_global(&global, path.c_str()) == 1,
+                  dealii::ExcMessage("libfclib could not write `" + path +
+                                     "'"));
+      if (r.size() > 0)
+      {
+        AssertThrow(r.size() == problem.H().n(),
+                    dealii::ExcMessage("FCLIB solution of wrong size"));
+        dealii::Vector<double> v, u(r.size());
+        problem.velocity(v, r);
+        problem.H().Tvmult(u, v);
+        u += problem.w();
+        std::vector<double> rr(r.begin(), r.end()), uu(u.begin(), u.end()),
+          vv(v.begin(), v.end());
+        fclib_solution solution{};
+        solution.v = vv.data();
+        solution.r = rr.data();
+        solution.u = uu.data();
+        AssertThrow(fclib_write_solution(&solution, path.c_str()) == 1,
+                    dealii::ExcMessage("libfclib could not write the solution "
+                                       "into `" +
+                                       path + "'"));
+      }
+    }
+
+
+    dealii::Vector<double>
+    read_solution_r(const std::string &path)
+    {
+      const Form  form = form_of(path);
+      H5E_auto2_t old_function;
+      void       *old_data;
+      H5Eget_auto2(H5E_DEFAULT, &old_function, &old_data);
+      H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
+      bool        has_solution = false;
+      const hid_t file = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+      if (file >= 0)
+      {
+        has_solution = H5Lexists(file, "/solution", H5P_DEFAULT) > 0 &&
+                       H5Lexists(file, "/solution/r", H5P_DEFAULT) > 0;
+        H5Fclose(file);
+      }
+      H5Eset_auto2(H5E_DEFAULT, old_function, old_data);
+      if (!has_solution)
+        return {};
+      const unsigned int size = form == Form::local ? read_local(path).size() :
+                                                      [&]()
+      { return read_global(path).H().n(); }();
+      std::unique_ptr<fclib_solution, void (*)(fclib_solution *)> s(
+        fclib_read_solution(path.c_str()),
+        [](fclib_solution *p) { fclib_delete_solutions(p, 1); });
+      AssertThrow(s && s->r,
+                  dealii::ExcMessage("libfclib could not read the solution "
+                                     "in `" +
+                                     path + "'"));
+      return dealii::Vector<double>(s->r, s->r + size);
+    }
+  } // namespace fclib
+} // namespace dualcontact

@@ -1,0 +1,320 @@
+#include <deal.II/base/exceptions.h>
+#include <deal.II/base/parameter_handler.h>
+#include <deal.II/base/timer.h>
+
+#include <contact/contact_solver.h>
+#include <fclib/accuracy.h>
+#include <fclib/fclib_file.h>
+#include <fclib/fclibsolve_driver.h>
+#include <fclib/local_solver.h>
+#include <io/parameter_file.h>
+#include <qp/solver_factory.h>
+#include <qp/solver_parameters.h>
+
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <iomanip>
+
+namespace dualcontact
+{
+  namespace fclib
+  {
+    namespace
+    {
+      struct UsageError : std::runtime_error
+      {
+        using std::runtime_error::runtime_error;
+      };
+
+      double
+      to_number(const std::string &option, const std::string &v)
+      {
+        try
+        {
+          std::size_t  used = 0;
+          const double x    = std::stod(v, &used);
+          if (used == v.size() && std::isfinite(x))
+            return x;
+        }
+        catch (const std::exception &)
+        {
+        }
+        throw UsageError(option + ": '" + v + "' is not a number");
+      }
+
+
+      void
+      declare(dealii::ParameterHandler &prm)
+      {
+        prm.declare_entry("Model",
+                          "coulomb",
+                          dealii::Patterns::Selection("coulomb|cone"),
+                          "coulomb: the fixed point over Tresca QPs (bound x "
+                          "disc blocks), which solves the Coulomb problem; "
+                          "cone: one QP over the Coulomb cones, a convex "
+                          "relaxation (no De Saxce shift), 3D only.");
+        prm.declare_entry("First Coulomb iterate",
+                          "bonded",
+                          dealii::Patterns::Selection("bonded|frictionless"),
+                          "Model coulomb, cold start: bonded (no bound on the "
+                          "tangential forces, as the contact solver of the "
+                          "scenes) or frictionless (slip bounds 0); bonded "
+                          "can be unbounded below when W is singular "
+                          "(rigid-body problems).");
+        qp::SolverParameters::declare_parameters(prm);
+        contact::CoulombParameters::declare_parameters(prm);
+      }
+    } // namespace
+
+
+    std::string
+    FclibSolveDriver::usage()
+    {
+      return "Usage: fclibsolve FILE.hdf5 [options]\n"
+             "Solve an FCLIB frictional contact problem (local, or global "
+             "reduced to W = H'M^-1 H,\n"
+             "q = H'M^-1 f + w) with dualcontact's QP solvers, and report the "
+             "FCLIB accuracy\n"
+             "||r - P_K(r - u - mu||u_t|| e_n)|| / max(||q||, ||r||, ||u||), "
+             "u = W r + q.\n"
+             "Options (they override a .prm):\n"
+             "  --prm FILE.prm        parameters: Model, subsections `QP "
+             "solver' and `Coulomb'\n"
+             "  --model coulomb|cone  Coulomb fixed point over Tresca QPs "
+             "(default) or the cone QP\n"
+             "                        (a convex relaxation, 3D only)\n"
+             "  --first bonded|frictionless  first Coulomb iterate (default "
+             "bonded)\n"
+             "  --solver NAME         QP solver (" +
+             qp::solver_names() +
+             ")\n"
+             "  --tol T               QP relative tolerance\n"
+             "  --max-iter N          QP iteration limit\n"
+             "  --coulomb-tol T       tolerance of the Coulomb fixed point\n"
+             "  --coulomb-max-iter N  limit of Coulomb iterations\n"
+             "  --json FILE           write a JSON summary\n"
+             "  --write FILE.hdf5     write the local problem with the "
+             "solution found\n"
+             "  --info                print the problem's sizes and stop\n"
+             "Exit code: 0 converged, 2 not converged, 1 bad input.\n";
+    }
+
+
+    int
+    FclibSolveDriver::run(const std::vector<std::string> &args,
+                          std::ostream                   &out,
+                          std::ostream                   &err) const
+    {
+      std::string file, prm_file, json_file, write_file, model_name, solver,
+        first_name;
+      double tol = -1, coulomb_tol = -1;
+      long   max_iter = -1, coulomb_max_iter = -1;
+      bool   info_only = false;
+      try
+      {
+        for (std::size_t i = 0; i < args.size(); ++i)
+        {
+          const std::string &a     = args[i];
+          auto               value = [&]() -> std::string
+          {
+            if (i + 1 >= args.size())
+              throw UsageError("option " + a + " needs a value");
+            return args[++i];
+          };
+          if (a == "--help" || a == "-h")
+          {
+            out << usage();
+            return 0;
+          }
+          else if (a == "--prm")
+            prm_file = value();
+          else if (a == "--model")
+            model_name = value();
+          else if (a == "--first")
+            first_name = value();
+          else if (a == "--solver")
+            solver = value();
+          else if (a == "--tol")
+            tol = to_number(a, value());
+          else if (a == "--coulomb-tol")
+            coulomb_tol = to_number(a, value());
+          else if (a == "--max-iter")
+            max_iter = static_cast<long>(to_number(a, value()));
+          else if (a == "--coulomb-max-iter")
+            coulomb_max_iter = static_cast<long>(to_number(a, value()));
+          else if (a == "--json")
+            json_file = value();
+          else if (a == "--write")
+            write_file = value();
+          else if (a == "--info")
+            info_only = true;
+          else if (!a.empty() && a[0] == '-')
+            throw UsageError("unknown option " + a);
+          else if (file.empty())
+            file = a;
+          else
+            throw UsageError("more than one problem file given (" + file +
+                             ", " + a + ")");
+        }
+        if (file.empty())
+          throw UsageError("no FCLIB file given");
+        if (tol >= 0 && !(tol > 0))
+          throw UsageError("--tol must be > 0");
+        if (coulomb_tol >= 0 && !(coulomb_tol > 0))
+          throw UsageError("--coulomb-tol must be > 0");
+        if ((max_iter != -1 && max_iter < 1) ||
+            (coulomb_max_iter != -1 && coulomb_max_iter < 1))
+          throw UsageError("iteration limits must be >= 1");
+      }
+      catch (const UsageError &e)
+      {
+        err << "fclibsolve: " << e.what() << "\n" << usage();
+        return 1;
+      }
+
+      try
+      {
+        dealii::ParameterHandler prm;
+        declare(prm);
+        if (!prm_file.empty())
+          io::parse_parameter_file(prm, prm_file, false);
+        qp::SolverParameters qp_parameters;
+        qp_parameters.parse_parameters(prm);
+        contact::CoulombParameters coulomb;
+        coulomb.parse_parameters(prm);
+        Model model = parse_model(prm.get("Model"));
+        if (!model_name.empty())
+          model = parse_model(model_name);
+        FirstIterate first =
+          parse_first_iterate(prm.get("First Coulomb iterate"));
+        if (!first_name.empty())
+          first = parse_first_iterate(first_name);
+        if (!solver.empty())
+        {
+          qp::create<dealii::Vector<double>>(solver, qp_parameters); // checks
+          qp_parameters.solver = solver;
+        }
+        if (tol > 0)
+          qp_parameters.tolerance = tol;
+        if (max_iter > 0)
+          qp_parameters.max_iterations = max_iter;
+        if (coulomb_tol > 0)
+          coulomb.tolerance = coulomb_tol;
+        if (coulomb_max_iter > 0)
+          coulomb.max_iterations = coulomb_max_iter;
+        qp_parameters.check();
+
+        dealii::Timer  reading;
+        const Form     form = form_of(file);
+        nlohmann::json summary;
+        summary["file"] = file;
+        summary["form"] = to_string(form);
+        LocalProblem problem;
+        if (form == Form::local)
+          problem = read_local(file);
+        else
+        {
+          const GlobalProblem global = read_global(file);
+          out << "global problem: " << global.n_dofs() << " dofs, "
+              << global.n_contacts() << " contacts"
+              << (global.M_was_upper_triangle() ?
+                    " (M stored as its upper triangle)" :
+                    "")
+              << "\n";
+          summary["n_dofs"] = global.n_dofs();
+          problem           = global.reduce_to_local();
+          out << "reduced to local form with " << global.factorization_name()
+              << "\n";
+          summary["factorization"] = global.factorization_name();
+        }
+        const auto [mu_min, mu_max] =
+          std::minmax_element(problem.mu().begin(), problem.mu().end());
+        out << "local problem: " << problem.n_contacts() << " contacts, "
+            << problem.size() << " unknowns, dimension " << problem.spacedim()
+            << ", mu in [" << (problem.n_contacts() ? *mu_min : 0.) << ", "
+            << (problem.n_contacts() ? *mu_max : 0.)
+            << "], nnz(W) = " << problem.W().n_nonzero_elements()
+            << ", asymmetry of W " << problem.asymmetry() << ", read in "
+            << reading.wall_time() << " s\n";
+        summary["n_contacts"]  = problem.n_contacts();
+        summary["spacedim"]    = problem.spacedim();
+        summary["asymmetry_W"] = problem.asymmetry();
+        summary["read_time_s"] = reading.wall_time();
+        if (info_only)
+        {
+          if (!json_file.empty())
+            std::ofstream(json_file) << summary.dump(2) << "\n";
+          return 0;
+        }
+
+        LocalSolver local_solver(problem, qp_parameters, coulomb, model);
+        dealii::Vector<double> r(problem.size());
+        const auto             result = local_solver.solve(r);
+        const auto            &last   = result.qp_statistics.back();
+        out << "model " << to_string(model)
+            << (model == Model::coulomb_fixed_point ?
+                  " (first iterate " + to_string(first) + ")" :
+                  "")
+            << ", QP solver " << qp_parameters.solver << " (tolerance "
+            << qp_parameters.tolerance << ")\n";
+        out << std::setprecision(6);
+        out << (result.converged ? "converged" : "NOT converged") << ": "
+            << result.reason << "\n"
+            << "  QPs " << result.qp_statistics.size() << ", QP iterations "
+            << result.iterations << ", products with W "
+            << result.hessian_products << ", time " << result.wall_time
+            << " s\n"
+            << "  last QP: criterion " << last.final_criterion
+            << " (relative), KKT stationarity " << last.kkt.stationarity
+            << "\n";
+        if (!result.coulomb_changes.empty())
+          out << "  Coulomb iterations " << result.coulomb_changes.size()
+              << ", last relative change of psi "
+              << result.coulomb_changes.back() << "\n";
+        out << "  FCLIB error " << std::scientific << result.fclib_error
+            << std::defaultfloat << "\n";
+
+        summary["model"]            = to_string(model);
+        summary["first_iterate"]    = to_string(first);
+        summary["solver"]           = qp_parameters.solver;
+        summary["tolerance"]        = qp_parameters.tolerance;
+        summary["converged"]        = result.converged;
+        summary["reason"]           = result.reason;
+        summary["n_qp"]             = result.qp_statistics.size();
+        summary["iterations"]       = result.iterations;
+        summary["hessian_products"] = result.hessian_products;
+        summary["time_s"]           = result.wall_time;
+        summary["coulomb_changes"]  = result.coulomb_changes;
+        summary["fclib_error"]      = result.fclib_error;
+        summary["last_qp"]          = last.to_json(false);
+        if (!json_file.empty())
+        {
+          std::ofstream json(json_file);
+          AssertThrow(json.good(),
+                      dealii::ExcMessage("Cannot write `" + json_file + "'"));
+          json << summary.dump(2) << "\n";
+        }
+        if (!write_file.empty())
+          write_local(write_file,
+                      problem,
+                      r,
+                      "solved by dualcontact fclibsolve, model " +
+                        to_string(model) + ", solver " + qp_parameters.solver);
+        return result.converged ? 0 : 2;
+      }
+      catch (const dealii::ExceptionBase &e)
+      {
+        err << "fclibsolve: " << exception_message(e) << "\n";
+        return 1;
+      }
+      catch (const std::exception &e)
+      {
+        err << "fclibsolve: " << e.what() << "\n";
+        return 1;
+      }
+    }
+  } // namespace fclib
+} // namespace dualcontact
