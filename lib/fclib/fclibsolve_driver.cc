@@ -65,6 +65,11 @@ namespace dualcontact
                           "can be unbounded below when W is singular "
                           "(rigid-body problems).");
         qp::SolverParameters::declare_parameters(prm);
+        // friction needs disc blocks, which mprgp (the scenes' default)
+        // does not take
+        prm.enter_subsection("QP solver");
+        prm.set("Solver", "mpgp");
+        prm.leave_subsection();
         contact::CoulombParameters::declare_parameters(prm);
       }
     } // namespace

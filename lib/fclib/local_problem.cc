@@ -98,6 +98,7 @@ namespace dualcontact
     LocalProblem::velocity(dealii::Vector<double>       &u,
                            const dealii::Vector<double> &r) const
     {
+      u.reinit(size());
       W_.matrix.vmult(u, r);
       u += q_;
     }
@@ -107,6 +108,7 @@ namespace dualcontact
     LocalProblem::symmetric_vmult(dealii::Vector<double>       &dst,
                                   const dealii::Vector<double> &src) const
     {
+      dst.reinit(size(), true);
       W_.matrix.vmult(dst, src);
       W_.matrix.Tvmult(work_, src);
       dst += work_;

@@ -8,6 +8,7 @@
 #include <qp/solver_factory.h>
 
 #include <cmath>
+#include <sstream>
 
 namespace dualcontact
 {
@@ -93,7 +94,10 @@ namespace dualcontact
         if (mu > 0 && psi == nullptr)
           continue;
         const double bound = mu > 0 ? (*psi)[i] : 0.;
-        if (dim == 3)
+        if (bound == 0.) // r_t = 0: boxes, which mprgp also takes
+          for (unsigned int k = 1; k < dim; ++k)
+            set->add_box(first + k, 0., 0.);
+        else if (dim == 3)
           set->add_disc(first + 1, bound);
         else
           set->add_box(first + 1, -bound, bound);
@@ -145,11 +149,12 @@ namespace dualcontact
       auto qp_failure = [&](const std::string &where)
       {
         const qp::SolverStatistics &s = result.qp_statistics.back();
-        result.reason =
-          "QP solver " + s.solver + " did not converge" + where + ": " +
-          qp::to_string(s.reason) + " after " + std::to_string(s.iterations) +
-          " iterations, criterion " + std::to_string(s.final_criterion) +
-          " (tolerance " + std::to_string(s.tolerance) + ")";
+        std::ostringstream          message;
+        message << "QP solver " << s.solver << " did not converge" << where
+                << ": " << qp::to_string(s.reason) << " after " << s.iterations
+                << " iterations, criterion " << s.final_criterion
+                << " (tolerance " << s.tolerance << ")";
+        result.reason = message.str();
       };
 
       bool has_friction = false;
