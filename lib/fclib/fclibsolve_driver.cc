@@ -64,6 +64,15 @@ namespace dualcontact
                           "scenes) or frictionless (slip bounds 0); bonded "
                           "can be unbounded below when W is singular "
                           "(rigid-body problems).");
+        prm.declare_entry(
+          "Proximal regularization",
+          "0",
+          dealii::Patterns::Double(0.),
+          "rho >= 0 relative to lambda_max(W): every QP gets the term "
+          "rho lambda_max/2 ||r - r_previous||^2 (proximal point), which "
+          "makes it strictly convex for singular W (rigid-body problems); the "
+          "loop (Coulomb subsection: tolerance, maximum iterations) then also "
+          "stops on the relative step. 0: off.");
         qp::SolverParameters::declare_parameters(prm);
         // friction needs disc blocks, which mprgp (the scenes' default)
         // does not take
@@ -93,6 +102,8 @@ namespace dualcontact
              "                        (a convex relaxation, 3D only)\n"
              "  --first bonded|frictionless  first Coulomb iterate (default "
              "bonded)\n"
+             "  --prox RHO            proximal term rho lambda_max/2 ||r - "
+             "r_previous||^2 (singular W)\n"
              "  --solver NAME         QP solver (" +
              qp::solver_names() +
              ")\n"
@@ -115,6 +126,7 @@ namespace dualcontact
     {
       std::string file, prm_file, json_file, write_file, model_name, solver,
         first_name;
+      double prox = -1;
       double tol = -1, coulomb_tol = -1;
       long   max_iter = -1, coulomb_max_iter = -1;
       bool   info_only = false;
@@ -138,6 +150,12 @@ namespace dualcontact
             prm_file = value();
           else if (a == "--model")
             model_name = value();
+          else if (a == "--prox")
+          {
+            prox = to_number(a, value());
+            if (prox < 0)
+              throw UsageError("--prox must be >= 0");
+          }
           else if (a == "--first")
             first_name = value();
           else if (a == "--solver")
@@ -197,6 +215,10 @@ namespace dualcontact
           parse_first_iterate(prm.get("First Coulomb iterate"));
         if (!first_name.empty())
           first = parse_first_iterate(first_name);
+        double proximal = prm.get_double("Proximal regularization");
+        if (prox >= 0)
+          proximal = prox;
+        AssertThrow(proximal >= 0, dealii::ExcMessage("--prox must be >= 0"));
         if (!solver.empty())
         {
           qp::create<dealii::Vector<double>>(solver, qp_parameters); // checks
@@ -255,7 +277,8 @@ namespace dualcontact
           return 0;
         }
 
-        LocalSolver local_solver(problem, qp_parameters, coulomb, model);
+        LocalSolver local_solver(
+          problem, qp_parameters, coulomb, model, first, proximal);
         dealii::Vector<double> r(problem.size());
         const auto             result = local_solver.solve(r);
         const auto            &last   = result.qp_statistics.back();
@@ -275,6 +298,9 @@ namespace dualcontact
             << "  last QP: criterion " << last.final_criterion
             << " (relative), KKT stationarity " << last.kkt.stationarity
             << "\n";
+        if (!result.proximal_steps.empty())
+          out << "  proximal rho " << proximal << " lambda_max, last relative "
+              << "step " << result.proximal_steps.back() << "\n";
         if (!result.coulomb_changes.empty())
           out << "  Coulomb iterations " << result.coulomb_changes.size()
               << ", last relative change of psi "
@@ -284,6 +310,8 @@ namespace dualcontact
 
         summary["model"]            = to_string(model);
         summary["first_iterate"]    = to_string(first);
+        summary["proximal"]         = proximal;
+        summary["proximal_steps"]   = result.proximal_steps;
         summary["solver"]           = qp_parameters.solver;
         summary["tolerance"]        = qp_parameters.tolerance;
         summary["converged"]        = result.converged;

@@ -116,6 +116,18 @@ namespace dualcontact
     }
 
 
+    void
+    LocalProblem::antisymmetric_vmult(dealii::Vector<double>       &dst,
+                                      const dealii::Vector<double> &src) const
+    {
+      dst.reinit(size(), true);
+      W_.matrix.vmult(dst, src);
+      W_.matrix.Tvmult(work_, src);
+      dst -= work_;
+      dst *= 0.5;
+    }
+
+
     double
     LocalProblem::asymmetry() const
     {

@@ -63,6 +63,11 @@ namespace dualcontact
       symmetric_vmult(dealii::Vector<double>       &dst,
                       const dealii::Vector<double> &src) const;
 
+      /** dst = (W - W')/2 src, the part of W that 1/2 r'W r does not see. */
+      void
+      antisymmetric_vmult(dealii::Vector<double>       &dst,
+                          const dealii::Vector<double> &src) const;
+
       /**
        * max |W_ij - W_ji| / max |W_ij|: how far W is from symmetric (some
        * distributed files are slightly non-symmetric).

@@ -60,13 +60,19 @@ namespace dualcontact
                              const qp::SolverParameters       &qp_parameters,
                              const contact::CoulombParameters &coulomb,
                              const Model                       model,
-                             const FirstIterate                first)
+                             const FirstIterate                first,
+                             const double                      proximal)
         : problem_(problem)
         , qp_parameters_(qp_parameters)
         , coulomb_parameters_(coulomb)
         , model_(model)
         , first_(first)
     {
+      proximal_   = proximal;
+      // round-off asymmetry (reduced global problems) is not worth a loop
+      asymmetric_ = problem.asymmetry() > 1e-12;
+      AssertThrow(proximal >= 0 && std::isfinite(proximal),
+                  dealii::ExcMessage("proximal regularization must be >= 0"));
       AssertThrow(model != Model::cone || problem.spacedim() == 3,
                   dealii::ExcMessage("the cone model needs a 3D problem (the "
                                      "cone block has 3 unknowns)"));
@@ -104,14 +110,28 @@ namespace dualcontact
       }
       set->finalize(r);
 
+      // proximal term rho/2 ||r - center||^2 around the start r
+      const double                        rho = proximal_ * lambda_max;
       qp::Problem<dealii::Vector<double>> qp;
-      qp.hessian =
-        [this](dealii::Vector<double> &dst, const dealii::Vector<double> &src)
-      { problem_.symmetric_vmult(dst, src); };
+      qp.hessian = [this, rho](dealii::Vector<double>       &dst,
+                               const dealii::Vector<double> &src)
+      {
+        problem_.symmetric_vmult(dst, src);
+        if (rho > 0)
+          dst.add(rho, src);
+      };
       qp.b = problem_.q();
       qp.b *= -1.;
+      if (rho > 0)
+        qp.b.add(rho, r);
+      if (asymmetric_)
+      {
+        dealii::Vector<double> lagged;
+        problem_.antisymmetric_vmult(lagged, r);
+        qp.b -= lagged;
+      }
       qp.constraints  = set;
-      qp.lambda_max   = lambda_max;
+      qp.lambda_max   = lambda_max + rho;
       qp.semidefinite = true;
       auto solver     = qp::create<dealii::Vector<double>>(qp_parameters_);
       return solver->solve(qp, r);
@@ -160,52 +180,62 @@ namespace dualcontact
       bool has_friction = false;
       for (const double mu : problem_.mu())
         has_friction = has_friction || mu > 0;
+      const bool coulomb_loop =
+        model_ == Model::coulomb_fixed_point && has_friction;
 
-      if (model_ == Model::cone || !has_friction)
+      auto slip_bounds = [&](const dealii::Vector<double> &x)
       {
-        if (record(solve_qp(r, nullptr, lambda_max)))
+        std::vector<double> psi(problem_.n_contacts());
+        for (unsigned int i = 0; i < psi.size(); ++i)
+          psi[i] = problem_.mu()[i] * std::max(x(dim * i), 0.);
+        return psi;
+      };
+      // cold start: bonded or frictionless first iterate (bonded as in
+      // contact::ContactSolver); warm start: bounds from the given r
+      std::vector<double> psi;
+      bool                bonded = false;
+      if (r.linfty_norm() > 0)
+        psi = slip_bounds(r);
+      else if (first_ == FirstIterate::bonded)
+        bonded = true;
+      else
+        psi.assign(problem_.n_contacts(), 0.);
+      bool first_change = r.linfty_norm() == 0;
+
+      unsigned int           growing = 0;
+      dealii::Vector<double> previous;
+      std::vector<double>   &measure =
+        coulomb_loop ? result.coulomb_changes : result.proximal_steps;
+      for (unsigned int it = 0;; ++it)
+      {
+        previous = r;
+        if (!record(solve_qp(r, bonded ? nullptr : &psi, lambda_max)))
+        {
+          qp_failure(it == 0 ?
+                       (coulomb_loop ? " in the first Coulomb iterate" : "") :
+                       " in iteration " + std::to_string(it + 1));
+          break;
+        }
+        const bool stepping = proximal_ > 0 || asymmetric_;
+        if (!coulomb_loop && !stepping)
         {
           result.converged = true;
           result.reason    = "converged";
+          break;
         }
-        else
-          qp_failure("");
-      }
-      else
-      {
-        auto slip_bounds = [&](const dealii::Vector<double> &x)
+        if (stepping)
         {
-          std::vector<double> psi(problem_.n_contacts());
-          for (unsigned int i = 0; i < psi.size(); ++i)
-            psi[i] = problem_.mu()[i] * std::max(x(dim * i), 0.);
-          return psi;
-        };
-        // cold start: bonded first iterate (feasible for any load), as in
-        // contact::ContactSolver; warm start: bounds from the given r
-        std::vector<double> psi;
-        bool                ok;
-        if (r.linfty_norm() == 0 && first_ == FirstIterate::bonded)
-          ok = record(solve_qp(r, nullptr, lambda_max));
-        else if (r.linfty_norm() == 0)
-        {
-          psi.assign(problem_.n_contacts(), 0.);
-          ok = record(solve_qp(r, &psi, lambda_max));
-          psi.clear(); // the first change is not a number to compare
+          previous -= r;
+          const double norm = r.l2_norm();
+          result.proximal_steps.push_back(norm > 0 ? previous.l2_norm() / norm :
+                                                     previous.l2_norm());
         }
-        else
-        {
-          psi = slip_bounds(r);
-          ok  = record(solve_qp(r, &psi, lambda_max));
-        }
-        if (!ok)
-          qp_failure(" in the first Coulomb iterate");
-        unsigned int growing = 0;
-        for (unsigned int it = 0; ok; ++it)
+        if (coulomb_loop)
         {
           const std::vector<double> old = psi;
           psi                           = slip_bounds(r);
           double relative               = 1.;
-          if (!old.empty())
+          if (!first_change && !bonded)
           {
             double change = 0, norm = 0;
             for (unsigned int i = 0; i < psi.size(); ++i)
@@ -215,44 +245,51 @@ namespace dualcontact
             }
             relative = norm > 0 ? std::sqrt(change / norm) : std::sqrt(change);
           }
+          bonded       = false;
+          first_change = false;
           result.coulomb_changes.push_back(relative);
-          if (!std::isfinite(relative))
-          {
-            result.reason = "Coulomb fixed point: non-finite slip bounds";
-            break;
-          }
-          if (!old.empty() && relative <= coulomb_parameters_.tolerance)
-          {
-            result.converged = true;
-            result.reason    = "converged";
-            break;
-          }
-          const auto &changes = result.coulomb_changes;
-          if (changes.size() > 1 && relative > changes[changes.size() - 2])
-            ++growing;
-          else
-            growing = 0;
-          if (growing >= coulomb_parameters_.divergence_window)
-          {
-            result.reason = "Coulomb fixed point diverged (the change of psi "
-                            "grew in " +
-                            std::to_string(growing) +
-                            " consecutive iterations)";
-            break;
-          }
-          if (it + 1 >= coulomb_parameters_.max_iterations)
-          {
-            result.reason = "Coulomb fixed point: maximum iterations (" +
-                            std::to_string(coulomb_parameters_.max_iterations) +
-                            ") reached, relative change " +
-                            std::to_string(relative);
-            break;
-          }
-          if (!record(solve_qp(r, &psi, lambda_max)))
-          {
-            qp_failure(" in Coulomb iteration " + std::to_string(it + 1));
-            break;
-          }
+        }
+        const double change = coulomb_loop ? result.coulomb_changes.back() : 0.;
+        const double step   = stepping ? result.proximal_steps.back() : 0.;
+        if (!std::isfinite(change) || !std::isfinite(step))
+        {
+          result.reason = "Coulomb/proximal loop: non-finite iterate";
+          break;
+        }
+        if (change <= coulomb_parameters_.tolerance &&
+            step <= coulomb_parameters_.tolerance)
+        {
+          result.converged = true;
+          result.reason    = "converged";
+          break;
+        }
+        // (damped by a proximal term, the changes need not decrease
+        // monotonically: no divergence test then)
+        if (coulomb_loop && proximal_ == 0 && measure.size() > 1 &&
+            measure.back() > measure[measure.size() - 2])
+          ++growing;
+        else
+          growing = 0;
+        if (growing >= coulomb_parameters_.divergence_window)
+        {
+          result.reason =
+            std::string(coulomb_loop ? "Coulomb fixed point" :
+                                       "proximal / lagged-asymmetry loop") +
+            " diverged (the change grew in " + std::to_string(growing) +
+            " consecutive iterations)";
+          break;
+        }
+        if (it + 1 >= coulomb_parameters_.max_iterations)
+        {
+          std::ostringstream message;
+          message << (coulomb_loop ? "Coulomb fixed point" :
+                                     "proximal / lagged-asymmetry loop")
+                  << ": maximum iterations ("
+                  << coulomb_parameters_.max_iterations
+                  << ") reached, relative change of psi " << change
+                  << ", relative step " << step;
+          result.reason = message.str();
+          break;
         }
       }
       result.fclib_error = fclib_error(problem_, r);

@@ -67,10 +67,13 @@ namespace dualcontact
     /**
      * Solves a LocalProblem with the project's QP solvers (any of
      * qp::solver_names() that accepts the blocks: mprgp only for mu = 0).
-     * The QP Hessian is the symmetric part (W + W')/2 (1/2 r'W r only sees
-     * it); the FCLIB error is computed with W itself.  The Coulomb loop
-     * follows contact::ContactSolver (bonded first iterate, relative change
-     * of psi, divergence window), with the same parameters.
+     * The QP Hessian is the symmetric part W_s = (W + W')/2 (1/2 r'W r only
+     * sees it); a non-symmetric W (some distributed files) has its
+     * antisymmetric part W_a taken at the previous iterate, u = W_s r +
+     * W_a r^k + q, and the loop iterates until r^k is a fixed point, where
+     * u = W r + q.  The FCLIB error is computed with W itself.  The Coulomb
+     * loop follows contact::ContactSolver (bonded first iterate, relative
+     * change of psi, divergence window), with the same parameters.
      */
     class LocalSolver
     {
@@ -83,6 +86,11 @@ namespace dualcontact
         std::vector<qp::SolverStatistics> qp_statistics;
         /** Relative change of psi per Coulomb iterate. */
         std::vector<double> coulomb_changes;
+        /**
+         * Relative step ||r^{k+1} - r^k|| / ||r^{k+1}|| per iterate (with a
+         * proximal term or a non-symmetric W).
+         */
+        std::vector<double> proximal_steps;
         /** Sum of the QP iterations. */
         unsigned long iterations = 0;
         /** Products with W (QPs and the power iteration). */
@@ -96,13 +104,24 @@ namespace dualcontact
                   const qp::SolverParameters       &qp_parameters,
                   const contact::CoulombParameters &coulomb_parameters,
                   const Model                       model,
-                  const FirstIterate first = FirstIterate::bonded);
+                  const FirstIterate first    = FirstIterate::bonded,
+                  const double       proximal = 0.);
 
       /**
        * @p r: the start on entry (zero: cold start, the first Coulomb
        * iterate as chosen by FirstIterate; otherwise the bounds come from
-       * it), the solution on
-       * exit (also when not converged: the last iterate).
+       * it), the solution on exit (also when not converged: the last
+       * iterate).
+       *
+       * With @p proximal = rho > 0 (constructor, relative to lambda_max(W))
+       * every QP is regularized around the previous iterate r^k (proximal
+       * point): minimize 1/2 r'W r + q'r + rho lambda_max/2 ||r - r^k||^2,
+       * strictly convex and well conditioned even for singular W (rigid-body
+       * problems, where the plain QPs converge slowly or are unbounded).  The
+       * loop then also runs for the cone model and without friction, and
+       * stops when both the change of psi and the step ||r^{k+1} - r^k|| /
+       * ||r^{k+1}|| are below the Coulomb tolerance: a fixed point of the
+       * regularized loop is a solution of the unregularized problem.
        */
       Result
       solve(dealii::Vector<double> &r) const;
@@ -112,6 +131,11 @@ namespace dualcontact
       solve_qp(dealii::Vector<double>    &r,
                const std::vector<double> *psi,
                const double               lambda_max) const;
+
+      /** rho of the proximal term, relative to lambda_max(W); 0: none. */
+      double proximal_;
+      /** Whether W is not symmetric (then the loop iterates on W_a r^k). */
+      bool asymmetric_;
 
       const LocalProblem        &problem_;
       qp::SolverParameters       qp_parameters_;

@@ -151,6 +151,50 @@ main()
           fclib::fclib_error(problem, r));
   }
 
+  // a rigid-body problem (Capsules: W singular and slightly non-symmetric):
+  // the plain first QP does not converge (reported, no crash); the proximal
+  // loop with the lagged antisymmetric part of W converges
+  {
+    const fclib::LocalProblem problem = fclib::read_local(
+      DUALCONTACT_SOURCE_DIR "/tests/fclib/data/Capsules-i125-1213.hdf5");
+    qp::SolverParameters plain = prm;
+    plain.solver               = "mpgp";
+    plain.tolerance            = 1e-8;
+    plain.max_iterations       = 2000;
+    contact::CoulombParameters loop;
+    loop.tolerance      = 1e-6;
+    loop.max_iterations = 3000;
+    {
+      fclib::LocalSolver     s(problem,
+                           plain,
+                           loop,
+                           fclib::Model::coulomb_fixed_point);
+      dealii::Vector<double> r(problem.size());
+      const auto             result = s.solve(r);
+      check(!result.converged &&
+              result.reason.find("did not converge") != std::string::npos,
+            "Capsules, plain QP: not converged, said so",
+            result.reason);
+    }
+    {
+      plain.max_iterations = 10000;
+      fclib::LocalSolver     s(problem,
+                           plain,
+                           loop,
+                           fclib::Model::coulomb_fixed_point,
+                           fclib::FirstIterate::bonded,
+                           0.1);
+      dealii::Vector<double> r(problem.size());
+      const auto             result = s.solve(r);
+      check(result.converged,
+            "Capsules, proximal 0.1: converged",
+            result.reason);
+      check(result.fclib_error < 1e-6,
+            "Capsules, proximal 0.1: FCLIB error",
+            result.fclib_error);
+    }
+  }
+
   // write a problem with its solution and read both back
   {
     prm.solver                     = "mpgp";
