@@ -94,6 +94,11 @@ namespace dualcontact
       {
         return *dual_;
       }
+      const contact::ContactDiscretization<dim> &
+      discretization() const
+      {
+        return *contact_;
+      }
       /** Sum of the QP solves' wall times [s]. */
       double
       qp_wall_time() const

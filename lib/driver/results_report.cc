@@ -2,7 +2,10 @@
 #include <deal.II/base/utilities.h>
 
 #include <driver/results_report.h>
+#include <fclib/fclib_file.h>
+#include <fclib/scene_export.h>
 #include <io/contact_surface_writer.h>
+#include <io/parameter_file.h>
 #include <io/solution_writer.h>
 
 #include <nlohmann/json.hpp>
@@ -328,6 +331,36 @@ namespace dualcontact
                                 scene_.elastic_bodies(),
                                 scene_.displacements(),
                                 contact_files);
+    }
+
+
+    template <int dim>
+    void
+    ResultsReport<dim>::write_fclib_problem(io::OutputFolder  &folder,
+                                            const std::string &form) const
+    {
+      Assert(contact_ != nullptr, dealii::ExcInternalError());
+      try
+      {
+        const auto &result = contact_->result();
+        // the solution only if there is one
+        fclib::write_scene_problem<dim>(folder,
+                                        fclib::parse_export_form(form),
+                                        scene_.elastic_bodies(),
+                                        contact_->discretization(),
+                                        contact_->dual(),
+                                        result.converged ?
+                                          result.lambda :
+                                          dealii::Vector<double>(),
+                                        parameter_file_);
+      }
+      catch (const dealii::ExceptionBase &e)
+      {
+        AssertThrow(false,
+                    dealii::ExcMessage(
+                      fclib::exception_message(e) + " " +
+                      io::parameter_location("Output", "FCLIB problem")));
+      }
     }
 
 

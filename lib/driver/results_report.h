@@ -43,6 +43,15 @@ namespace dualcontact
       write_output(io::OutputFolder &folder, const bool write_vtu) const;
 
       /**
+       * The scene's contact problem as FCLIB file(s) (`Output/FCLIB
+       * problem` = @p form: global, local or both; lib/fclib), with the
+       * solution if the contact solver converged.  One process only.
+       */
+      void
+      write_fclib_problem(io::OutputFolder  &folder,
+                          const std::string &form) const;
+
+      /**
        * results.txt, statistics.json (with the phase times of @p timer),
        * used_parameters.prm (@p prm), then commit @p folder.
        */

@@ -129,6 +129,18 @@ namespace dualcontact
                         "bound (the boundary of the friction set), stick "
                         "otherwise; frictionless nodes in contact count as "
                         "slip.");
+      prm.declare_entry("FCLIB problem",
+                        "none",
+                        dealii::Patterns::Selection("none|global|local|both"),
+                        "Scenes with contact pairs: also write the contact "
+                        "problem as a Frictional Contact Library (FCLIB, "
+                        "HDF5) file with the solution found (/solution): "
+                        "global = contact_problem_global.hdf5 (M = K, H = "
+                        "-B', f, w = gaps, mu), local = "
+                        "contact_problem_local.hdf5 (W = F, q = -d, mu), "
+                        "both, or none. Only frictionless and isotropic "
+                        "Coulomb pairs, and no floating bodies (see "
+                        "doc/fclib.md).");
       prm.leave_subsection();
 
       fem::StiffnessSolver::declare_parameters(prm);

@@ -30,8 +30,16 @@ namespace dualcontact
       output_folder_ = std::make_unique<io::OutputFolder>(
         prm.get("Output folder"),
         io::parameter_location("Output", "Output folder"));
-      write_vtu_ = prm.get_bool("Write VTU");
+      write_vtu_     = prm.get_bool("Write VTU");
+      fclib_problem_ = prm.get("FCLIB problem");
       prm.leave_subsection();
+      AssertThrow(fclib_problem_ == "none" ||
+                    dealii::Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD) ==
+                      1,
+                  dealii::ExcMessage(
+                    "FCLIB export runs on one process only: set it to none "
+                    "under MPI. " +
+                    io::parameter_location("Output", "FCLIB problem")));
 
       scene_ = std::make_unique<Scene<dim>>(prm, parameter_file);
       if (scene_->has_contact())
@@ -126,7 +134,12 @@ namespace dualcontact
       // process 0 also the master files and the records
       const ResultsReport<dim> report(scene, contact_.get(), parameter_file_);
       run_phase("Output",
-                [&]() { report.write_output(*output_folder_, write_vtu_); });
+                [&]()
+                {
+                  report.write_output(*output_folder_, write_vtu_);
+                  if (has_contact && fclib_problem_ != "none")
+                    report.write_fclib_problem(*output_folder_, fclib_problem_);
+                });
       if (is_output_rank_)
         report.write_records(*output_folder_, prm_, timer_);
       else

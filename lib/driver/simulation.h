@@ -69,7 +69,9 @@ namespace dualcontact
       const bool                  is_output_rank_;
       dealii::TimerOutput         timer_;
 
-      bool                              write_vtu_ = true;
+      bool write_vtu_ = true;
+      /** `Output/FCLIB problem`: none | global | local | both. */
+      std::string                       fclib_problem_ = "none";
       std::unique_ptr<io::OutputFolder> output_folder_;
       std::unique_ptr<Scene<dim>>       scene_;
       /** Null for a scene without contact pairs. */

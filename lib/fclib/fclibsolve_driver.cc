@@ -308,6 +308,21 @@ namespace dualcontact
         out << "  FCLIB error " << std::scientific << result.fclib_error
             << std::defaultfloat << "\n";
 
+        // a file written with its solution (e.g. by a dualcontact scene):
+        // how far is the stored r, and how far is ours from it
+        const dealii::Vector<double> stored = read_solution_r(file);
+        if (stored.size() == r.size() && stored.l2_norm() > 0)
+        {
+          dealii::Vector<double> difference(r);
+          difference -= stored;
+          const double error_stored = fclib_error(problem, stored);
+          const double relative     = difference.l2_norm() / stored.l2_norm();
+          out << "  stored solution: FCLIB error " << std::scientific
+              << error_stored << ", ||r - r_stored|| / ||r_stored|| "
+              << relative << std::defaultfloat << "\n";
+          summary["stored_solution_fclib_error"] = error_stored;
+          summary["difference_to_stored"]        = relative;
+        }
         summary["model"]            = to_string(model);
         summary["first_iterate"]    = to_string(first);
         summary["proximal"]         = proximal;

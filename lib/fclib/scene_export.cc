@@ -204,7 +204,10 @@ namespace dualcontact
         return;
       const GlobalProblem global =
         make_global_problem<dim>(bodies, contact, dual, title);
-      const dealii::Vector<double> r = to_fclib_layout(dual, lambda);
+      // an empty lambda: no solution to store
+      const dealii::Vector<double> r = lambda.size() > 0 ?
+                                         to_fclib_layout(dual, lambda) :
+                                         dealii::Vector<double>();
       const std::string            description =
         "written by dualcontact " DUALCONTACT_VERSION
         "; unknowns per contact node [normal, tangents] in the node's frame; "

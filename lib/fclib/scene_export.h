@@ -62,8 +62,9 @@ namespace dualcontact
      * Write the scene's contact problem into @p folder as
      * `contact_problem_global.hdf5` (M, H, f, w, mu; /solution with v, u, r)
      * and/or `contact_problem_local.hdf5` (W, q, mu; /solution with u, r),
-     * the solution being @p lambda (DualProblem layout).  The HDF5 file is
-     * made by libfclib in a temporary file and copied into the folder's
+     * the solution being @p lambda (DualProblem layout; empty: the files get
+     * no /solution, e.g. when the contact solver did not converge).  The HDF5
+     * file is made by libfclib in a temporary file and copied into the folder's
      * stream, so that the folder's commit/clean-up covers it.
      */
     template <int dim>

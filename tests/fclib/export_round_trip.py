@@ -1,0 +1,44 @@
+#!/usr/bin/python3
+"""App-level FCLIB round trip: `dualcontact export_block.prm` writes the
+scene's contact problem in both FCLIB forms with its solution; `fclibsolve`
+reads each file, solves it (Coulomb fixed point, mpgp, tolerances 1e-12 /
+1e-11) and compares with the stored scene solution: the contact forces must
+agree to 1e-8 (relative) and both FCLIB errors be below 1e-8.
+
+    export_round_trip.py DUALCONTACT FCLIBSOLVE PRM WORKDIR
+"""
+import json
+import os
+import shutil
+import subprocess
+import sys
+
+dualcontact, fclibsolve, prm, work = sys.argv[1:5]
+shutil.rmtree(work, ignore_errors=True)
+os.makedirs(work)
+subprocess.run([dualcontact, prm], cwd=work, check=True, stdout=subprocess.DEVNULL)
+failures = 0
+for form in ("global", "local"):
+    path = os.path.join(work, "output", "contact_problem_%s.hdf5" % form)
+    summary = os.path.join(work, form + ".json")
+    run = subprocess.run([fclibsolve, path, "--solver", "mpgp", "--tol", "1e-12",
+                          "--coulomb-tol", "1e-11", "--coulomb-max-iter", "200",
+                          "--json", summary], capture_output=True, text=True)
+    print(run.stdout, run.stderr)
+    s = json.load(open(summary)) if os.path.exists(summary) else {}
+    checks = [
+        ("exit code 0", run.returncode == 0, run.returncode),
+        ("form", s.get("form") == form, s.get("form")),
+        ("contacts (25 nodes of a 4x4 face)", s.get("n_contacts") == 25, s.get("n_contacts")),
+        ("converged", s.get("converged") is True, s.get("reason")),
+        ("||r - r_scene|| / ||r_scene|| <= 1e-8", s.get("difference_to_stored", 1) <= 1e-8,
+         s.get("difference_to_stored")),
+        ("FCLIB error of the scene's r <= 1e-8", s.get("stored_solution_fclib_error", 1) <= 1e-8,
+         s.get("stored_solution_fclib_error")),
+        ("FCLIB error of fclibsolve's r <= 1e-8", s.get("fclib_error", 1) <= 1e-8, s.get("fclib_error")),
+    ]
+    for what, ok, value in checks:
+        print("  %s %s %s: %s" % ("ok  " if ok else "FAIL", form, what, value))
+        failures += not ok
+print("all checks passed" if failures == 0 else "FAILED")
+sys.exit(1 if failures else 0)
