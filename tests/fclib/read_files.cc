@@ -18,7 +18,7 @@ using test_tools::check;
 
 namespace
 {
-  const std::string data = DUALCONTACT_SOURCE_DIR "/tests/fclib/data/";
+  const std::string data = FCLIB_TEST_DATA_DIR;
 
   struct Expected
   {

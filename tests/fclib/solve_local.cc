@@ -155,8 +155,8 @@ main()
   // the plain first QP does not converge (reported, no crash); the proximal
   // loop with the lagged antisymmetric part of W converges
   {
-    const fclib::LocalProblem problem = fclib::read_local(
-      DUALCONTACT_SOURCE_DIR "/tests/fclib/data/Capsules-i125-1213.hdf5");
+    const fclib::LocalProblem problem =
+      fclib::read_local(FCLIB_TEST_DATA_DIR "Capsules-i125-1213.hdf5");
     qp::SolverParameters plain = prm;
     plain.solver               = "mpgp";
     plain.tolerance            = 1e-8;
