@@ -39,8 +39,10 @@ namespace dualcontact
                     "the contact problem is not a FCLIB problem (it needs the "
                     "equality constraints of SMALSE-M)"));
 
-      const unsigned int n = contact.n_dofs(), nodes = contact.n_nodes();
-      const unsigned int m = dim * nodes;
+      const std::vector<unsigned int> kept  = exported_nodes(contact);
+      const unsigned int              n     = contact.n_dofs();
+      const unsigned int              nodes = kept.size();
+      const unsigned int              m     = dim * nodes;
 
       Triplets               M(n, n);
       dealii::Vector<double> f(n);
@@ -60,17 +62,18 @@ namespace dualcontact
       Triplets    H(n, m);
       const auto &BN = contact.normal_matrix();
       const auto &BT = contact.tangential_matrix();
-      for (unsigned int i = 0; i < nodes; ++i)
+      for (unsigned int j = 0; j < nodes; ++j)
       {
+        const unsigned int i = kept[j];
         for (auto it = BN.begin(i); it != BN.end(i); ++it)
           if (it->value() != 0.)
-            H.add(it->column(), dim * i, -it->value());
+            H.add(it->column(), dim * j, -it->value());
         for (unsigned int k = 0; k < dim - 1; ++k)
         {
           const unsigned int row = (dim - 1) * i + k;
           for (auto it = BT.begin(row); it != BT.end(row); ++it)
             if (it->value() != 0.)
-              H.add(it->column(), dim * i + 1 + k, -it->value());
+              H.add(it->column(), dim * j + 1 + k, -it->value());
         }
       }
 
@@ -91,21 +94,41 @@ namespace dualcontact
 
 
     template <int dim>
+    std::vector<unsigned int>
+    exported_nodes(const contact::ContactDiscretization<dim> &contact)
+    {
+      std::vector<unsigned int> kept;
+      const auto               &BN = contact.normal_matrix();
+      for (unsigned int i = 0; i < contact.n_nodes(); ++i)
+        for (auto it = BN.begin(i); it != BN.end(i); ++it)
+          if (it->value() != 0.)
+          {
+            kept.push_back(i);
+            break;
+          }
+      return kept;
+    }
+
+
+    template <int dim>
     dealii::Vector<double>
-    to_fclib_layout(const contact::DualProblem<dim> &dual,
-                    const dealii::Vector<double>    &lambda)
+    to_fclib_layout(const contact::ContactDiscretization<dim> &contact,
+                    const contact::DualProblem<dim>           &dual,
+                    const dealii::Vector<double>              &lambda)
     {
       const unsigned int nodes = dual.n_contact_nodes();
       AssertThrow(lambda.size() == dual.n_multipliers(),
                   dealii::ExcMessage("to_fclib_layout: wrong size"));
-      dealii::Vector<double> r(dim * nodes);
-      for (unsigned int i = 0; i < nodes; ++i)
+      const std::vector<unsigned int> kept = exported_nodes(contact);
+      dealii::Vector<double>          r(dim * kept.size());
+      for (unsigned int j = 0; j < kept.size(); ++j)
       {
-        r(dim * i)   = lambda(i);
-        const int fi = dual.frictional_index(i);
+        const unsigned int i = kept[j];
+        r(dim * j)           = lambda(i);
+        const int fi         = dual.frictional_index(i);
         if (fi >= 0)
           for (unsigned int k = 0; k < dim - 1; ++k)
-            r(dim * i + 1 + k) = lambda(nodes + (dim - 1) * fi + k);
+            r(dim * j + 1 + k) = lambda(nodes + (dim - 1) * fi + k);
       }
       return r;
     }
@@ -113,20 +136,23 @@ namespace dualcontact
 
     template <int dim>
     dealii::Vector<double>
-    to_dual_layout(const contact::DualProblem<dim> &dual,
-                   const dealii::Vector<double>    &r)
+    to_dual_layout(const contact::ContactDiscretization<dim> &contact,
+                   const contact::DualProblem<dim>           &dual,
+                   const dealii::Vector<double>              &r)
     {
-      const unsigned int nodes = dual.n_contact_nodes();
-      AssertThrow(r.size() == dim * nodes,
+      const unsigned int              nodes = dual.n_contact_nodes();
+      const std::vector<unsigned int> kept  = exported_nodes(contact);
+      AssertThrow(r.size() == dim * kept.size(),
                   dealii::ExcMessage("to_dual_layout: wrong size"));
       dealii::Vector<double> lambda(dual.n_multipliers());
-      for (unsigned int i = 0; i < nodes; ++i)
+      for (unsigned int j = 0; j < kept.size(); ++j)
       {
-        lambda(i)    = r(dim * i);
-        const int fi = dual.frictional_index(i);
+        const unsigned int i = kept[j];
+        lambda(i)            = r(dim * j);
+        const int fi         = dual.frictional_index(i);
         if (fi >= 0)
           for (unsigned int k = 0; k < dim - 1; ++k)
-            lambda(nodes + (dim - 1) * fi + k) = r(dim * i + 1 + k);
+            lambda(nodes + (dim - 1) * fi + k) = r(dim * j + 1 + k);
       }
       return lambda;
     }
@@ -205,10 +231,10 @@ namespace dualcontact
       const GlobalProblem global =
         make_global_problem<dim>(bodies, contact, dual, title);
       // an empty lambda: no solution to store
-      const dealii::Vector<double> r = lambda.size() > 0 ?
-                                         to_fclib_layout(dual, lambda) :
-                                         dealii::Vector<double>();
-      const std::string            description =
+      const dealii::Vector<double> r =
+        lambda.size() > 0 ? to_fclib_layout(contact, dual, lambda) :
+                            dealii::Vector<double>();
+      const std::string description =
         "written by dualcontact " DUALCONTACT_VERSION
         "; unknowns per contact node [normal, tangents] in the node's frame; "
         "r = nodal contact forces [N], u = gap after deformation and minus "
@@ -257,17 +283,25 @@ namespace dualcontact
                            const contact::ContactDiscretization<3> &,
                            const contact::DualProblem<3> &,
                            const std::string &);
+    template std::vector<unsigned int>
+    exported_nodes<2>(const contact::ContactDiscretization<2> &);
+    template std::vector<unsigned int>
+    exported_nodes<3>(const contact::ContactDiscretization<3> &);
     template dealii::Vector<double>
-    to_fclib_layout<2>(const contact::DualProblem<2> &,
+    to_fclib_layout<2>(const contact::ContactDiscretization<2> &,
+                       const contact::DualProblem<2> &,
                        const dealii::Vector<double> &);
     template dealii::Vector<double>
-    to_fclib_layout<3>(const contact::DualProblem<3> &,
+    to_fclib_layout<3>(const contact::ContactDiscretization<3> &,
+                       const contact::DualProblem<3> &,
                        const dealii::Vector<double> &);
     template dealii::Vector<double>
-    to_dual_layout<2>(const contact::DualProblem<2> &,
+    to_dual_layout<2>(const contact::ContactDiscretization<2> &,
+                      const contact::DualProblem<2> &,
                       const dealii::Vector<double> &);
     template dealii::Vector<double>
-    to_dual_layout<3>(const contact::DualProblem<3> &,
+    to_dual_layout<3>(const contact::ContactDiscretization<3> &,
+                      const contact::DualProblem<3> &,
                       const dealii::Vector<double> &);
   } // namespace fclib
 } // namespace dualcontact

@@ -30,6 +30,11 @@ namespace dualcontact
      *   displacement), mu_i = the pair's Coulomb coefficient (0 for
      *   frictionless pairs).
      *
+     * Contact nodes whose dofs are all prescribed (e.g. on a clamped edge)
+     * have zero rows in B and are left out (exported_nodes()): their u is a
+     * constant and their force goes into the support; a zero diagonal block
+     * of W also stops other codes (Siconos' NSGS asserts on it).
+     *
      * Then u = H'v + w is the gap after deformation and minus the slip, and
      * the reduction W = H'M^-1H, q = H'M^-1 f + w is exactly F, -d of the
      * DualProblem.  Only frictionless and isotropic Coulomb pairs can be
@@ -78,21 +83,28 @@ namespace dualcontact
       const dealii::Vector<double>                     &lambda,
       const std::string                                &title);
 
+    /** The contact nodes that are written (B has a nonzero normal row). */
+    template <int dim>
+    std::vector<unsigned int>
+    exported_nodes(const contact::ContactDiscretization<dim> &contact);
+
     /**
      * The multipliers lambda of the DualProblem (layout [lambda_N;
-     * lambda_T of frictional nodes]) in the FCLIB layout (per node
+     * lambda_T of frictional nodes]) in the FCLIB layout (per exported node
      * [lambda_N, lambda_T]; zero tangential force at frictionless nodes).
      */
     template <int dim>
     dealii::Vector<double>
-    to_fclib_layout(const contact::DualProblem<dim> &dual,
-                    const dealii::Vector<double>    &lambda);
+    to_fclib_layout(const contact::ContactDiscretization<dim> &contact,
+                    const contact::DualProblem<dim>           &dual,
+                    const dealii::Vector<double>              &lambda);
 
     /** Inverse of to_fclib_layout() (tangents of frictionless nodes dropped).
      */
     template <int dim>
     dealii::Vector<double>
-    to_dual_layout(const contact::DualProblem<dim> &dual,
-                   const dealii::Vector<double>    &r);
+    to_dual_layout(const contact::ContactDiscretization<dim> &contact,
+                   const contact::DualProblem<dim>           &dual,
+                   const dealii::Vector<double>              &r);
   } // namespace fclib
 } // namespace dualcontact
