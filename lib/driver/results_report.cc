@@ -342,11 +342,14 @@ namespace dualcontact
       Assert(contact_ != nullptr, dealii::ExcInternalError());
       try
       {
-        const auto &result = contact_->result();
+        const auto                                &result = contact_->result();
+        std::vector<const fem::ElasticBody<dim> *> bodies;
+        for (const auto &body : scene_.elastic_bodies())
+          bodies.push_back(body.get());
         // the solution only if there is one
         fclib::write_scene_problem<dim>(folder,
                                         fclib::parse_export_form(form),
-                                        scene_.elastic_bodies(),
+                                        bodies,
                                         contact_->discretization(),
                                         contact_->dual(),
                                         result.converged ?
