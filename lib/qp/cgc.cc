@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <sstream>
 
 namespace dualcontact
 {
@@ -104,9 +105,12 @@ namespace dualcontact
         bool
         is_active(const size_type i) const
         {
-          const double ax    = rows.row_dot(i, x);
-          const double c     = rows.right_hand_side(i);
-          double       scale = std::abs(c) + std::abs(ax);
+          const double ax = rows.row_dot(i, x);
+          const double c  = rows.right_hand_side(i);
+          // the scale of the rounding error of c - a_i'x: an active row
+          // whose terms cancel (a_i'x = 0 from u_s = u_m) still has slack
+          // of the size eps |a_ik x_k|, not eps |a_i'x|
+          const double scale = std::abs(c) + rows.row_abs_dot(i, x);
           return c - ax <= data.active_tolerance * scale;
         }
 
@@ -438,10 +442,19 @@ namespace dualcontact
 
 
     template <typename VectorType>
+    const std::vector<typename CGC<VectorType>::OuterRecord> &
+    CGC<VectorType>::outer_log() const
+    {
+      return outer_records;
+    }
+
+
+    template <typename VectorType>
     SolverStatistics
     CGC<VectorType>::solve(const CGCProblem<VectorType> &problem, VectorType &x)
     {
       dealii::Timer timer;
+      outer_records.clear();
       AssertThrow(static_cast<bool>(problem.hessian),
                   dealii::ExcMessage("CGC: the problem has no Hessian"));
       AssertThrow(problem.constraints != nullptr,
@@ -485,12 +498,14 @@ namespace dualcontact
         for (size_type i = 0; i < rows.n_rows(); ++i)
         {
           const double s = rows.slack(i, x);
-          AssertThrow(s >= -1e-12 * (std::abs(rows.right_hand_side(i)) +
-                                     std::abs(rows.row_dot(i, x))),
-                      dealii::ExcMessage(
-                        "CGC: the initial guess violates constraint " +
-                        std::to_string(i) + " by " + std::to_string(-s) +
-                        " (CGC needs a feasible start)"));
+          if (!(s >= -1e-12 * (std::abs(rows.right_hand_side(i)) +
+                               rows.row_abs_dot(i, x))))
+          {
+            std::ostringstream text;
+            text << "CGC: the initial guess violates constraint " << i << " by "
+                 << -s << " (CGC needs a feasible start)";
+            AssertThrow(false, dealii::ExcMessage(text.str()));
+          }
         }
       }
 
@@ -598,7 +613,12 @@ namespace dualcontact
         }
 
         const unsigned int steps_before = stats.iterations;
-        const auto exit = run.cg(facet, tolerance, facet.size() != J.size());
+        const auto  exit = run.cg(facet, tolerance, facet.size() != J.size());
+        OuterRecord record;
+        record.n_active         = J.size();
+        record.n_facet          = facet.size();
+        record.inner_iterations = stats.iterations - steps_before;
+        outer_records.push_back(record);
         if (stats.iterations == steps_before)
         {
           // no step at all: the same state would come back

@@ -146,12 +146,30 @@ namespace dualcontact
       const std::vector<std::pair<size_type, double>> &
       multipliers() const;
 
+      /// One outer iteration of subroutine CGC (the rows of the report's
+      /// tables 11.3-11.10).
+      struct OuterRecord
+      {
+        /// constraints active at the start of the outer iteration
+        unsigned int n_active = 0;
+        /// constraints kept on the facet the CG run minimizes over (fewer
+        /// than n_active after a release)
+        unsigned int n_facet = 0;
+        /// CG steps (Hessian products) of that CG run
+        unsigned int inner_iterations = 0;
+      };
+
+      /// The outer iterations of the last solve().
+      const std::vector<OuterRecord> &
+      outer_log() const;
+
     private:
       AdditionalData                            data;
       Operator                                  preconditioner;
       Operator                                  e_inverse;
       Operator                                  e_inverse_transpose;
       std::vector<std::pair<size_type, double>> final_multipliers;
+      std::vector<OuterRecord>                  outer_records;
     };
   } // namespace qp
 } // namespace dualcontact

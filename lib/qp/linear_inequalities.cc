@@ -156,6 +156,18 @@ namespace dualcontact
 
 
     template <typename VectorType>
+    double
+    LinearInequalities::row_abs_dot(const size_type   i,
+                                    const VectorType &x) const
+    {
+      double sum = 0.;
+      for (std::size_t k = row_start[i]; k < row_start[i + 1]; ++k)
+        sum += std::abs(values[k] * x[columns[k]]);
+      return sum;
+    }
+
+
+    template <typename VectorType>
     void
     LinearInequalities::add_transpose(const std::vector<size_type> &rows,
                                       const std::vector<double>    &weights,
@@ -229,6 +241,13 @@ namespace dualcontact
                                 const dealii::Vector<double> &) const;
     template double
     LinearInequalities::row_dot(
+      const size_type,
+      const dealii::TrilinosWrappers::MPI::Vector &) const;
+    template double
+    LinearInequalities::row_abs_dot(const size_type,
+                                    const dealii::Vector<double> &) const;
+    template double
+    LinearInequalities::row_abs_dot(
       const size_type,
       const dealii::TrilinosWrappers::MPI::Vector &) const;
     template void

@@ -69,6 +69,11 @@ namespace dualcontact
       double
       row_dot(const size_type i, const VectorType &x) const;
 
+      /// sum_k |a_ik x_k|: the scale of the rounding error of a_i'x
+      template <typename VectorType>
+      double
+      row_abs_dot(const size_type i, const VectorType &x) const;
+
       /// c_i - a_i'x (>= 0 when row i is satisfied)
       template <typename VectorType>
       double
