@@ -1,0 +1,137 @@
+#include <deal.II/base/exceptions.h>
+
+#include <primal/primal_parameters.h>
+
+namespace dualcontact
+{
+  namespace primal
+  {
+    void
+    PrimalParameters::declare_parameters(dealii::ParameterHandler &prm)
+    {
+      prm.declare_entry(
+        "Contact solver",
+        "dual",
+        dealii::Patterns::Selection("dual|primal"),
+        "How contact scenes are solved: dual (the dual QP by the solver of "
+        "`subsection QP solver') or primal (Uzawa over the friction "
+        "multipliers with CGC on the non-penetration constraints, Kestranek "
+        "& Nedoma 1996; `subsection Primal solver').");
+      prm.enter_subsection("Primal solver");
+      prm.declare_entry(
+        "Preconditioner",
+        "none",
+        dealii::Patterns::Selection("none|diagonal|ssor|ic|icd|cholesky"),
+        "Preconditioner of the CG iterations inside CGC (report, section "
+        "10): none, diagonal, ssor (relaxation `SSOR omega'), ic (incomplete "
+        "Cholesky on the pattern of K), icd (incomplete Cholesky with the "
+        "dropped fill added to the diagonal), cholesky (complete, CHOLMOD).");
+      prm.declare_entry("Version",
+                        "pcg2",
+                        dealii::Patterns::Selection("pcg1|pcg2"),
+                        "pcg1: CG on the transformed problem y = E'x (report, "
+                        "section 8); pcg2: projections around the factors "
+                        "(section 9).");
+      prm.declare_entry("SSOR omega",
+                        "1.0",
+                        dealii::Patterns::Double(0., 2.),
+                        "Relaxation parameter of SSOR, in (0, 2) [-].");
+      prm.declare_entry("CGC tolerance",
+                        "1e-10",
+                        dealii::Patterns::Double(0.),
+                        "CGC stops when its projected-gradient criterion is "
+                        "at most this times ||b|| [-].");
+      prm.declare_entry("CGC maximum iterations",
+                        "100000",
+                        dealii::Patterns::Integer(1),
+                        "Limit on the CG steps of one CGC solve.");
+      prm.declare_entry("CGC loose tolerance",
+                        "1e-2",
+                        dealii::Patterns::Double(0.),
+                        "Report, remark 7.3: during the first `CGC loose "
+                        "iterations' outer iterations a facet problem counts "
+                        "as solved at this times ||b|| [-].");
+      prm.declare_entry("CGC loose iterations",
+                        "10",
+                        dealii::Patterns::Integer(0),
+                        "Number of outer CGC iterations with the loose "
+                        "tolerance.");
+      prm.declare_entry("CGC release",
+                        "automatic",
+                        dealii::Patterns::Selection(
+                          "one|all negative|automatic"),
+                        "Constraints leaving the facet when the facet problem "
+                        "is solved: the most negative multiplier (one), all "
+                        "negative ones (report, lemma 7.2; safe for "
+                        "orthogonal rows), or all negative if the rows are "
+                        "orthogonal, else one (automatic).");
+      prm.declare_entry("Uzawa step factor",
+                        "1.0",
+                        dealii::Patterns::Double(0.),
+                        "Uzawa step rho = factor / ||G K^{-1} G'|| (G the "
+                        "friction matrix psi B_T); converges for factors in "
+                        "(0, 2) [-].");
+      prm.declare_entry("Uzawa step",
+                        "0",
+                        dealii::Patterns::Double(0.),
+                        "Absolute Uzawa step rho [1/J; 1/(J/m) in 2D]; 0: use "
+                        "the step factor.");
+      prm.declare_entry("Uzawa tolerance",
+                        "1e-9",
+                        dealii::Patterns::Double(0.),
+                        "Uzawa stops when the largest change of a friction "
+                        "multiplier mu_i (|mu_i| <= 1) is at most this [-].");
+      prm.declare_entry("Uzawa maximum iterations",
+                        "20000",
+                        dealii::Patterns::Integer(1),
+                        "Limit on the Uzawa iterations of one Tresca "
+                        "problem.");
+      prm.leave_subsection();
+    }
+
+
+    void
+    PrimalParameters::parse_parameters(dealii::ParameterHandler &prm)
+    {
+      contact_solver = prm.get("Contact solver");
+      prm.enter_subsection("Primal solver");
+      preconditioner       = prm.get("Preconditioner");
+      version              = prm.get("Version");
+      omega                = prm.get_double("SSOR omega");
+      cgc_tolerance        = prm.get_double("CGC tolerance");
+      cgc_max_iterations   = prm.get_integer("CGC maximum iterations");
+      cgc_loose_tolerance  = prm.get_double("CGC loose tolerance");
+      cgc_loose_iterations = prm.get_integer("CGC loose iterations");
+      cgc_release          = prm.get("CGC release");
+      uzawa_step_factor    = prm.get_double("Uzawa step factor");
+      uzawa_step           = prm.get_double("Uzawa step");
+      uzawa_tolerance      = prm.get_double("Uzawa tolerance");
+      uzawa_max_iterations = prm.get_integer("Uzawa maximum iterations");
+      prm.leave_subsection();
+      const std::string where = "' in `subsection Primal solver').";
+      AssertThrow(omega > 0. && omega < 2.,
+                  dealii::ExcMessage("SSOR omega must lie in (0, 2), got " +
+                                     std::to_string(omega) +
+                                     " (`set SSOR omega" + where));
+      AssertThrow(cgc_tolerance > 0.,
+                  dealii::ExcMessage("CGC tolerance must be positive (`set "
+                                     "CGC tolerance" +
+                                     where));
+      AssertThrow(cgc_loose_tolerance > 0.,
+                  dealii::ExcMessage("CGC loose tolerance must be positive "
+                                     "(`set CGC loose tolerance" +
+                                     where));
+      AssertThrow(uzawa_tolerance > 0.,
+                  dealii::ExcMessage("Uzawa tolerance must be positive (`set "
+                                     "Uzawa tolerance" +
+                                     where));
+      AssertThrow(uzawa_step > 0. ||
+                    (uzawa_step_factor > 0. && uzawa_step_factor < 2.),
+                  dealii::ExcMessage(
+                    "Uzawa step factor must lie in (0, 2) when no absolute "
+                    "Uzawa step is given, got " +
+                    std::to_string(uzawa_step_factor) +
+                    " (`set Uzawa step factor" + where));
+    }
+  } // namespace primal
+} // namespace dualcontact
