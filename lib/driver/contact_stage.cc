@@ -1,6 +1,7 @@
 #include <deal.II/base/mpi.h>
 
 #include <driver/contact_stage.h>
+#include <primal/uzawa_cgc.h>
 
 #include <algorithm>
 #include <array>
@@ -27,6 +28,7 @@ namespace dualcontact
       smalse_parameters_.parse_parameters(prm);
       coulomb_parameters_.parse_parameters(prm);
       dual_parameters_.parse_parameters(prm);
+      primal_parameters_.parse_parameters(prm);
     }
 
 
@@ -99,6 +101,42 @@ namespace dualcontact
     void
     ContactStage<dim>::solve(std::vector<std::string> &details)
     {
+      if (primal_parameters_.contact_solver == "primal")
+      {
+        AssertThrow(dealii::Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD) ==
+                      1,
+                    dealii::ExcMessage(
+                      "The primal Uzawa-CGC method runs on one "
+                      "process only (`set Contact solver = dual' "
+                      "under MPI)."));
+        // the report's primal method on the same discretization; the dual
+        // problem built before only serves the output (slip bounds, stick
+        // and slip) and is not solved
+        primal::UzawaCGC<dim> primal(scene_.bodies(),
+                                     *contact_,
+                                     primal_parameters_,
+                                     coulomb_parameters_);
+        const auto            r = primal.solve();
+        result_.lambda          = r.lambda;
+        result_.displacements   = r.displacements;
+        result_.converged       = r.converged;
+        result_.reason          = r.reason;
+        dual_->set_slip_bounds(r.slip_bounds_first, r.slip_bounds_second);
+        primal_json_  = r.to_json();
+        qp_wall_time_ = r.cgc_time;
+        std::ostringstream line;
+        line << std::setprecision(3) << "Primal Uzawa-CGC (" << r.preconditioner
+             << ", " << r.version << "): " << r.uzawa_iterations
+             << " Uzawa iterations, " << r.n_tresca << " Tresca problem"
+             << (r.n_tresca == 1 ? "" : "s") << ", " << r.n_cgc_solves
+             << " CGC solves, " << r.total_inner_iterations
+             << " CG steps; first CGC: " << r.first_outer.size()
+             << " outer iterations, " << r.first_cgc.iterations
+             << " CG steps; rho " << r.rho << ", " << r.total_time << " s";
+        details.push_back(line.str());
+        details.push_back((r.converged ? "" : "NOT CONVERGED: ") + r.reason);
+        return;
+      }
       contact::ContactSolver<dim> solver(*dual_,
                                          qp_parameters_,
                                          smalse_parameters_,
@@ -142,7 +180,11 @@ namespace dualcontact
     {
       // the contact solver recovered the displacements already; recovering
       // here again (one K^# per body) keeps the phases' timings apart
-      dual_->recover(result_.lambda, scene_.displacements());
+      // (the primal method computes the displacements themselves)
+      if (primal_json_.empty())
+        dual_->recover(result_.lambda, scene_.displacements());
+      else
+        scene_.displacements() = result_.displacements;
       surfaces_ = contact_surfaces(result_.lambda, scene_.displacements());
       // the owner of each node: the process owning its first slave dof (a
       // sum over processes of "mine": every node has exactly one owner)

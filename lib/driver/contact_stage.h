@@ -9,6 +9,7 @@
 #include <contact/dual_problem.h>
 #include <driver/scene.h>
 #include <io/contact_surface_writer.h>
+#include <primal/primal_parameters.h>
 #include <qp/smalse_m.h>
 #include <qp/solver_parameters.h>
 
@@ -99,6 +100,13 @@ namespace dualcontact
       {
         return *contact_;
       }
+      /** The primal method's statistics (JSON object), empty if it did
+       *  not run. */
+      const std::string &
+      primal_json() const
+      {
+        return primal_json_;
+      }
       /** Sum of the QP solves' wall times [s]. */
       double
       qp_wall_time() const
@@ -147,7 +155,11 @@ namespace dualcontact
       qp::SMALSEMParameters          smalse_parameters_;
       contact::CoulombParameters     coulomb_parameters_;
       contact::DualProblemParameters dual_parameters_;
-      bool                           write_coulomb_iterates_ = false;
+      /** `Contact solver = primal': the report's Uzawa-CGC (lib/primal). */
+      primal::PrimalParameters primal_parameters_;
+      /** Its statistics (JSON object) when it ran. */
+      std::string primal_json_;
+      bool        write_coulomb_iterates_ = false;
       /** Relative tolerance of the separated / stick / slip status. */
       double status_tolerance_ = 1e-6;
 

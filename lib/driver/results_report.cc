@@ -222,7 +222,9 @@ namespace dualcontact
           contact_->dual().assembly_time();
         contact["qp_wall_time_s"]  = contact_->qp_wall_time();
         contact["coulomb_changes"] = contact_->result().coulomb_changes;
-        nlohmann::json solves      = nlohmann::json::array();
+        if (!contact_->primal_json().empty())
+          contact["primal"] = nlohmann::json::parse(contact_->primal_json());
+        nlohmann::json solves = nlohmann::json::array();
         for (const auto &q : contact_->result().qp_statistics)
           solves.push_back(nlohmann::json::parse(q.to_json()));
         contact["qp_solves"]        = solves;

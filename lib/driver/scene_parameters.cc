@@ -7,6 +7,7 @@
 #include <driver/scene_parameters.h>
 #include <fem/stiffness_solver.h>
 #include <io/parameter_file.h>
+#include <primal/primal_parameters.h>
 #include <qp/smalse_m.h>
 #include <qp/solver_parameters.h>
 
@@ -148,6 +149,7 @@ namespace dualcontact
       qp::SolverParameters::declare_parameters(prm);
       qp::SMALSEMParameters::declare_parameters(prm);
       contact::CoulombParameters::declare_parameters(prm);
+      primal::PrimalParameters::declare_parameters(prm);
 
       if (layout.dimension == 2)
       {

@@ -6,6 +6,8 @@
 #include <primal/incomplete_cholesky.h>
 #include <primal/uzawa_cgc.h>
 
+#include <nlohmann/json.hpp>
+
 #include <algorithm>
 #include <cmath>
 #include <sstream>
@@ -527,10 +529,12 @@ namespace dualcontact
       Result        result;
       result.preconditioner =
         preconditioner_ ? preconditioner_->name() : std::string("none");
-      result.version = parameters_.version;
-      started_       = false;
-      u_             = 0.;
-      mu_            = 0.;
+      result.version       = parameters_.version;
+      result.n_constraints = rows_->n_rows();
+      result.n_unknowns    = K_.m();
+      started_             = false;
+      u_                   = 0.;
+      mu_                  = 0.;
 
       if (preconditioner_)
       {
@@ -650,6 +654,47 @@ namespace dualcontact
       }
       result.total_time = timer.wall_time();
       return result;
+    }
+
+
+    template <int dim>
+    std::string
+    UzawaCGC<dim>::Result::to_json() const
+    {
+      nlohmann::json outer = nlohmann::json::array();
+      for (const auto &o : first_outer)
+        outer.push_back({{"active", o.n_active},
+                         {"facet", o.n_facet},
+                         {"inner", o.inner_iterations}});
+      nlohmann::json json = {
+        {"method", "uzawa-cgc"},
+        {"preconditioner", preconditioner},
+        {"version", version},
+        {"converged", converged},
+        {"reason", reason},
+        {"n_constraints", n_constraints},
+        {"n_unknowns", n_unknowns},
+        {"uzawa_iterations", uzawa_iterations},
+        {"tresca_problems", n_tresca},
+        {"rho", rho},
+        {"norm_G_Kinv_Gt", lipschitz},
+        {"last_mu_change", mu_changes.empty() ? 0. : mu_changes.back()},
+        {"cgc_solves", n_cgc_solves},
+        {"inner_iterations", total_inner_iterations},
+        {"outer_iterations", total_outer_iterations},
+        {"worst_cgc_criterion", worst_cgc_criterion},
+        {"ic_shift", ic_shift},
+        {"setup_time_s", setup_time},
+        {"cgc_time_s", cgc_time},
+        {"total_time_s", total_time},
+        {"first_cgc",
+         {{"outer", outer},
+          {"iterations", first_cgc.iterations},
+          {"hessian_products", first_cgc.n_hessian_products},
+          {"reason", qp::to_string(first_cgc.reason)},
+          {"criterion", first_cgc.final_criterion},
+          {"wall_time_s", first_cgc.wall_time}}}};
+      return json.dump();
     }
 
 

@@ -102,6 +102,15 @@ namespace dualcontact
         std::string version;
         /** Diagonal shift of incomplete Cholesky (0: none needed). */
         double ic_shift = 0.;
+        /** Non-penetration rows (contact nodes with an unknown in their
+         * row) and unknowns of the QP. */
+        unsigned int n_constraints = 0;
+        unsigned int n_unknowns    = 0;
+
+        /** Everything above but the fields, as a JSON object (statistics.json
+         * of the app, `contact/primal'). */
+        std::string
+        to_json() const;
       };
 
       UzawaCGC(const std::vector<const fem::ElasticBody<dim> *> &bodies,
