@@ -214,7 +214,14 @@ namespace dualcontact
                         std::to_string(-c(i)) + " m"));
           continue;
         }
-        rows_->add_row(columns, values, c(i));
+        // gaps and offsets computed to rounding (a projected node on its
+        // master face, a prescribed displacement along the surface) give
+        // c_i = +-1e-15 m where the exact value is 0; such c_i count as 0,
+        // so that u = 0 is feasible as in the report (remark 7.1)
+        const double length =
+          std::pow(contact.nodes()[i].weight, 1. / std::max(1, dim - 1));
+        const double c_i = std::abs(c(i)) <= 1e-12 * length ? 0. : c(i);
+        rows_->add_row(columns, values, c_i);
         row_node_.push_back(i);
       }
 
