@@ -20,6 +20,7 @@
 #include <sstream>
 #include <string>
 #include <sys/wait.h>
+#include <unistd.h>
 #include <vector>
 
 namespace
@@ -88,7 +89,8 @@ main()
               << " (set QPSOLVE)" << std::endl;
     return 1;
   }
-  dir = (std::filesystem::temp_directory_path() / "dualcontact_qpsolve_e2e")
+  dir = (std::filesystem::temp_directory_path() /
+         ("dualcontact_qpsolve_e2e_" + std::to_string(getpid())))
           .string();
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);

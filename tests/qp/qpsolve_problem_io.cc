@@ -15,6 +15,7 @@
 #include <fstream>
 #include <iostream>
 #include <string>
+#include <unistd.h>
 
 using namespace dualcontact::qp;
 
@@ -66,7 +67,9 @@ int
 main()
 {
   const std::string dir =
-    (std::filesystem::temp_directory_path() / "dualcontact_qpio_test").string();
+    (std::filesystem::temp_directory_path() /
+     ("dualcontact_qpio_test_" + std::to_string(getpid())))
+      .string();
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
 
