@@ -68,7 +68,7 @@ namespace dualcontact
         , model_(model)
         , first_(first)
     {
-      proximal_   = proximal;
+      proximal_ = proximal;
       // round-off asymmetry (reduced global problems) is not worth a loop
       asymmetric_ = problem.asymmetry() > 1e-12;
       AssertThrow(proximal >= 0 && std::isfinite(proximal),

@@ -34,42 +34,20 @@ void
 run(const unsigned int degree)
 {
   std::cout << dim << "D, Q" << degree << std::endl;
-  const double             p = 1e6, tau = 1e5, g = 5e5;
-  const types::boundary_id bottom = 2 * (dim - 1), top = 2 * dim - 1;
-  auto                     lower =
-    make_unit_box<dim>("lower",
-                       0,
-                       2,
-                       degree,
-                       1e9,
-                       [](const Point<dim> &center)
-                       { return center[dim - 1] > 0.5 && center[0] < 0.5; });
-  auto upper = make_unit_box<dim>("upper", 1, 3, degree, 2e9);
-  lower->set_dirichlet_conditions(
-    {{bottom,
-      ComponentMask(dim, true),
-      std::make_shared<Functions::ZeroFunction<dim>>(dim)}});
-  std::vector<double> traction(dim, 0.);
-  traction[0]       = tau;
-  traction[dim - 1] = -p;
-  upper->set_traction_conditions(
-    {{top, std::make_shared<Functions::ConstantFunction<dim>>(traction)}});
-  for (auto *body : {lower.get(), upper.get()})
-  {
-    body->setup();
-    body->assemble();
-  }
-  contact::ContactPair<dim> pair;
-  pair.name            = "upper-lower";
-  pair.slave_body      = 1;
-  pair.slave_boundary  = bottom;
-  pair.master_body     = 0;
-  pair.master_boundary = top;
-  pair.friction.type   = contact::FrictionLaw::Type::tresca_isotropic;
-  pair.friction.first  = g;
-  pair.first_tangent_direction[0] = 1;
+  const double                        p = 1e6, tau = 1e5, g = 5e5;
+  PressedBlocks<dim>                  blocks(2,
+                            3,
+                            degree,
+                            p,
+                            tau,
+                            g,
+                            [](const Point<dim> &center) {
+                              return center[dim - 1] > 0.5 && center[0] < 0.5;
+                            });
+  auto                               &lower = blocks.lower;
+  auto                               &upper = blocks.upper;
   contact::ContactDiscretization<dim> contact({lower.get(), upper.get()},
-                                              {pair});
+                                              {blocks.pair});
   const std::vector<const fem::ElasticBody<dim> *> bodies = {lower.get(),
                                                              upper.get()};
   const auto cholmod = [] { return std::make_unique<fem::CholmodSolver>(); };

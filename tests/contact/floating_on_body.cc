@@ -31,35 +31,12 @@ void
 run()
 {
   std::cout << dim << "D" << std::endl;
-  const double             p = 1e6, tau = 1e5, g = 5e5;
-  const types::boundary_id bottom = 2 * (dim - 1), top = 2 * dim - 1;
-  auto                     lower = make_unit_box<dim>("lower", 0, 3, 1, 1e9);
-  auto                     upper = make_unit_box<dim>("upper", 1, 4, 1, 2e9);
-  lower->set_dirichlet_conditions(
-    {{bottom,
-      ComponentMask(dim, true),
-      std::make_shared<Functions::ZeroFunction<dim>>(dim)}});
-  std::vector<double> traction(dim, 0.);
-  traction[0]       = tau;
-  traction[dim - 1] = -p;
-  upper->set_traction_conditions(
-    {{top, std::make_shared<Functions::ConstantFunction<dim>>(traction)}});
-  for (auto *body : {lower.get(), upper.get()})
-  {
-    body->setup();
-    body->assemble();
-  }
-  contact::ContactPair<dim> pair;
-  pair.name            = "upper-lower";
-  pair.slave_body      = 1;
-  pair.slave_boundary  = bottom;
-  pair.master_body     = 0;
-  pair.master_boundary = top;
-  pair.friction.type   = contact::FrictionLaw::Type::tresca_isotropic;
-  pair.friction.first  = g;
-  pair.first_tangent_direction[0] = 1;
+  const double                        p = 1e6, tau = 1e5, g = 5e5;
+  PressedBlocks<dim>                  blocks(3, 4, 1, p, tau, g);
+  auto                               &lower = blocks.lower;
+  auto                               &upper = blocks.upper;
   contact::ContactDiscretization<dim> contact({lower.get(), upper.get()},
-                                              {pair});
+                                              {blocks.pair});
   contact::DualProblem<dim>           dual(
     {lower.get(), upper.get()},
     contact,
