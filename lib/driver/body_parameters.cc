@@ -45,14 +45,6 @@ namespace dualcontact
         prm.leave_subsection();
       }
 
-      std::string
-      list_ids(const std::vector<dealii::types::boundary_id> &ids)
-      {
-        std::string text;
-        for (const auto id : ids)
-          text += (text.empty() ? "" : ", ") + std::to_string(id);
-        return text.empty() ? "none" : text;
-      }
     } // namespace
 
 
@@ -100,70 +92,79 @@ namespace dualcontact
       io::MeshGenerator<dim>::declare_parameters(prm);
       io::Placement<dim>::declare_parameters(prm);
 
-      for (unsigned int m = 1; m <= layout.n_materials; ++m)
-      {
-        prm.enter_subsection("Material " + std::to_string(m));
-        prm.declare_entry("Material id",
-                          std::to_string(m - 1),
-                          dealii::Patterns::Integer(0, 65535),
-                          "The cells with this material id (generated "
-                          "meshes: 0; Gmsh: the physical tag of the cell) "
-                          "are made of this material.");
-        prm.declare_entry("Young's modulus",
-                          "210e9",
-                          dealii::Patterns::Double(),
-                          "Young's modulus E [Pa], > 0.");
-        prm.declare_entry("Poisson's ratio",
-                          "0.3",
-                          dealii::Patterns::Double(),
-                          "Poisson's ratio nu [-], in (-1, 0.5). In 2D the "
-                          "body is in plane strain.");
-        prm.leave_subsection();
-      }
+      io::for_each_numbered_subsection(
+        prm,
+        "Material",
+        layout.n_materials,
+        "",
+        [&](const unsigned int m, const std::string &)
+        {
+          prm.declare_entry("Material id",
+                            std::to_string(m - 1),
+                            dealii::Patterns::Integer(0, 65535),
+                            "The cells with this material id (generated "
+                            "meshes: 0; Gmsh: the physical tag of the cell) "
+                            "are made of this material.");
+          prm.declare_entry("Young's modulus",
+                            "210e9",
+                            dealii::Patterns::Double(),
+                            "Young's modulus E [Pa], > 0.");
+          prm.declare_entry("Poisson's ratio",
+                            "0.3",
+                            dealii::Patterns::Double(),
+                            "Poisson's ratio nu [-], in (-1, 0.5). In 2D the "
+                            "body is in plane strain.");
+        });
 
-      for (unsigned int n = 1; n <= std::max(layout.n_dirichlet, 1u); ++n)
-      {
-        prm.enter_subsection("Dirichlet " + std::to_string(n));
-        prm.declare_entry("Boundary id",
-                          "0",
-                          dealii::Patterns::Integer(0, 65535),
-                          "The boundary id of the faces where the "
-                          "displacement is prescribed.");
-        prm.declare_entry("Components",
-                          all_components(dim),
-                          dealii::Patterns::MultipleSelection(
-                            dim == 2 ? "x|y" : "x|y|z"),
-                          "The displacement components that are prescribed "
-                          "(the others are free), e.g. `x, y' or `y'.");
-        prm.declare_entry("Displacement",
-                          io::zero_expressions(dim),
-                          dealii::Patterns::Anything(),
-                          "The prescribed displacement [m]: dim "
-                          "expressions separated by `;' (one per "
-                          "component; those not selected in `Components' "
-                          "are ignored), functions of the placed position "
-                          "x, y(, z) [m]; the constant pi is known.");
-        prm.leave_subsection();
-      }
+      io::for_each_numbered_subsection(
+        prm,
+        "Dirichlet",
+        std::max(layout.n_dirichlet, 1u),
+        "",
+        [&](unsigned int, const std::string &)
+        {
+          prm.declare_entry("Boundary id",
+                            "0",
+                            dealii::Patterns::Integer(0, 65535),
+                            "The boundary id of the faces where the "
+                            "displacement is prescribed.");
+          prm.declare_entry("Components",
+                            all_components(dim),
+                            dealii::Patterns::MultipleSelection(
+                              dim == 2 ? "x|y" : "x|y|z"),
+                            "The displacement components that are prescribed "
+                            "(the others are free), e.g. `x, y' or `y'.");
+          prm.declare_entry("Displacement",
+                            io::zero_expressions(dim),
+                            dealii::Patterns::Anything(),
+                            "The prescribed displacement [m]: dim "
+                            "expressions separated by `;' (one per "
+                            "component; those not selected in `Components' "
+                            "are ignored), functions of the placed position "
+                            "x, y(, z) [m]; the constant pi is known.");
+        });
 
-      for (unsigned int n = 1; n <= std::max(layout.n_tractions, 1u); ++n)
-      {
-        prm.enter_subsection("Traction " + std::to_string(n));
-        prm.declare_entry("Boundary id",
-                          "1",
-                          dealii::Patterns::Integer(0, 65535),
-                          "The boundary id of the faces that carry the "
-                          "traction.");
-        prm.declare_entry("Traction",
-                          io::zero_expressions(dim),
-                          dealii::Patterns::Anything(),
-                          "Surface traction t [N/m^2] (force per unit area "
-                          "of the undeformed surface, in global "
-                          "coordinates): dim expressions separated by `;', "
-                          "functions of the placed position x, y(, z) "
-                          "[m]; the constant pi is known.");
-        prm.leave_subsection();
-      }
+      io::for_each_numbered_subsection(
+        prm,
+        "Traction",
+        std::max(layout.n_tractions, 1u),
+        "",
+        [&](unsigned int, const std::string &)
+        {
+          prm.declare_entry("Boundary id",
+                            "1",
+                            dealii::Patterns::Integer(0, 65535),
+                            "The boundary id of the faces that carry the "
+                            "traction.");
+          prm.declare_entry("Traction",
+                            io::zero_expressions(dim),
+                            dealii::Patterns::Anything(),
+                            "Surface traction t [N/m^2] (force per unit area "
+                            "of the undeformed surface, in global "
+                            "coordinates): dim expressions separated by `;', "
+                            "functions of the placed position x, y(, z) "
+                            "[m]; the constant pi is known.");
+        });
 
       prm.declare_entry("Body force",
                         io::zero_expressions(dim),
@@ -190,40 +191,42 @@ namespace dualcontact
       placement.parse_parameters(prm, path);
 
       materials.clear();
-      for (unsigned int m = 1; m <= layout.n_materials; ++m)
-      {
-        const std::string subsection = "Material " + std::to_string(m);
-        const std::string sub_path   = io::join_path(path, subsection);
-        prm.enter_subsection(subsection);
-        const auto id = static_cast<dealii::types::material_id>(
-          prm.get_integer("Material id"));
-        const double      youngs_modulus = prm.get_double("Young's modulus");
-        const double      poisson_ratio  = prm.get_double("Poisson's ratio");
-        const std::string youngs_modulus_text = prm.get("Young's modulus");
-        const std::string poisson_ratio_text  = prm.get("Poisson's ratio");
-        prm.leave_subsection();
+      io::for_each_numbered_subsection(
+        prm,
+        "Material",
+        layout.n_materials,
+        path,
+        [&](unsigned int, const std::string &sub_path)
+        {
+          const auto id = static_cast<dealii::types::material_id>(
+            prm.get_integer("Material id"));
+          const double      youngs_modulus = prm.get_double("Young's modulus");
+          const double      poisson_ratio  = prm.get_double("Poisson's ratio");
+          const std::string youngs_modulus_text = prm.get("Young's modulus");
+          const std::string poisson_ratio_text  = prm.get("Poisson's ratio");
 
-        AssertThrow(materials.count(id) == 0,
-                    dealii::ExcMessage(
-                      "Material id " + std::to_string(id) +
-                      " is given twice in " + name + " " +
-                      io::parameter_location(sub_path, "Material id") + "."));
-        AssertThrow(
-          youngs_modulus > 0,
-          dealii::ExcMessage(
-            "Young's modulus must be > 0, got " + youngs_modulus_text + " " +
-            io::parameter_location(sub_path, "Young's modulus") + "."));
-        AssertThrow(
-          poisson_ratio > -1. && poisson_ratio < 0.5,
-          dealii::ExcMessage(
-            "Poisson's ratio must lie in (-1, 0.5), got " + poisson_ratio_text +
-            " " + io::parameter_location(sub_path, "Poisson's ratio") + "."));
-        materials.emplace(id,
-                          fem::IsotropicMaterial(youngs_modulus,
-                                                 poisson_ratio,
-                                                 name + ", material id " +
-                                                   std::to_string(id)));
-      }
+          AssertThrow(materials.count(id) == 0,
+                      dealii::ExcMessage(
+                        "Material id " + std::to_string(id) +
+                        " is given twice in " + name + " " +
+                        io::parameter_location(sub_path, "Material id") + "."));
+          AssertThrow(
+            youngs_modulus > 0,
+            dealii::ExcMessage(
+              "Young's modulus must be > 0, got " + youngs_modulus_text + " " +
+              io::parameter_location(sub_path, "Young's modulus") + "."));
+          AssertThrow(poisson_ratio > -1. && poisson_ratio < 0.5,
+                      dealii::ExcMessage(
+                        "Poisson's ratio must lie in (-1, 0.5), got " +
+                        poisson_ratio_text + " " +
+                        io::parameter_location(sub_path, "Poisson's ratio") +
+                        "."));
+          materials.emplace(id,
+                            fem::IsotropicMaterial(youngs_modulus,
+                                                   poisson_ratio,
+                                                   name + ", material id " +
+                                                     std::to_string(id)));
+        });
 
       dirichlet.clear();
       dirichlet_paths_.clear();
@@ -235,31 +238,32 @@ namespace dualcontact
                                 {{"Boundary id", "0"},
                                  {"Components", all_components(dim)},
                                  {"Displacement", io::zero_expressions(dim)}});
-      for (unsigned int n = 1; n <= layout.n_dirichlet; ++n)
-      {
-        const std::string subsection = "Dirichlet " + std::to_string(n);
-        const std::string sub_path   = io::join_path(path, subsection);
-        prm.enter_subsection(subsection);
-        fem::DirichletCondition<dim> condition;
-        condition.boundary_id = prm.get_integer("Boundary id");
-        std::vector<bool> mask(dim, false);
-        for (const auto &component :
-             dealii::Utilities::split_string_list(prm.get("Components")))
-          mask[component[0] - 'x'] = true;
-        AssertThrow(std::find(mask.begin(), mask.end(), true) != mask.end(),
-                    dealii::ExcMessage(
-                      "No displacement component is selected " +
-                      io::parameter_location(sub_path, "Components") + "."));
-        condition.components = dealii::ComponentMask(mask);
-        condition.values =
-          io::parse_function<dim>(prm.get("Displacement"),
-                                  dim,
-                                  io::parameter_location(sub_path,
-                                                         "Displacement"));
-        prm.leave_subsection();
-        dirichlet.push_back(condition);
-        dirichlet_paths_.push_back(sub_path);
-      }
+      io::for_each_numbered_subsection(
+        prm,
+        "Dirichlet",
+        layout.n_dirichlet,
+        path,
+        [&](unsigned int, const std::string &sub_path)
+        {
+          fem::DirichletCondition<dim> condition;
+          condition.boundary_id = prm.get_integer("Boundary id");
+          std::vector<bool> mask(dim, false);
+          for (const auto &component :
+               dealii::Utilities::split_string_list(prm.get("Components")))
+            mask[component[0] - 'x'] = true;
+          AssertThrow(std::find(mask.begin(), mask.end(), true) != mask.end(),
+                      dealii::ExcMessage(
+                        "No displacement component is selected " +
+                        io::parameter_location(sub_path, "Components") + "."));
+          condition.components = dealii::ComponentMask(mask);
+          condition.values =
+            io::parse_function<dim>(prm.get("Displacement"),
+                                    dim,
+                                    io::parameter_location(sub_path,
+                                                           "Displacement"));
+          dirichlet.push_back(condition);
+          dirichlet_paths_.push_back(sub_path);
+        });
 
       tractions.clear();
       traction_paths_.clear();
@@ -270,21 +274,23 @@ namespace dualcontact
                                 path,
                                 {{"Boundary id", "1"},
                                  {"Traction", io::zero_expressions(dim)}});
-      for (unsigned int n = 1; n <= layout.n_tractions; ++n)
-      {
-        const std::string subsection = "Traction " + std::to_string(n);
-        const std::string sub_path   = io::join_path(path, subsection);
-        prm.enter_subsection(subsection);
-        fem::TractionCondition<dim> condition;
-        condition.boundary_id = prm.get_integer("Boundary id");
-        condition.traction =
-          io::parse_function<dim>(prm.get("Traction"),
-                                  dim,
-                                  io::parameter_location(sub_path, "Traction"));
-        prm.leave_subsection();
-        tractions.push_back(condition);
-        traction_paths_.push_back(sub_path);
-      }
+      io::for_each_numbered_subsection(
+        prm,
+        "Traction",
+        layout.n_tractions,
+        path,
+        [&](unsigned int, const std::string &sub_path)
+        {
+          fem::TractionCondition<dim> condition;
+          condition.boundary_id = prm.get_integer("Boundary id");
+          condition.traction =
+            io::parse_function<dim>(prm.get("Traction"),
+                                    dim,
+                                    io::parameter_location(sub_path,
+                                                           "Traction"));
+          tractions.push_back(condition);
+          traction_paths_.push_back(sub_path);
+        });
 
       const std::string body_force_text = prm.get("Body force");
       body_force =
@@ -311,7 +317,7 @@ namespace dualcontact
                     dealii::ExcMessage(
                       "The mesh of " + name + " has no boundary id " +
                       std::to_string(id) +
-                      " (its boundary ids: " + list_ids(ids) + ") " +
+                      " (its boundary ids: " + io::join_numbers(ids) + ") " +
                       io::parameter_location(sub_path, "Boundary id") + "."));
       };
       for (unsigned int n = 0; n < dirichlet.size(); ++n)
@@ -325,12 +331,11 @@ namespace dualcontact
           missing.insert(cell->material_id());
       if (!missing.empty())
       {
-        std::string list;
-        for (const auto id : missing)
-          list += (list.empty() ? "" : ", ") + std::to_string(id);
         AssertThrow(false,
                     dealii::ExcMessage(
-                      "Cells of " + name + " have material id(s) " + list +
+                      "Cells of " + name + " have material id(s) " +
+                      io::join_numbers(std::vector<unsigned int>(
+                        missing.begin(), missing.end())) +
                       ", for which no material is given (`set Material "
                       "id' in the subsections `" +
                       path_ +

@@ -22,14 +22,6 @@ namespace dualcontact
           dealii::Utilities::split_string_list(text));
       }
 
-      std::string
-      list_ids(const std::vector<dealii::types::boundary_id> &ids)
-      {
-        std::string text;
-        for (const auto id : ids)
-          text += (text.empty() ? "" : ", ") + std::to_string(id);
-        return text.empty() ? "none" : text;
-      }
     } // namespace
 
 
@@ -278,7 +270,7 @@ namespace dualcontact
                     dealii::ExcMessage(
                       "The mesh of Body " + std::to_string(body + 1) +
                       " has no boundary id " + std::to_string(id) +
-                      " (its boundary ids: " + list_ids(ids) + ") " +
+                      " (its boundary ids: " + io::join_numbers(ids) + ") " +
                       io::parameter_location(path_, entry) + "."));
       };
       check(pair.slave_body, pair.slave_boundary, "Slave boundary id");

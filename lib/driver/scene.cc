@@ -197,16 +197,7 @@ namespace dualcontact
     {
       results_.resize(bodies_.size());
       for (unsigned int b = 0; b < bodies_.size(); ++b)
-      {
-        const fem::ElasticBody<dim>  &body = *bodies_[b];
-        const dealii::Vector<double> &u    = displacements_[b];
-        BodyResults                  &r    = results_[b];
-        r.strain_energy                    = body.strain_energy(u);
-        r.external_work                    = body.external_work(u);
-        r.max_displacement                 = body.max_displacement(u);
-        r.applied_force                    = body.applied_force();
-        r.reaction_forces                  = body.reaction_forces(u);
-      }
+        results_[b] = bodies_[b]->summarize(displacements_[b]);
     }
 
 

@@ -49,15 +49,7 @@ namespace dualcontact
     {
     public:
       /** Per body: what was computed from the solution. */
-      struct BodyResults
-      {
-        double                 strain_energy    = 0;
-        double                 external_work    = 0;
-        double                 max_displacement = 0;
-        dealii::Tensor<1, dim> applied_force;
-        std::map<dealii::types::boundary_id, dealii::Tensor<1, dim>>
-          reaction_forces;
-      };
+      using BodyResults = typename fem::ElasticBody<dim>::Summary;
 
       /**
        * Read subsections `Discretization', `Body N', `Obstacle N', `Contact

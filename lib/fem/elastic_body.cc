@@ -294,83 +294,61 @@ namespace dualcontact
 
 
     template <int dim>
-    double
-    ElasticBody<dim>::strain_energy(const Vector<double> &displacement) const
+    typename ElasticBody<dim>::Summary
+    ElasticBody<dim>::summarize(const Vector<double> &displacement) const
     {
-      const QGauss<dim>                    quadrature(fe_.degree + 1);
-      FEValues<dim>                        fe_values(mapping_,
-                              fe_,
-                              quadrature,
-                              update_gradients | update_JxW_values);
-      const FEValuesExtractors::Vector     u(0);
-      std::vector<SymmetricTensor<2, dim>> eps(quadrature.size());
-      double                               energy = 0;
-      for (const auto &cell : dof_handler_.active_cell_iterators())
-      {
-        fe_values.reinit(cell);
-        fe_values[u].get_function_symmetric_gradients(displacement, eps);
-        const IsotropicMaterial &material = materials_.at(cell->material_id());
-        for (unsigned int q = 0; q < quadrature.size(); ++q)
-          energy += 0.5 * (material.template stress<dim>(eps[q]) * eps[q]) *
-                    fe_values.JxW(q);
-      }
-      return energy;
-    }
-
-
-    template <int dim>
-    double
-    ElasticBody<dim>::external_work(const Vector<double> &displacement) const
-    {
-      // f was assembled with the constraints condensed; rebuild the
-      // unconstrained load cell by cell.
-      CellScratch                          scratch(mapping_, fe_);
-      FullMatrix<double>                   cell_matrix;
-      Vector<double>                       cell_rhs;
-      std::vector<types::global_dof_index> dof_indices(fe_.n_dofs_per_cell());
-      double                               work = 0;
-      for (const auto &cell : dof_handler_.active_cell_iterators())
-      {
-        cell_system(cell, scratch, cell_matrix, cell_rhs);
-        cell->get_dof_indices(dof_indices);
-        for (unsigned int i = 0; i < dof_indices.size(); ++i)
-          work += cell_rhs(i) * displacement(dof_indices[i]);
-      }
-      return work;
-    }
-
-
-    template <int dim>
-    std::map<types::boundary_id, Tensor<1, dim>>
-    ElasticBody<dim>::reaction_forces(const Vector<double> &displacement) const
-    {
+      AssertDimension(displacement.size(), n_dofs());
+      Summary summary;
+      // f was assembled with the constraints condensed, so the load and the
+      // residual K_full u - f_full are rebuilt from the unconstrained cell
+      // systems.
+      CellScratch        scratch(mapping_, fe_);
+      FullMatrix<double> cell_matrix;
+      Vector<double>     cell_rhs;
+      const unsigned int dofs_per_cell = fe_.n_dofs_per_cell();
+      Vector<double>     local_u(dofs_per_cell);
+      Vector<double>     local_Ku(dofs_per_cell);
+      std::vector<types::global_dof_index> dof_indices(dofs_per_cell);
       Vector<double>                       residual(n_dofs());
-      CellScratch                          scratch(mapping_, fe_);
-      FullMatrix<double>                   cell_matrix;
-      Vector<double>                       cell_rhs;
-      Vector<double>                       local_u(fe_.n_dofs_per_cell());
-      Vector<double>                       local_r(fe_.n_dofs_per_cell());
-      std::vector<types::global_dof_index> dof_indices(fe_.n_dofs_per_cell());
+      // Support points of all components coincide: the nodal displacement
+      // is gathered through the component-0 dofs of each cell.
+      const unsigned int n_nodes   = fe_.base_element(0).n_dofs_per_cell();
+      double             max_norm2 = 0;
       for (const auto &cell : dof_handler_.active_cell_iterators())
       {
         cell_system(cell, scratch, cell_matrix, cell_rhs);
         cell->get_dof_indices(dof_indices);
-        for (unsigned int i = 0; i < dof_indices.size(); ++i)
+        for (unsigned int i = 0; i < dofs_per_cell; ++i)
           local_u(i) = displacement(dof_indices[i]);
-        cell_matrix.vmult(local_r, local_u);
-        local_r -= cell_rhs;
-        for (unsigned int i = 0; i < dof_indices.size(); ++i)
-          residual(dof_indices[i]) += local_r(i);
+        cell_matrix.vmult(local_Ku, local_u);
+        summary.strain_energy += 0.5 * (local_u * local_Ku);
+        summary.external_work += cell_rhs * local_u;
+        for (unsigned int i = 0; i < dofs_per_cell; ++i)
+        {
+          // Shape functions of one component sum to one, so the resultant
+          // is the sum of the load entries of that component.
+          summary.applied_force[scratch.component[i]] += cell_rhs(i);
+          residual(dof_indices[i]) += local_Ku(i) - cell_rhs(i);
+        }
+        for (unsigned int node = 0; node < n_nodes; ++node)
+        {
+          double norm2 = 0;
+          for (unsigned int c = 0; c < dim; ++c)
+            norm2 += dealii::Utilities::fixed_power<2>(
+              local_u(fe_.component_to_system_index(c, node)));
+          max_norm2 = std::max(max_norm2, norm2);
+        }
       }
+      summary.max_displacement = std::sqrt(max_norm2);
 
       // A dof on two supports is counted once, for the first condition that
       // names it (the one that won in setup()).
-      std::map<types::boundary_id, Tensor<1, dim>> reactions;
-      std::set<types::global_dof_index>            counted;
+      std::set<types::global_dof_index>    counted;
       std::vector<types::global_dof_index> face_dofs(fe_.n_dofs_per_face());
       for (const auto &condition : dirichlet_)
       {
-        Tensor<1, dim> &reaction = reactions[condition.boundary_id];
+        Tensor<1, dim> &reaction =
+          summary.reaction_forces[condition.boundary_id];
         for (const auto &cell : dof_handler_.active_cell_iterators())
           if (cell->at_boundary())
             for (const unsigned int f : cell->face_indices())
@@ -389,7 +367,31 @@ namespace dualcontact
                 }
               }
       }
-      return reactions;
+      return summary;
+    }
+
+
+    template <int dim>
+    double
+    ElasticBody<dim>::strain_energy(const Vector<double> &displacement) const
+    {
+      return summarize(displacement).strain_energy;
+    }
+
+
+    template <int dim>
+    double
+    ElasticBody<dim>::external_work(const Vector<double> &displacement) const
+    {
+      return summarize(displacement).external_work;
+    }
+
+
+    template <int dim>
+    std::map<types::boundary_id, Tensor<1, dim>>
+    ElasticBody<dim>::reaction_forces(const Vector<double> &displacement) const
+    {
+      return summarize(displacement).reaction_forces;
     }
 
 
@@ -397,19 +399,7 @@ namespace dualcontact
     Tensor<1, dim>
     ElasticBody<dim>::applied_force() const
     {
-      Tensor<1, dim>     force;
-      CellScratch        scratch(mapping_, fe_);
-      FullMatrix<double> cell_matrix;
-      Vector<double>     cell_rhs;
-      for (const auto &cell : dof_handler_.active_cell_iterators())
-      {
-        cell_system(cell, scratch, cell_matrix, cell_rhs);
-        // Shape functions of one component sum to one, so the resultant is
-        // the sum of the load entries of that component.
-        for (unsigned int i = 0; i < cell_rhs.size(); ++i)
-          force[fe_.system_to_component_index(i).first] += cell_rhs(i);
-      }
-      return force;
+      return summarize(Vector<double>(n_dofs())).applied_force;
     }
 
 
@@ -417,27 +407,7 @@ namespace dualcontact
     double
     ElasticBody<dim>::max_displacement(const Vector<double> &displacement) const
     {
-      // Support points of all components coincide: gather per vertex-like
-      // node through the component-0 dofs of each cell.
-      std::vector<types::global_dof_index> dof_indices(fe_.n_dofs_per_cell());
-      double                               max_norm2 = 0;
-      for (const auto &cell : dof_handler_.active_cell_iterators())
-      {
-        cell->get_dof_indices(dof_indices);
-        const unsigned int n_nodes = fe_.base_element(0).n_dofs_per_cell();
-        for (unsigned int node = 0; node < n_nodes; ++node)
-        {
-          double norm2 = 0;
-          for (unsigned int c = 0; c < dim; ++c)
-          {
-            const double value =
-              displacement(dof_indices[fe_.component_to_system_index(c, node)]);
-            norm2 += value * value;
-          }
-          max_norm2 = std::max(max_norm2, norm2);
-        }
-      }
-      return std::sqrt(max_norm2);
+      return summarize(displacement).max_displacement;
     }
 
 

@@ -87,6 +87,33 @@ namespace dualcontact
       void
       distribute(dealii::Vector<double> &displacement) const;
 
+      /**
+       * What a solved body reports (results.txt, the log).  summarize()
+       * computes all of it in one pass over the cells, assembling each
+       * cell's K_c and f_c once: u_c' K_c u_c gives the energy and, minus
+       * f_c, the residual whose sum over the supports is the reaction.  The
+       * single-quantity functions below are that pass too; call summarize()
+       * when more than one is needed.
+       */
+      struct Summary
+      {
+        /** 1/2 int eps(u) : C : eps(u) dx = 1/2 u' K u [J, J/m in 2D]. */
+        double strain_energy = 0;
+        /** f(u) = int b.u dx + int t.u ds [J, J/m in 2D]. */
+        double external_work = 0;
+        /** Resultant of body forces and tractions [N, N/m in 2D]. */
+        dealii::Tensor<1, dim> applied_force;
+        /** See reaction_forces() [N, N/m in 2D]. */
+        std::map<dealii::types::boundary_id, dealii::Tensor<1, dim>>
+          reaction_forces;
+        /** Largest nodal displacement magnitude [m]. */
+        double max_displacement = 0;
+      };
+
+      /** All of Summary for @p displacement, in one pass over the cells. */
+      Summary
+      summarize(const dealii::Vector<double> &displacement) const;
+
       /** Strain energy 1/2 int eps(u) : C : eps(u) dx [J, J/m in 2D]. */
       double
       strain_energy(const dealii::Vector<double> &displacement) const;

@@ -180,5 +180,30 @@ namespace dualcontact
         throw dealii::ExcMessage("Error " + where + ": " + text);
       }
     }
+
+    void
+    for_each_numbered_subsection(
+      dealii::ParameterHandler                                     &prm,
+      const std::string                                            &name,
+      const unsigned int                                            count,
+      const std::string                                            &path,
+      const std::function<void(unsigned int, const std::string &)> &action)
+    {
+      for (unsigned int k = 1; k <= count; ++k)
+      {
+        const std::string subsection = name + " " + std::to_string(k);
+        prm.enter_subsection(subsection);
+        try
+        {
+          action(k, join_path(path, subsection));
+        }
+        catch (...)
+        {
+          prm.leave_subsection();
+          throw;
+        }
+        prm.leave_subsection();
+      }
+    }
   } // namespace io
 } // namespace dualcontact

@@ -2,8 +2,10 @@
 
 #include <deal.II/base/parameter_handler.h>
 
+#include <functional>
 #include <ostream>
 #include <string>
+#include <vector>
 
 namespace dualcontact
 {
@@ -21,6 +23,37 @@ namespace dualcontact
     /** "Body 1" + "Material 2" -> "Body 1/Material 2". */
     std::string
     join_path(const std::string &path, const std::string &subsection);
+
+    /**
+     * "0, 3, 7" (or "none" for an empty list): the ids a mesh or a scene has,
+     * for error messages that tell the user what would have been valid.
+     */
+    template <typename Number>
+    std::string
+    join_numbers(const std::vector<Number> &numbers)
+    {
+      std::string text;
+      for (const auto number : numbers)
+        text += (text.empty() ? "" : ", ") + std::to_string(number);
+      return text.empty() ? "none" : text;
+    }
+
+    /**
+     * Run @p action inside `subsection NAME 1', ..., `subsection NAME
+     * count' of @p prm, passing k (1-based) and the subsection's full path
+     * below @p path (for parameter_location()).  Scenes describe their
+     * bodies, materials and conditions as such numbered subsections, whose
+     * number is only known after an earlier pass (see
+     * driver::SceneParameters::read()); this keeps the enter/leave pairing
+     * and the naming in one place for declaring and for parsing.
+     */
+    void
+    for_each_numbered_subsection(
+      dealii::ParameterHandler                                     &prm,
+      const std::string                                            &name,
+      const unsigned int                                            count,
+      const std::string                                            &path,
+      const std::function<void(unsigned int, const std::string &)> &action);
 
     /**
      * Read @p file_name into @p prm.  With @p skip_undefined, entries and

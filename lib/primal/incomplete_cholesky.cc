@@ -90,35 +90,10 @@ namespace dualcontact
     }
 
 
-    void
-    IncompleteCholesky::apply_E_inverse(VectorType       &dst,
-                                        const VectorType &src) const
-    {
-      dst = src;
-      E.solve(dst);
-    }
-
-
-    void
-    IncompleteCholesky::apply_E_inverse_transpose(VectorType       &dst,
-                                                  const VectorType &src) const
-    {
-      dst = src;
-      E.solve_transpose(dst);
-    }
-
-
     std::string
     IncompleteCholesky::name() const
     {
       return compensate ? "P-ILLD" : "P-ILL";
-    }
-
-
-    const LowerTriangular &
-    IncompleteCholesky::factor() const
-    {
-      return E;
     }
 
 

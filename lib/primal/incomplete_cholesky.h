@@ -1,7 +1,6 @@
 #pragma once
 
-#include <primal/lower_triangular.h>
-#include <primal/preconditioner.h>
+#include <primal/triangular_factor_preconditioner.h>
 
 namespace dualcontact
 {
@@ -28,24 +27,15 @@ namespace dualcontact
      * = 1e-3, 2e-3, 4e-3, ... (at most 30 times); shift() tells which
      * alpha was used (0 on the bridge and the tests).
      */
-    class IncompleteCholesky : public Preconditioner
+    class IncompleteCholesky : public TriangularFactorPreconditioner
     {
     public:
       explicit IncompleteCholesky(const bool diagonal_compensation);
 
       void
       initialize(const dealii::SparseMatrix<double> &matrix) override;
-      void
-      apply_E_inverse(VectorType &dst, const VectorType &src) const override;
-      void
-      apply_E_inverse_transpose(VectorType       &dst,
-                                const VectorType &src) const override;
       std::string
       name() const override;
-
-      /** The factor E. */
-      const LowerTriangular &
-      factor() const;
       /** The diagonal shift alpha the factorization needed (0: none). */
       double
       shift() const;
@@ -55,9 +45,8 @@ namespace dualcontact
       bool
       factorize(const LowerTriangular &lower, const double alpha);
 
-      bool            compensate;
-      LowerTriangular E;
-      double          alpha = 0.;
+      bool   compensate;
+      double alpha = 0.;
     };
   } // namespace primal
 } // namespace dualcontact

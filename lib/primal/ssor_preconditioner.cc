@@ -39,35 +39,10 @@ namespace dualcontact
     }
 
 
-    void
-    SSORPreconditioner::apply_E_inverse(VectorType       &dst,
-                                        const VectorType &src) const
-    {
-      dst = src;
-      E.solve(dst);
-    }
-
-
-    void
-    SSORPreconditioner::apply_E_inverse_transpose(VectorType       &dst,
-                                                  const VectorType &src) const
-    {
-      dst = src;
-      E.solve_transpose(dst);
-    }
-
-
     std::string
     SSORPreconditioner::name() const
     {
       return "P-SOR";
-    }
-
-
-    const LowerTriangular &
-    SSORPreconditioner::factor() const
-    {
-      return E;
     }
   } // namespace primal
 } // namespace dualcontact

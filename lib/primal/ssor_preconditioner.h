@@ -1,7 +1,6 @@
 #pragma once
 
-#include <primal/lower_triangular.h>
-#include <primal/preconditioner.h>
+#include <primal/triangular_factor_preconditioner.h>
 
 namespace dualcontact
 {
@@ -15,28 +14,18 @@ namespace dualcontact
      * W, which changes neither version's iterates).  The report found that
      * omega != 1 changed little with constraints present.
      */
-    class SSORPreconditioner : public Preconditioner
+    class SSORPreconditioner : public TriangularFactorPreconditioner
     {
     public:
       explicit SSORPreconditioner(const double omega = 1.);
 
       void
       initialize(const dealii::SparseMatrix<double> &matrix) override;
-      void
-      apply_E_inverse(VectorType &dst, const VectorType &src) const override;
-      void
-      apply_E_inverse_transpose(VectorType       &dst,
-                                const VectorType &src) const override;
       std::string
       name() const override;
 
-      /** The factor E. */
-      const LowerTriangular &
-      factor() const;
-
     private:
-      double          omega;
-      LowerTriangular E;
+      double omega;
     };
   } // namespace primal
 } // namespace dualcontact
