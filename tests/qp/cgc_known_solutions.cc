@@ -11,6 +11,8 @@
 //  5. an iteration limit of 3: reason "max_iterations", not converged.
 // Asserts ||x - x*|| <= 1e-8 ||x*||, the criterion <= 1e-10 ||b||, the
 // returned multipliers close to the planted ones.
+#include "test_tools.h"
+
 #include <deal.II/lac/full_matrix.h>
 #include <deal.II/lac/precondition.h>
 #include <deal.II/lac/sparse_matrix.h>
@@ -26,61 +28,12 @@
 using namespace dualcontact::qp;
 using Vec = dealii::Vector<double>;
 
+using qptest::check;
+using qptest::uniform;
+
 namespace
 {
-  int n_failures = 0;
-
-  void
-  check(const bool ok, const std::string &what)
-  {
-    std::cout << (ok ? "ok   " : "FAIL ") << what << std::endl;
-    if (!ok)
-      ++n_failures;
-  }
-
   std::mt19937 rng(20240521);
-
-  double
-  uniform(double a, double b)
-  {
-    return std::uniform_real_distribution<double>(a, b)(rng);
-  }
-
-  /// sparse SPD matrix: random graph Laplacian-like + diagonal shift
-  void
-  random_spd(const unsigned int            n,
-             dealii::SparsityPattern      &sp,
-             dealii::SparseMatrix<double> &A,
-             const double                  shift)
-  {
-    std::vector<std::vector<std::pair<unsigned int, double>>> off(n);
-    std::vector<double>                                       diag(n, shift);
-    for (unsigned int i = 0; i < n; ++i)
-      for (unsigned int k = 0; k < 3; ++k)
-      {
-        const unsigned int j = (i + 1 + rng() % (n - 1)) % n;
-        const double       w = uniform(0.1, 1.);
-        off[i].emplace_back(j, -w);
-        off[j].emplace_back(i, -w);
-        diag[i] += w;
-        diag[j] += w;
-      }
-    std::vector<unsigned int> len(n);
-    for (unsigned int i = 0; i < n; ++i)
-      len[i] = off[i].size() + 1;
-    sp.reinit(n, n, len);
-    for (unsigned int i = 0; i < n; ++i)
-      for (const auto &e : off[i])
-        sp.add(i, e.first);
-    sp.compress();
-    A.reinit(sp);
-    for (unsigned int i = 0; i < n; ++i)
-    {
-      A.add(i, i, diag[i]);
-      for (const auto &e : off[i])
-        A.add(i, e.first, e.second);
-    }
-  }
 
   double
   distance(const Vec &a, const Vec &b)
@@ -97,7 +50,7 @@ main()
   const unsigned int           n = 60;
   dealii::SparsityPattern      sp;
   dealii::SparseMatrix<double> A;
-  random_spd(n, sp, A, 0.05);
+  qptest::random_sparse_spd(n, 3, 0.05, rng, sp, A);
   const auto hessian = [&](Vec &dst, const Vec &src) { A.vmult(dst, src); };
 
   // ---- 1. bounds, planted solution
@@ -108,14 +61,14 @@ main()
     auto rows = std::make_shared<LinearInequalities>();
     for (unsigned int i = 0; i < n; ++i)
     {
-      lower[i] = uniform(-1., 0.);
+      lower[i] = uniform(rng, -1., 0.);
       if (i % 3 == 0) // active, multiplier > 0
       {
         x_star[i] = lower[i];
-        mu[i]     = uniform(0.1, 1.);
+        mu[i]     = uniform(rng, 0.1, 1.);
       }
       else
-        x_star[i] = lower[i] + uniform(0.1, 1.);
+        x_star[i] = lower[i] + uniform(rng, 0.1, 1.);
       rows->add_lower_bound(i, lower[i]);
     }
     // KKT: Cx* - b = mu on the active bounds (g_i = u_i >= 0)
@@ -151,7 +104,7 @@ main()
   const unsigned int m = 12;
   Vec                x_star(n);
   for (unsigned int i = 0; i < n; ++i)
-    x_star[i] = uniform(-1., 1.);
+    x_star[i] = uniform(rng, -1., 1.);
   auto                rows = std::make_shared<LinearInequalities>();
   Vec                 sum_ua(n);
   std::vector<double> planted_u(m, 0.);
@@ -168,7 +121,7 @@ main()
       if (std::find(cols.begin(), cols.end(), c) != cols.end())
         continue;
       cols.push_back(c);
-      vals.push_back(uniform(-1., 1.));
+      vals.push_back(uniform(rng, -1., 1.));
       ax += vals.back() * x_star[c];
     }
     if (ax < 0.)
@@ -178,10 +131,10 @@ main()
       ax = -ax;
     }
     const bool active = (r % 2 == 0);
-    rows->add_row(cols, vals, active ? ax : ax + uniform(0.1, 1.));
+    rows->add_row(cols, vals, active ? ax : ax + uniform(rng, 0.1, 1.));
     if (active)
     {
-      planted_u[r] = uniform(0.1, 1.);
+      planted_u[r] = uniform(rng, 0.1, 1.);
       for (std::size_t k = 0; k < cols.size(); ++k)
         sum_ua[cols[k]] += planted_u[r] * vals[k];
     }
@@ -268,6 +221,5 @@ main()
           "iteration limit 3: reason max_iterations, not converged");
   }
 
-  std::cout << (n_failures == 0 ? "all checks passed" : "FAILED") << std::endl;
-  return n_failures == 0 ? 0 : 1;
+  return qptest::checker().finish("qp/cgc_known_solutions");
 }

@@ -11,6 +11,8 @@
 //  - --max-iter 2: exit 2, reason max_iterations;
 //  - bad inputs (missing file, bad field, unknown solver, cgc with a disc
 //    block, bad --tol): exit 1 with a message naming the file/field/option.
+#include "test_tools.h"
+
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -23,18 +25,10 @@
 #include <unistd.h>
 #include <vector>
 
+using qptest::check;
+
 namespace
 {
-  int n_failures = 0;
-
-  void
-  check(const bool ok, const std::string &what)
-  {
-    std::cout << (ok ? "ok   " : "FAIL ") << what << std::endl;
-    if (!ok)
-      ++n_failures;
-  }
-
   struct Result
   {
     int         code = -1;
@@ -214,6 +208,5 @@ main()
   }
 
   std::filesystem::remove_all(dir);
-  std::cout << (n_failures == 0 ? "all checks passed" : "FAILED") << std::endl;
-  return n_failures == 0 ? 0 : 1;
+  return qptest::checker().finish("qp/qpsolve_end_to_end");
 }

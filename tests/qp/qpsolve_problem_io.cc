@@ -7,6 +7,8 @@
 //  - symmetric Matrix Market files are mirrored, duplicates summed;
 //  - malformed files are rejected with a message naming the file and the
 //    field or line.
+#include "test_tools.h"
+
 #include <qp/membrane_generator.h>
 #include <qp/problem_io.h>
 
@@ -19,18 +21,10 @@
 
 using namespace dualcontact::qp;
 
+using qptest::check;
+
 namespace
 {
-  int n_failures = 0;
-
-  void
-  check(const bool ok, const std::string &what)
-  {
-    std::cout << (ok ? "ok   " : "FAIL ") << what << std::endl;
-    if (!ok)
-      ++n_failures;
-  }
-
   void
   write(const std::string &file, const std::string &text)
   {
@@ -202,6 +196,5 @@ main()
                "overlapping blocks");
 
   std::filesystem::remove_all(dir);
-  std::cout << (n_failures == 0 ? "all checks passed" : "FAILED") << std::endl;
-  return n_failures == 0 ? 0 : 1;
+  return qptest::checker().finish("qp/qpsolve_problem_io");
 }

@@ -8,6 +8,8 @@
 // 1e-8 ||b||, outer iterations >= 1 reported, KKT stationarity and
 // complementarity of the Lagrangian small; and that a limit of 3 inner
 // iterations is reported as not converged.
+#include "test_tools.h"
+
 #include <deal.II/lac/full_matrix.h>
 #include <deal.II/lac/vector.h>
 
@@ -22,22 +24,12 @@
 using namespace dualcontact::qp;
 using Vec = dealii::Vector<double>;
 
+using qptest::check;
+using qptest::uniform;
+
 namespace
 {
-  int n_failures = 0;
-  void
-  check(const bool ok, const std::string &what)
-  {
-    std::cout << (ok ? "ok   " : "FAIL ") << what << std::endl;
-    if (!ok)
-      ++n_failures;
-  }
   std::mt19937 rng(11);
-  double
-  uniform(double a, double b)
-  {
-    return std::uniform_real_distribution<double>(a, b)(rng);
-  }
 } // namespace
 
 int
@@ -51,7 +43,7 @@ main()
     for (unsigned int i = 0; i < n; ++i)
       for (const unsigned int j : {(i + 1) % n, (i + 7) % n})
       {
-        const double w = uniform(0.5, 1.5);
+        const double w = uniform(rng, 0.5, 1.5);
         A(i, i) += w;
         A(j, j) += w;
         A(i, j) -= w;
@@ -64,31 +56,31 @@ main()
     for (unsigned int i = 0; i < n; ++i)
     {
       B(0, i) = 1.; // total "momentum": makes A + rho B'B definite
-      B(1, i) = uniform(-1., 1.);
-      B(2, i) = (i % 5 == 0) ? uniform(-1., 1.) : 0.;
+      B(1, i) = uniform(rng, -1., 1.);
+      B(2, i) = (i % 5 == 0) ? uniform(rng, -1., 1.) : 0.;
     }
     Vec  x_star(n), g_bound(n), nu(m);
     auto set = std::make_shared<SeparableSet<Vec>>();
     for (unsigned int i = 0; i < n; ++i)
     {
-      const double l = uniform(-1., 0.);
+      const double l = uniform(rng, -1., 0.);
       if (i % 2 == 0)
       {
         set->add_bound(i, l);
         if (i % 4 == 0)
         {
           x_star[i]  = l;
-          g_bound[i] = uniform(0.5, 1.5);
+          g_bound[i] = uniform(rng, 0.5, 1.5);
         }
         else
-          x_star[i] = l + uniform(0.2, 1.);
+          x_star[i] = l + uniform(rng, 0.2, 1.);
       }
       else
-        x_star[i] = uniform(-1., 1.);
+        x_star[i] = uniform(rng, -1., 1.);
     }
     set->finalize(x_star);
     for (unsigned int k = 0; k < m; ++k)
-      nu[k] = uniform(-1., 1.);
+      nu[k] = uniform(rng, -1., 1.);
 
     Problem<Vec> problem;
     problem.hessian = [&](Vec &dst, const Vec &src) { A.vmult(dst, src); };
@@ -154,6 +146,5 @@ main()
               ": 3 iterations reported as max_iterations");
     }
   }
-  std::cout << (n_failures == 0 ? "all checks passed" : "FAILED") << std::endl;
-  return n_failures == 0 ? 0 : 1;
+  return qptest::checker().finish("qp/smalse_planted");
 }

@@ -7,6 +7,8 @@
 // is the unique solution.  Asserts: reason converged at tolerance 1e-10,
 // ||x - x*|| <= 1e-8 max(1, ||x*||), the KKT residuals small; and with an
 // iteration limit of 5 the reason is max_iterations and converged() false.
+#include "test_tools.h"
+
 #include <deal.II/lac/sparse_matrix.h>
 #include <deal.II/lac/sparsity_pattern.h>
 #include <deal.II/lac/vector.h>
@@ -23,25 +25,12 @@
 using namespace dualcontact::qp;
 using Vec = dealii::Vector<double>;
 
+using qptest::check;
+using qptest::uniform;
+
 namespace
 {
-  int n_failures = 0;
-
-  void
-  check(const bool ok, const std::string &what)
-  {
-    std::cout << (ok ? "ok   " : "FAIL ") << what << std::endl;
-    if (!ok)
-      ++n_failures;
-  }
-
   std::mt19937 rng(7);
-
-  double
-  uniform(double a, double b)
-  {
-    return std::uniform_real_distribution<double>(a, b)(rng);
-  }
 
   struct Planted
   {
@@ -74,29 +63,31 @@ namespace
       if (i + size > n - 2) // keep two free unknowns at the end
         break;
       const bool   active = (block % 2 == 0);
-      const double mu     = uniform(0.5, 2.);
+      const double mu     = uniform(rng, 0.5, 2.);
       if (t == "bound")
       {
-        const double l = uniform(-1., 0.);
+        const double l = uniform(rng, -1., 0.);
         p.set->add_bound(i, l);
-        p.x_star[i] = active ? l : l + uniform(0.2, 1.);
+        p.x_star[i] = active ? l : l + uniform(rng, 0.2, 1.);
         if (active)
           p.g_star[i] = mu; // n = -e_i
       }
       else if (t == "box")
       {
-        const double l = uniform(-1., -0.5), u = uniform(0.5, 1.);
+        const double l = uniform(rng, -1., -0.5), u = uniform(rng, 0.5, 1.);
         p.set->add_box(i, l, u);
         const bool at_upper = (block % 4 == 0);
-        p.x_star[i] = !active ? uniform(l + 0.1, u - 0.1) : at_upper ? u : l;
+        p.x_star[i]         = !active  ? uniform(rng, l + 0.1, u - 0.1) :
+                              at_upper ? u :
+                                         l;
         if (active)
           p.g_star[i] = at_upper ? -mu : mu;
       }
       else if (t == "disc")
       {
-        const double r = uniform(0.5, 2.), angle = uniform(0., 6.28);
+        const double r = uniform(rng, 0.5, 2.), angle = uniform(rng, 0., 6.28);
         p.set->add_disc(i, r);
-        const double s  = active ? 1. : uniform(0.1, 0.8);
+        const double s  = active ? 1. : uniform(rng, 0.1, 0.8);
         p.x_star[i]     = s * r * std::cos(angle);
         p.x_star[i + 1] = s * r * std::sin(angle);
         if (active)
@@ -107,10 +98,10 @@ namespace
       }
       else if (t == "ellipse")
       {
-        const double a = uniform(1., 2.), b = a / 20., phi = uniform(0., 3.14),
-                     t_ = uniform(0., 6.28);
+        const double a = uniform(rng, 1., 2.), b = a / 20.,
+                     phi = uniform(rng, 0., 3.14), t_ = uniform(rng, 0., 6.28);
         p.set->add_ellipse(i, a, b, phi);
-        const double s  = active ? 1. : uniform(0.1, 0.8);
+        const double s  = active ? 1. : uniform(rng, 0.1, 0.8);
         const double y1 = s * a * std::cos(t_), y2 = s * b * std::sin(t_);
         // outward normal in the ellipse frame, then rotated
         double       n1 = std::cos(t_) / a, n2 = std::sin(t_) / b;
@@ -128,10 +119,10 @@ namespace
       }
       else // cone ||x_t|| <= m x_n
       {
-        const double m = uniform(0.2, 1.), s = uniform(0.5, 2.),
-                     angle = uniform(0., 6.28);
+        const double m = uniform(rng, 0.2, 1.), s = uniform(rng, 0.5, 2.),
+                     angle = uniform(rng, 0., 6.28);
         p.set->add_cone(i, m);
-        const double q  = active ? 1. : uniform(0.1, 0.8);
+        const double q  = active ? 1. : uniform(rng, 0.1, 0.8);
         p.x_star[i]     = s;
         p.x_star[i + 1] = q * m * s * std::cos(angle);
         p.x_star[i + 2] = q * m * s * std::sin(angle);
@@ -151,44 +142,11 @@ namespace
     }
     // free unknowns: anything, zero gradient
     for (; i < n; ++i)
-      p.x_star[i] = uniform(-1., 1.);
+      p.x_star[i] = uniform(rng, -1., 1.);
     p.set->finalize(p.x_star);
     return p;
   }
 
-  void
-  random_spd(const unsigned int            n,
-             dealii::SparsityPattern      &sp,
-             dealii::SparseMatrix<double> &A)
-  {
-    std::vector<std::vector<std::pair<unsigned int, double>>> off(n);
-    std::vector<double>                                       diag(n, 1.);
-    for (unsigned int i = 0; i < n; ++i)
-      for (unsigned int k = 0; k < 2; ++k)
-      {
-        const unsigned int j = (i + 1 + rng() % (n - 1)) % n;
-        const double       w = uniform(0.1, 1.);
-        off[i].emplace_back(j, -w);
-        off[j].emplace_back(i, -w);
-        diag[i] += w;
-        diag[j] += w;
-      }
-    std::vector<unsigned int> len(n);
-    for (unsigned int i = 0; i < n; ++i)
-      len[i] = off[i].size() + 1;
-    sp.reinit(n, n, len);
-    for (unsigned int i = 0; i < n; ++i)
-      for (const auto &e : off[i])
-        sp.add(i, e.first);
-    sp.compress();
-    A.reinit(sp);
-    for (unsigned int i = 0; i < n; ++i)
-    {
-      A.add(i, i, diag[i]);
-      for (const auto &e : off[i])
-        A.add(i, e.first, e.second);
-    }
-  }
 } // namespace
 
 int
@@ -197,7 +155,7 @@ main()
   const unsigned int           n = 80;
   dealii::SparsityPattern      sp;
   dealii::SparseMatrix<double> A;
-  random_spd(n, sp, A);
+  qptest::random_sparse_spd(n, 2, 1., rng, sp, A);
 
   for (const std::string type :
        {"bound", "box", "disc", "ellipse", "cone", "mixed"})
@@ -243,6 +201,5 @@ main()
               ": iteration limit 5 reported as max_iterations");
     }
   }
-  std::cout << (n_failures == 0 ? "all checks passed" : "FAILED") << std::endl;
-  return n_failures == 0 ? 0 : 1;
+  return qptest::checker().finish("qp/spectral_planted");
 }

@@ -8,6 +8,8 @@
 #ifndef dualcontact_tests_qp_test_tools_h
 #define dualcontact_tests_qp_test_tools_h
 
+#include <deal.II/lac/sparse_matrix.h>
+#include <deal.II/lac/sparsity_pattern.h>
 #include <deal.II/lac/trilinos_vector.h>
 #include <deal.II/lac/vector.h>
 
@@ -20,6 +22,7 @@
 #include <memory>
 #include <random>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace qptest
@@ -58,6 +61,70 @@ namespace qptest
       return n_failed == 0 ? 0 : 1;
     }
   };
+
+  /// The one Checker of a test program that checks from free functions.
+  inline Checker &
+  checker()
+  {
+    static Checker c;
+    return c;
+  }
+
+  /// checker().check(ok, what)
+  inline bool
+  check(const bool ok, const std::string &what)
+  {
+    return checker().check(ok, what);
+  }
+
+  /// uniform in [a, b)
+  inline double
+  uniform(std::mt19937 &rng, const double a, const double b)
+  {
+    return std::uniform_real_distribution<double>(a, b)(rng);
+  }
+
+  /**
+   * Sparse SPD matrix: a random weighted graph Laplacian (each row linked
+   * to @p neighbours random other rows, weights in [0.1, 1)) plus
+   * @p shift on the diagonal.
+   */
+  inline void
+  random_sparse_spd(const unsigned int            n,
+                    const unsigned int            neighbours,
+                    const double                  shift,
+                    std::mt19937                 &rng,
+                    dealii::SparsityPattern      &sp,
+                    dealii::SparseMatrix<double> &A)
+  {
+    std::vector<std::vector<std::pair<unsigned int, double>>> off(n);
+    std::vector<double>                                       diag(n, shift);
+    for (unsigned int i = 0; i < n; ++i)
+      for (unsigned int k = 0; k < neighbours; ++k)
+      {
+        const unsigned int j = (i + 1 + rng() % (n - 1)) % n;
+        const double       w = uniform(rng, 0.1, 1.);
+        off[i].emplace_back(j, -w);
+        off[j].emplace_back(i, -w);
+        diag[i] += w;
+        diag[j] += w;
+      }
+    std::vector<unsigned int> len(n);
+    for (unsigned int i = 0; i < n; ++i)
+      len[i] = off[i].size() + 1;
+    sp.reinit(n, n, len);
+    for (unsigned int i = 0; i < n; ++i)
+      for (const auto &e : off[i])
+        sp.add(i, e.first);
+    sp.compress();
+    A.reinit(sp);
+    for (unsigned int i = 0; i < n; ++i)
+    {
+      A.add(i, i, diag[i]);
+      for (const auto &e : off[i])
+        A.add(i, e.first, e.second);
+    }
+  }
 
   /// Dense symmetric matrix, row-major.
   struct Dense
