@@ -118,26 +118,44 @@ namespace dualcontact
         x_prev.reinit(x);
         g_prev.reinit(x);
       }
+      // PERMON's "projcg" expansion (not with BB steps or MwPGP's test)
+      const bool projected_cg =
+        prm.expansion == "projected-cg" && !variant.barzilai_borwein && !weak;
 
-      // g := A x - b
+      // 1/2 y'Ay - b'y from the gradient gy = Ay - b: 1/2 y'(gy - b)
+      const auto cost_at = [&](const VectorType &y, const VectorType &gy)
+      {
+        const double *yv = y.begin(), *gv = gy.begin(), *bv = problem.b.begin();
+        const std::size_t n = y.locally_owned_size();
+        double            s = 0.;
+        for (std::size_t i = 0; i < n; ++i)
+          s += yv[i] * (gv[i] - bv[i]);
+        return 0.5 * internal::sum(s, y);
+      };
+      // The cost f(x), kept by recurrences (a step x - a p changes it by
+      // -a g'p + a^2/2 p'Ap) and recomputed with every new gradient; only
+      // the stagnation test reads it.
+      double f = 0.;
+      // g := A x - b, and f
       const auto recompute_gradient = [&]()
       {
         this->apply_hessian(problem, g, x, stats);
         g -= problem.b;
-      };
-      // 1/2 x'Ax - b'x from the gradient: 1/2 x'(g - b)
-      const auto cost = [&]()
-      {
-        const double *xv = x.begin(), *gv = g.begin(), *bv = problem.b.begin();
-        const std::size_t n = x.locally_owned_size();
-        double            s = 0.;
-        for (std::size_t i = 0; i < n; ++i)
-          s += xv[i] * (gv[i] - bv[i]);
-        return 0.5 * internal::sum(s, x);
+        f = cost_at(x, g);
       };
 
       double        bb_alpha = alpha_bar;
       GradientNorms norms;
+      // the stopping criterion from fresh norms at x
+      const auto criterion_value = [&]() -> double
+      {
+        if (prm.stopping_criterion == StoppingCriterion::projected && !weak)
+          return std::sqrt(norms.free_sq + norms.chopped_sq);
+        if (prm.stopping_criterion == StoppingCriterion::reduced_projected &&
+            weak)
+          return std::sqrt(norms.free_sq + norms.reduced_chopped_sq);
+        return this->criterion(problem, x, g, stats);
+      };
       // phi_out := phi(x), norms := the gradient norms at x; returns the
       // absolute stopping criterion
       const auto refresh = [&](VectorType &phi_out) -> double
@@ -149,20 +167,7 @@ namespace dualcontact
         }
         else
           norms = set.free_gradient_and_norms(x, g, phi_out);
-        switch (prm.stopping_criterion)
-        {
-          case StoppingCriterion::projected:
-            if (!weak)
-              return std::sqrt(norms.free_sq + norms.chopped_sq);
-            break;
-          case StoppingCriterion::reduced_projected:
-            if (weak)
-              return std::sqrt(norms.free_sq + norms.reduced_chopped_sq);
-            break;
-          case StoppingCriterion::reduced:
-            break;
-        }
-        return this->criterion(problem, x, g, stats);
+        return criterion_value();
       };
       const auto proportional = [&]() -> bool
       {
@@ -173,17 +178,13 @@ namespace dualcontact
         return norms.chopped_sq <= prm.gamma * prm.gamma * norms.free_sq;
       };
 
-      // Gradient projection x := P(x - alpha d), d = g or phi; new g.
+      // Gradient projection x := P(x - alpha d), d = phi or g, in one
+      // pass; new g.
       const auto projection_step = [&](const double alpha)
       {
-        if (variant.expand_with_free_gradient)
-        {
-          set.free_gradient(x, g, phi);
-          x.add(-alpha, phi);
-        }
-        else
-          x.add(-alpha, g);
-        this->project(problem, x, stats);
+        set.projected_step(x, g, alpha, variant.expand_with_free_gradient);
+        if (problem.constraints)
+          ++stats.n_projections;
         recompute_gradient();
         ++stats.n_expansions;
       };
@@ -208,7 +209,7 @@ namespace dualcontact
           projection_step(alpha_bar);
           return;
         }
-        const double f_old = cost();
+        const double f_old = cost_at(x, g);
         recent_costs.push_back(f_old);
         while (recent_costs.size() > std::max(prm.mpgp_bb_memory, 1u))
           recent_costs.pop_front();
@@ -219,7 +220,7 @@ namespace dualcontact
         work.equ(1., x);
         phi.equ(1., g); // keep g; phi is free here
         projection_step(alpha);
-        if (cost() <= reference)
+        if (f <= reference)
         {
           ++stats.n_bb;
           return;
@@ -232,8 +233,14 @@ namespace dualcontact
         ++stats.n_fall_back;
       };
 
+      // The current direction p and what the loop needs of it (filled by
+      // conjugate_direction() after a CG step, so that the next step
+      // needs one pass for p'Ap only); invalid after a restart.
+      typename SeparableSet<VectorType>::Direction direction;
+      bool                                         direction_valid = false;
+
       recompute_gradient();
-      bool stop = this->check_stop(stats, refresh(p)); // p = phi
+      bool stop = this->check_stop(stats, refresh(p), f); // p = phi
 
       double value = 0.;
       while (!stop)
@@ -271,9 +278,25 @@ namespace dualcontact
         if (proportional())
         {
           this->apply_hessian(problem, Ap, p, stats);
-          // p'Ap, p'p, g'p (= phi'p, p lives on the free set) in one pass
-          const std::array<double, 3> d   = fused_dots(p, Ap, g);
-          const double                pAp = d[0], pp = d[1], gp = d[2];
+          double pAp, pp, gp, alpha_f;
+          if (direction_valid)
+          {
+            pAp     = internal::dot(p, Ap);
+            pp      = direction.pp;
+            gp      = direction.gp;
+            alpha_f = direction.max_step;
+          }
+          else
+          {
+            // p'Ap, p'p, g'p (= phi'p, p lives on the free set) in one
+            // pass
+            const std::array<double, 3> d = fused_dots(p, Ap, g);
+            pAp                           = d[0];
+            pp                            = d[1];
+            gp                            = d[2];
+            alpha_f                       = set.max_feasible_step(x, p);
+          }
+          direction_valid = false;
           if (!std::isfinite(pAp + pp + gp))
           {
             stats.reason  = ConvergenceReason::non_finite;
@@ -290,7 +313,6 @@ namespace dualcontact
           }
           const double alpha_cg =
             pAp > curvature_threshold * lambda_max * pp ? gp / pAp : infinity;
-          const double alpha_f = set.max_feasible_step(x, p);
           if (alpha_cg == infinity && alpha_f == infinity && gp > 0.)
           {
             stats.reason  = ConvergenceReason::unbounded;
@@ -302,10 +324,24 @@ namespace dualcontact
           if (alpha_cg <= alpha_f)
           {
             // CG step
-            fused_step(x, g, p, Ap, alpha_cg);
-            value = refresh(phi);
+            f -= 0.5 * alpha_cg * gp;
             ++stats.n_cg;
-            const double beta_cg = internal::dot(phi, Ap) / pAp;
+            double beta_cg;
+            if (!weak)
+            {
+              // x, g, norms and phi'Ap in one pass; the new direction
+              // p = phi - beta p with its feasible step in a second
+              double phi_Ap = 0.;
+              norms         = set.cg_step(x, g, p, Ap, alpha_cg, phi_Ap);
+              value         = criterion_value();
+              beta_cg       = phi_Ap / pAp;
+            }
+            else
+            {
+              fused_step(x, g, p, Ap, alpha_cg);
+              value   = refresh(phi);
+              beta_cg = internal::dot(phi, Ap) / pAp;
+            }
             if (!std::isfinite(beta_cg))
             {
               stats.history.push_back(value / stats.norm_b);
@@ -314,21 +350,58 @@ namespace dualcontact
               stats.message         = "non-finite CG coefficient";
               break;
             }
-            p.sadd(-beta_cg, 1., phi);
+            if (!weak)
+            {
+              direction       = set.conjugate_direction(x, g, beta_cg, p);
+              direction_valid = true;
+            }
+            else
+              p.sadd(-beta_cg, 1., phi);
           }
           else
           {
             // feasible half-step, then expansion; restart CG
-            set.feasible_step(x, p, alpha_f);
-            g.add(-alpha_f, Ap);
             ++stats.n_half_steps;
-            expansion();
+            const double f_half =
+              f - alpha_f * gp + 0.5 * alpha_f * alpha_f * pAp;
+            bool expanded = false;
+            if (projected_cg && alpha_cg < infinity)
+            {
+              // the whole CG step from x, projected: work := P(x -
+              // alpha_cg p), phi := A work - b; kept if it lowers the
+              // cost below the half-step's
+              work.equ(1., x);
+              set.projected_step(work, p, alpha_cg, false);
+              if (problem.constraints)
+                ++stats.n_projections;
+              this->apply_hessian(problem, phi, work, stats);
+              phi -= problem.b;
+              const double f_cg = cost_at(work, phi);
+              if (f_cg <= f_half)
+              {
+                x.swap(work);
+                g.swap(phi);
+                f        = f_cg;
+                expanded = true;
+                ++stats.n_expansions;
+              }
+              else
+                ++stats.n_fall_back;
+            }
+            if (!expanded)
+            {
+              set.feasible_step(x, p, alpha_f);
+              g.add(-alpha_f, Ap);
+              f = f_half;
+              expansion();
+            }
             value = refresh(p);
           }
         }
         else if (variant.step == ActiveSetVariant::Step::proportioning)
         {
           // steepest descent along beta, cut at the boundary (boxes)
+          direction_valid = false;
           set.chopped_gradient(x, g, p);
           this->apply_hessian(problem, Ap, p, stats);
           const std::array<double, 3> d   = fused_dots(p, Ap, g);
@@ -363,15 +436,17 @@ namespace dualcontact
           const double alpha = std::min(alpha_sd, alpha_f);
           set.feasible_step(x, p, alpha);
           g.add(-alpha, Ap);
+          f += -alpha * gb + 0.5 * alpha * alpha * bAb;
           ++stats.n_proportioning;
           value = refresh(p);
         }
         else
         {
+          direction_valid = false;
           expansion();
           value = refresh(p);
         }
-        stop = this->check_stop(stats, value);
+        stop = this->check_stop(stats, value, f);
         if (stop && stats.reason == ConvergenceReason::converged)
         {
           // g was updated by recurrences (g -= alpha A p); before
@@ -381,7 +456,8 @@ namespace dualcontact
           // from the true gradient with a CG restart.
           stats.history.pop_back();
           recompute_gradient();
-          stop = this->check_stop(stats, refresh(p)); // restart: p = phi
+          direction_valid = false;
+          stop = this->check_stop(stats, refresh(p), f); // restart: p = phi
         }
       }
 

@@ -598,6 +598,14 @@ namespace dualcontact
         for (std::size_t i = 0; i < run.count; ++i)
           y[i] = std::min(std::max(y[i], l[i]), u[i]);
       }
+      project_curved(v);
+    }
+
+
+    template <typename VectorType>
+    void
+    SeparableSet<VectorType>::project_curved(double *v) const
+    {
       for (const auto &blk : discs)
       {
         double      *y = v + blk.global;
@@ -732,6 +740,25 @@ namespace dualcontact
                                      std::pair<double, double>{n3, d3}})
         if (den > 0.)
           alpha = std::min(alpha, num / den);
+      alpha = std::min(alpha, curved_max_step(v, d));
+      return internal::min(alpha, x);
+    }
+
+
+    template <typename VectorType>
+    bool
+    SeparableSet<VectorType>::has_curved_blocks() const
+    {
+      return !discs.empty() || !ellipses.empty() || !cones.empty();
+    }
+
+
+    template <typename VectorType>
+    double
+    SeparableSet<VectorType>::curved_max_step(const double *v,
+                                              const double *d) const
+    {
+      double alpha = infinity;
       for (const auto &blk : discs)
       {
         const double *y = v + blk.global;
@@ -796,7 +823,7 @@ namespace dualcontact
           a_q = std::max(-C, 0.) / (-2. * B);
         alpha = std::min(alpha, std::min(a_lin, a_q));
       }
-      return internal::min(alpha, x);
+      return alpha;
     }
 
 
@@ -810,55 +837,60 @@ namespace dualcontact
       Assert(alpha >= 0., dealii::ExcMessage("negative step"));
       double       *v = x.begin();
       const double *d = p.begin();
-      // x -= alpha p on every locally owned entry
-      for (std::size_t i = 0; i < local_size; ++i)
-        v[i] -= alpha * d[i];
       // snap: the step length was computed in rounding arithmetic, so a
       // block that was meant to land on its bound may miss it by a few ulps
       // of the quantities involved
       const auto snap =
         [](const double y, const double bound, const double scale)
       { return std::abs(y - bound) <= 8. * epsilon * scale; };
-      for (const auto &blk : bounds)
+      // one pass: x -= alpha p, bounds and boxes snapped on the way
+      for (const auto &range : free_ranges)
+        for (std::size_t i = range.first; i < range.second; ++i)
+          v[i] -= alpha * d[i];
+      for (const Run &run : bound_runs)
       {
-        double      &y = v[blk.global];
-        const double scale =
-          std::abs(y) + std::abs(alpha * d[blk.global]) + std::abs(blk.lower);
-        if (y < blk.lower || snap(y, blk.lower, scale))
-          y = blk.lower;
-      }
-      for (const auto &blk : boxes)
-      {
-        double      &y     = v[blk.global];
-        const double scale = std::abs(y) + std::abs(alpha * d[blk.global]) +
-                             std::abs(blk.lower) + std::abs(blk.upper);
-        if (y < blk.lower || snap(y, blk.lower, scale))
-          y = blk.lower;
-        else if (y > blk.upper || snap(y, blk.upper, scale))
-          y = blk.upper;
-      }
-      for (const auto &blk : discs)
-      {
-        double      *y = v + blk.global;
-        const double n = std::sqrt(y[0] * y[0] + y[1] * y[1]);
-        if (n > blk.radius)
+        double       *y = v + run.begin;
+        const double *q = d + run.begin;
+        const double *l = bound_lower.data() + run.first;
+        for (std::size_t i = 0; i < run.count; ++i)
         {
-          y[0] *= blk.radius / n;
-          y[1] *= blk.radius / n;
+          const double yi = y[i] - alpha * q[i];
+          const double scale =
+            std::abs(yi) + std::abs(alpha * q[i]) + std::abs(l[i]);
+          y[i] = (yi < l[i] || snap(yi, l[i], scale)) ? l[i] : yi;
         }
       }
+      for (const Run &run : box_runs)
+      {
+        double       *y = v + run.begin;
+        const double *q = d + run.begin;
+        const double *l = box_lower.data() + run.first;
+        const double *u = box_upper.data() + run.first;
+        for (std::size_t i = 0; i < run.count; ++i)
+        {
+          const double yi    = y[i] - alpha * q[i];
+          const double scale = std::abs(yi) + std::abs(alpha * q[i]) +
+                               std::abs(l[i]) + std::abs(u[i]);
+          if (yi < l[i] || snap(yi, l[i], scale))
+            y[i] = l[i];
+          else if (yi > u[i] || snap(yi, u[i], scale))
+            y[i] = u[i];
+          else
+            y[i] = yi;
+        }
+      }
+      const auto step = [&](const size_type off, const unsigned int w)
+      {
+        for (unsigned int c = 0; c < w; ++c)
+          v[off + c] -= alpha * d[off + c];
+      };
+      for (const auto &blk : discs)
+        step(blk.global, 2);
       for (const auto &blk : ellipses)
-      {
-        double            *y = v + blk.global;
-        const EllipseFrame e{blk.a, blk.b, blk.cos_angle, blk.sin_angle};
-        e.project(y[0], y[1], y[0], y[1]);
-      }
+        step(blk.global, 2);
       for (const auto &blk : cones)
-      {
-        double      *y    = v + blk.global;
-        const double c[3] = {y[0], y[1], y[2]};
-        project_cone(blk.mu, c, y);
-      }
+        step(blk.global, 3);
+      project_curved(v);
     }
 
 
@@ -1313,6 +1345,319 @@ namespace dualcontact
       n.free_sq    = global[0];
       n.chopped_sq = global[1];
       return n;
+    }
+
+
+    // ======================== fused passes ==============================
+
+    namespace
+    {
+      // The smallest ratio room/q over q > 0 (the largest feasible step
+      // of a bound or box along -q), tracked as a fraction compared by
+      // cross-multiplication: no division per entry, no branch.
+      struct MinRatio
+      {
+        double num = 1., den = 0.;
+        inline void
+        offer(const double room, const double q)
+        {
+          const bool take = q > 0. && room * den < num * q;
+          num             = take ? room : num;
+          den             = take ? q : den;
+        }
+        double
+        value() const
+        {
+          return den > 0. ? num / den : infinity;
+        }
+      };
+
+      // accumulators of one lane of conjugate_direction()
+      struct DirectionLane
+      {
+        MinRatio ratio;
+        double   pp = 0., gp = 0.;
+      };
+    } // namespace
+
+
+    template <typename VectorType>
+    GradientNorms
+    SeparableSet<VectorType>::cg_step(VectorType       &x,
+                                      VectorType       &g,
+                                      const VectorType &p,
+                                      const VectorType &Ap,
+                                      const double      alpha,
+                                      double           &phi_dot_Ap) const
+    {
+      Assert(finalized, dealii::ExcMessage("call finalize() first"));
+      double       *v   = x.begin();
+      double       *gv  = g.begin();
+      const double *pv  = p.begin();
+      const double *av  = Ap.begin();
+      double        fsq = 0., bsq = 0., pa = 0.;
+      for (const auto &range : free_ranges)
+        for (std::size_t i = range.first; i < range.second; ++i)
+        {
+          v[i] -= alpha * pv[i];
+          gv[i] -= alpha * av[i];
+          fsq += gv[i] * gv[i];
+          pa += gv[i] * av[i];
+        }
+      for (const Run &run : bound_runs)
+      {
+        double       *y  = v + run.begin;
+        double       *q  = gv + run.begin;
+        const double *d  = pv + run.begin;
+        const double *a  = av + run.begin;
+        const double *l  = bound_lower.data() + run.first;
+        double        fs = 0., bs = 0., ps = 0.;
+        for (std::size_t i = 0; i < run.count; ++i)
+        {
+          y[i] -= alpha * d[i];
+          q[i] -= alpha * a[i];
+          const bool   active = y[i] - l[i] <= tolerance * std::abs(l[i]);
+          const double gm     = std::min(q[i], 0.);
+          fs += active ? 0. : q[i] * q[i];
+          bs += active ? gm * gm : 0.;
+          ps += active ? 0. : q[i] * a[i];
+        }
+        fsq += fs;
+        bsq += bs;
+        pa += ps;
+      }
+      for (const Run &run : box_runs)
+      {
+        double       *y  = v + run.begin;
+        double       *q  = gv + run.begin;
+        const double *d  = pv + run.begin;
+        const double *a  = av + run.begin;
+        const double *l  = box_lower.data() + run.first;
+        const double *u  = box_upper.data() + run.first;
+        double        fs = 0., bs = 0., ps = 0.;
+        for (std::size_t i = 0; i < run.count; ++i)
+        {
+          y[i] -= alpha * d[i];
+          q[i] -= alpha * a[i];
+          const bool   at_l = y[i] - l[i] <= tolerance * std::abs(l[i]);
+          const bool   at_u = u[i] - y[i] <= tolerance * std::abs(u[i]);
+          const double c =
+            (at_l && at_u) ?
+              0. :
+              (at_l ? std::min(q[i], 0.) : (at_u ? std::max(q[i], 0.) : 0.));
+          fs += (at_l || at_u) ? 0. : q[i] * q[i];
+          ps += (at_l || at_u) ? 0. : q[i] * a[i];
+          bs += c * c;
+        }
+        fsq += fs;
+        bsq += bs;
+        pa += ps;
+      }
+      if (has_curved_blocks())
+      {
+        const auto step = [&](const size_type off, const unsigned int w)
+        {
+          for (unsigned int c = 0; c < w; ++c)
+          {
+            v[off + c] -= alpha * pv[off + c];
+            gv[off + c] -= alpha * av[off + c];
+          }
+        };
+        for (const auto &blk : discs)
+          step(blk.global, 2);
+        for (const auto &blk : ellipses)
+          step(blk.global, 2);
+        for (const auto &blk : cones)
+          step(blk.global, 3);
+        auto sink = [&](const size_type off,
+                        const unsigned  w,
+                        const double   *fphi,
+                        const double   *beta,
+                        const double *)
+        {
+          for (unsigned c = 0; c < w; ++c)
+          {
+            fsq += fphi[c] * fphi[c];
+            bsq += beta[c] * beta[c];
+            pa += fphi[c] * av[off + c];
+          }
+        };
+        sweep(x, g, 1., false, sink, true);
+      }
+      double local[3] = {fsq, bsq, pa}, global[3];
+      dealii::Utilities::MPI::sum(dealii::ArrayView<const double>(local, 3),
+                                  internal::communicator(x),
+                                  dealii::ArrayView<double>(global, 3));
+      GradientNorms n;
+      n.free_sq    = global[0];
+      n.chopped_sq = global[1];
+      phi_dot_Ap   = global[2];
+      return n;
+    }
+
+
+    template <typename VectorType>
+    typename SeparableSet<VectorType>::Direction
+    SeparableSet<VectorType>::conjugate_direction(const VectorType &x,
+                                                  const VectorType &g,
+                                                  const double      beta,
+                                                  VectorType       &p) const
+    {
+      Assert(finalized, dealii::ExcMessage("call finalize() first"));
+      const double *v  = x.begin();
+      const double *gv = g.begin();
+      double       *pv = p.begin();
+      // four independent lanes so that the comparisons and sums of one
+      // entry do not wait for those of the previous one
+      DirectionLane lane[4];
+      for (const auto &range : free_ranges)
+        for (std::size_t i = range.first; i < range.second; ++i)
+        {
+          pv[i] = gv[i] - beta * pv[i];
+          lane[0].pp += pv[i] * pv[i];
+          lane[0].gp += gv[i] * pv[i];
+        }
+      for (const Run &run : bound_runs)
+      {
+        const double *y   = v + run.begin;
+        const double *q   = gv + run.begin;
+        double       *d   = pv + run.begin;
+        const double *l   = bound_lower.data() + run.first;
+        const auto    one = [&](const std::size_t i, DirectionLane &L)
+        {
+          const double room   = y[i] - l[i];
+          const bool   active = room <= tolerance * std::abs(l[i]);
+          const double di     = (active ? 0. : q[i]) - beta * d[i];
+          d[i]                = di;
+          L.pp += di * di;
+          L.gp += q[i] * di;
+          L.ratio.offer(std::max(room, 0.), di);
+        };
+        const std::size_t m = run.count & ~std::size_t(3);
+        for (std::size_t i = 0; i < m; i += 4)
+        {
+          one(i, lane[0]);
+          one(i + 1, lane[1]);
+          one(i + 2, lane[2]);
+          one(i + 3, lane[3]);
+        }
+        for (std::size_t i = m; i < run.count; ++i)
+          one(i, lane[0]);
+      }
+      for (const Run &run : box_runs)
+      {
+        const double *y = v + run.begin;
+        const double *q = gv + run.begin;
+        double       *d = pv + run.begin;
+        const double *l = box_lower.data() + run.first;
+        const double *u = box_upper.data() + run.first;
+        for (std::size_t i = 0; i < run.count; ++i)
+        {
+          const bool   at_l = y[i] - l[i] <= tolerance * std::abs(l[i]);
+          const bool   at_u = u[i] - y[i] <= tolerance * std::abs(u[i]);
+          const double di   = ((at_l || at_u) ? 0. : q[i]) - beta * d[i];
+          d[i]              = di;
+          lane[0].pp += di * di;
+          lane[0].gp += q[i] * di;
+          const double room =
+            di > 0. ? std::max(y[i] - l[i], 0.) : std::max(u[i] - y[i], 0.);
+          lane[0].ratio.offer(room, std::abs(di));
+        }
+      }
+      double alpha = infinity;
+      for (const DirectionLane &L : lane)
+        alpha = std::min(alpha, L.ratio.value());
+      double pp = lane[0].pp + lane[1].pp + lane[2].pp + lane[3].pp;
+      double gp = lane[0].gp + lane[1].gp + lane[2].gp + lane[3].gp;
+      if (has_curved_blocks())
+      {
+        auto sink = [&](const size_type off,
+                        const unsigned  w,
+                        const double   *fphi,
+                        const double *,
+                        const double *)
+        {
+          for (unsigned c = 0; c < w; ++c)
+          {
+            double &di = pv[off + c];
+            di         = fphi[c] - beta * di;
+            pp += di * di;
+            gp += gv[off + c] * di;
+          }
+        };
+        sweep(x, g, 1., false, sink, true);
+        alpha = std::min(alpha, curved_max_step(v, pv));
+      }
+      double local[2] = {pp, gp}, global[2];
+      dealii::Utilities::MPI::sum(dealii::ArrayView<const double>(local, 2),
+                                  internal::communicator(x),
+                                  dealii::ArrayView<double>(global, 2));
+      Direction result;
+      result.max_step = internal::min(alpha, x);
+      result.pp       = global[0];
+      result.gp       = global[1];
+      return result;
+    }
+
+
+    template <typename VectorType>
+    void
+    SeparableSet<VectorType>::projected_step(VectorType       &x,
+                                             const VectorType &g,
+                                             const double      alpha,
+                                             const bool        free_only) const
+    {
+      Assert(finalized, dealii::ExcMessage("call finalize() first"));
+      Assert(&x != &g, dealii::ExcMessage("g must not be x"));
+      double       *v  = x.begin();
+      const double *gv = g.begin();
+      for (const auto &range : free_ranges)
+        for (std::size_t i = range.first; i < range.second; ++i)
+          v[i] -= alpha * gv[i];
+      for (const Run &run : bound_runs)
+      {
+        double       *y = v + run.begin;
+        const double *q = gv + run.begin;
+        const double *l = bound_lower.data() + run.first;
+        for (std::size_t i = 0; i < run.count; ++i)
+        {
+          const bool active =
+            free_only && y[i] - l[i] <= tolerance * std::abs(l[i]);
+          y[i] = std::max(y[i] - alpha * (active ? 0. : q[i]), l[i]);
+        }
+      }
+      for (const Run &run : box_runs)
+      {
+        double       *y = v + run.begin;
+        const double *q = gv + run.begin;
+        const double *l = box_lower.data() + run.first;
+        const double *u = box_upper.data() + run.first;
+        for (std::size_t i = 0; i < run.count; ++i)
+        {
+          const bool active =
+            free_only && (y[i] - l[i] <= tolerance * std::abs(l[i]) ||
+                          u[i] - y[i] <= tolerance * std::abs(u[i]));
+          y[i] =
+            std::min(std::max(y[i] - alpha * (active ? 0. : q[i]), l[i]), u[i]);
+        }
+      }
+      if (has_curved_blocks())
+      {
+        // the step along phi (free_only) or g on every curved block, then
+        // their projections; the sink runs after the sweep has read the
+        // block it is given, so it may move that block
+        auto sink = [&](const size_type off,
+                        const unsigned  w,
+                        const double   *fphi,
+                        const double *,
+                        const double *)
+        {
+          for (unsigned c = 0; c < w; ++c)
+            v[off + c] -= alpha * (free_only ? fphi[c] : gv[off + c]);
+        };
+        sweep(x, g, 1., false, sink, true);
+        project_curved(v);
+      }
     }
 
 

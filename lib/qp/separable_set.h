@@ -210,6 +210,63 @@ namespace dualcontact
       /// ||phi||^2 and ||beta||^2 in one sweep, no vectors written.
       GradientNorms
       gradient_norms(const VectorType &x, const VectorType &g) const;
+
+      /**
+       * @name Fused passes of the active-set solvers
+       * Each does in one pass over the vectors what the separate calls
+       * above do in two to four: on the membrane (a 5-point stencil) a
+       * vector pass costs a third of a Hessian product, so the number of
+       * passes, not the arithmetic, is the solver's overhead.  Same
+       * results as the separate calls up to the order of summation.
+       */
+      ///@{
+      /**
+       * The CG step: x -= alpha p, g -= alpha Ap, and at the new x the
+       * squared norms of phi and beta and @p phi_dot_Ap = phi'Ap (the
+       * numerator of the CG coefficient).  phi is not stored:
+       * conjugate_direction() recomputes it from x and g.
+       */
+      GradientNorms
+      cg_step(VectorType       &x,
+              VectorType       &g,
+              const VectorType &p,
+              const VectorType &Ap,
+              double            alpha,
+              double           &phi_dot_Ap) const;
+
+      /// What conjugate_direction() measures of the new direction.
+      struct Direction
+      {
+        /// max_feasible_step(x, p)
+        double max_step = 0.;
+        /// p'p
+        double pp = 0.;
+        /// g'p
+        double gp = 0.;
+      };
+
+      /**
+       * p := phi(x, g) - beta p (the new conjugate direction; beta = 0
+       * restarts with p = phi), with max_feasible_step(x, p), p'p, g'p of
+       * the new p.
+       */
+      Direction
+      conjugate_direction(const VectorType &x,
+                          const VectorType &g,
+                          double            beta,
+                          VectorType       &p) const;
+
+      /**
+       * x := P(x - alpha d) with d = g, or d = phi(x, g) when
+       * @p free_only (MPRGP's expansion along the free gradient).
+       * @p g must not be @p x.
+       */
+      void
+      projected_step(VectorType       &x,
+                     const VectorType &g,
+                     double            alpha,
+                     bool              free_only) const;
+      ///@}
       /// free_gradient() and gradient_norms() in one pass (what an
       /// active-set iteration needs after every step); @p phi must not be
       /// @p g.
@@ -270,6 +327,19 @@ namespace dualcontact
             bool              reduced,
             Sink             &sink,
             bool              curved_only = false) const;
+
+      /// max_feasible_step() over the disc, ellipse and cone blocks only,
+      /// local (no reduction); v, d: local entries of x and p
+      double
+      curved_max_step(const double *v, const double *d) const;
+
+      /// project() on the disc, ellipse and cone blocks only (local)
+      void
+      project_curved(double *v) const;
+
+      /// true if there are disc, ellipse or cone blocks on this rank
+      bool
+      has_curved_blocks() const;
 
       GradientNorms
       norms(const VectorType &x,

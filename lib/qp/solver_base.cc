@@ -5,6 +5,7 @@
 
 #include <deal.II/base/exceptions.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -77,9 +78,10 @@ namespace dualcontact
                   dealii::ExcMessage(solver_name + ": b is not finite"));
       // b = 0 would make every relative test unreachable; use an absolute
       // test then.
-      stats.norm_b             = norm_b > 0. ? norm_b : 1.;
-      best_criterion           = std::numeric_limits<double>::infinity();
-      best_criterion_iteration = 0;
+      stats.norm_b       = norm_b > 0. ? norm_b : 1.;
+      best_criterion     = std::numeric_limits<double>::infinity();
+      cost_at_progress   = std::numeric_limits<double>::infinity();
+      progress_iteration = 0;
       if (problem.constraints)
         project(problem, x, stats);
       return stats;
@@ -173,9 +175,13 @@ namespace dualcontact
     template <typename VectorType>
     bool
     SolverBase<VectorType>::check_stop(SolverStatistics &stats,
-                                       const double      value)
+                                       const double      value,
+                                       const double      cost)
     {
-      const double relative = value / stats.norm_b;
+      // a relative cost decrease above this counts as progress: well
+      // above the rounding of a cost kept by recurrences (1e-16 per step)
+      constexpr double cost_progress = 1e-12;
+      const double     relative      = value / stats.norm_b;
       stats.history.push_back(relative);
       stats.final_criterion = relative;
       if (!std::isfinite(relative))
@@ -189,10 +195,23 @@ namespace dualcontact
         stats.reason = ConvergenceReason::converged;
         return true;
       }
+      bool progress = false;
       if (relative < best_criterion)
       {
-        best_criterion           = relative;
-        best_criterion_iteration = stats.iterations;
+        best_criterion = relative;
+        progress       = true;
+      }
+      if (std::isfinite(cost) &&
+          (cost_at_progress == std::numeric_limits<double>::infinity() ||
+           cost_at_progress - cost >
+             cost_progress *
+               std::max(std::abs(cost_at_progress), std::abs(cost))))
+        progress = true;
+      if (progress)
+      {
+        progress_iteration = stats.iterations;
+        if (std::isfinite(cost))
+          cost_at_progress = cost;
       }
       if (stats.iterations >= prm.max_iterations)
       {
@@ -202,12 +221,16 @@ namespace dualcontact
         return true;
       }
       if (prm.stagnation_window > 0 &&
-          stats.iterations - best_criterion_iteration >= prm.stagnation_window)
+          stats.iterations - progress_iteration >= prm.stagnation_window)
       {
-        stats.reason  = ConvergenceReason::stagnation;
-        stats.message = "no new minimum of the criterion for " +
-                        std::to_string(prm.stagnation_window) +
-                        " iterations (best " + sci(best_criterion) + ")";
+        stats.reason = ConvergenceReason::stagnation;
+        stats.message =
+          "no progress for " + std::to_string(prm.stagnation_window) +
+          " iterations: no new minimum of the criterion (best " +
+          sci(best_criterion) + ")" +
+          (std::isfinite(cost) ?
+             " and the cost fell by at most a relative " + sci(cost_progress) :
+             std::string());
         return true;
       }
       return false;

@@ -14,6 +14,7 @@
 #include <qp/solver_parameters.h>
 #include <qp/solver_statistics.h>
 
+#include <limits>
 #include <string>
 
 namespace dualcontact
@@ -94,12 +95,22 @@ namespace dualcontact
        * and decide whether to stop.  Returns true and sets stats.reason
        * when: the value is not finite (non_finite), it is <= tol
        * (converged), stats.iterations >= max_iterations (max_iterations),
-       * or no new minimum was reached for stagnation_window iterations
-       * (stagnation).  Call once per iteration, after incrementing
-       * stats.iterations, and once before the first iteration.
+       * or for stagnation_window iterations there was no progress
+       * (stagnation).  Progress is a new minimum of the criterion, or,
+       * when the solver passes the cost @p cost of its iterate (monotone
+       * solvers: MPRGP, MPGP, MwPGP), a decrease of the cost by more than
+       * a relative 1e-12 since the last progress.  The criterion of the
+       * active-set solvers is not monotone: while the active set is being
+       * found (thousands of expansions at n = 10^6) it may stay above its
+       * minimum for long stretches in which the cost falls steadily, and
+       * that is progress, not stagnation.  Call once per iteration, after
+       * incrementing stats.iterations, and once before the first
+       * iteration.
        */
       bool
-      check_stop(SolverStatistics &stats, double value);
+      check_stop(SolverStatistics &stats,
+                 double            value,
+                 double cost = std::numeric_limits<double>::quiet_NaN());
 
       /// Fill KKT residuals and wall time.
       void
@@ -112,8 +123,9 @@ namespace dualcontact
 
     private:
       dealii::Timer timer;
-      double        best_criterion           = 0.;
-      unsigned int  best_criterion_iteration = 0;
+      double        best_criterion     = 0.;
+      double        cost_at_progress   = 0.;
+      unsigned int  progress_iteration = 0;
     };
   } // namespace qp
 } // namespace dualcontact

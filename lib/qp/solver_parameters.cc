@@ -82,9 +82,11 @@ namespace dualcontact
       prm.declare_entry("Stagnation window",
                         std::to_string(d.stagnation_window),
                         Integer(0),
-                        "Report stagnation when the criterion has not "
-                        "reached a new minimum for this many iterations "
-                        "(0: never). Unit: iterations.");
+                        "Report stagnation after this many iterations "
+                        "without progress (0: never). Progress: a new "
+                        "minimum of the criterion or, for the monotone "
+                        "active-set solvers, a relative decrease of the "
+                        "cost by more than 1e-12. Unit: iterations.");
       prm.declare_entry("Alpha bar factor",
                         "1.95",
                         Double(0., 2.),
@@ -97,6 +99,17 @@ namespace dualcontact
                         "Proportioning constant Gamma > 0 of MPRGP, MPGP, "
                         "MPGP-BB: a CG step is taken while ||beta|| <= "
                         "Gamma ||phi|| (table 14: 1). Unit: none.");
+      prm.declare_entry("Expansion",
+                        d.expansion,
+                        Selection("alpha-bar|projected-cg"),
+                        "MPRGP and MPGP: the step after a CG half-step. "
+                        "alpha-bar: thesis, the projected step of length "
+                        "alpha_bar along the free gradient (MPRGP) or the "
+                        "gradient (MPGP); projected-cg: the whole CG step "
+                        "projected onto the set, which adds many "
+                        "constraints at once (PERMON's projcg), replaced by "
+                        "the alpha-bar step whenever it would not lower the "
+                        "cost below that of the half-step. Unit: none.");
       prm.declare_entry("MPGP-BB memory",
                         "10",
                         Integer(0),
@@ -173,6 +186,7 @@ namespace dualcontact
       stagnation_window   = prm.get_integer("Stagnation window");
       alpha_bar_factor    = prm.get_double("Alpha bar factor");
       gamma               = prm.get_double("Gamma");
+      expansion           = prm.get("Expansion");
       mwpgp_delta         = prm.get_double("MwPGP delta");
       mpgp_bb_memory      = prm.get_integer("MPGP-BB memory");
       pbbf_k              = prm.get_integer("PBBf K");
@@ -207,6 +221,9 @@ namespace dualcontact
         fail("Alpha bar factor", "must lie in (0, 2).");
       if (!(gamma > 0.))
         fail("Gamma", "must be positive.");
+      if (expansion != "alpha-bar" && expansion != "projected-cg")
+        fail("Expansion",
+             "must be alpha-bar or projected-cg (got '" + expansion + "').");
       if (!(mwpgp_delta > 0. && mwpgp_delta < 0.5))
         fail("MwPGP delta", "must lie in (0, 1/2).");
       if (pbbf_k < 1)

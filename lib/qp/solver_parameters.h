@@ -43,8 +43,10 @@ namespace dualcontact
       StoppingCriterion stopping_criterion = StoppingCriterion::projected;
       /// iteration limit (all kinds together); table 14: 1e4
       unsigned int max_iterations = 10000;
-      /// stop with `stagnation` if the criterion has not reached a new
-      /// minimum for this many iterations (0 = never)
+      /// stop with `stagnation` after this many iterations without
+      /// progress: no new minimum of the criterion and (monotone
+      /// active-set solvers) no relative cost decrease above 1e-12
+      /// (0 = never)
       unsigned int stagnation_window = 1000;
 
       /// alpha_bar = alpha_bar_factor / lambda_max (table 14: 1.95); the
@@ -53,6 +55,14 @@ namespace dualcontact
       /// Gamma > 0 of the proportioning test ||beta|| <= Gamma ||phi||
       /// (MPRGP, MPGP, MPGP-BB; table 14: 1)
       double gamma = 1.;
+      /// The expansion after a CG half-step of MPRGP and MPGP:
+      /// "alpha-bar" (thesis, algorithm 7: P(x_{k+1/2} - alpha_bar d),
+      /// d = phi for MPRGP, g for MPGP) or "projected-cg" (P(x_k -
+      /// alpha_cg p), the whole CG step projected, PERMON's "projcg";
+      /// the alpha-bar expansion is done instead when it would not lower
+      /// the cost below that of the half-step).  Not used by MPGP-BB and
+      /// MwPGP.
+      std::string expansion = "alpha-bar";
       /// MPGP-BB: a Barzilai-Borwein projection is accepted when the cost
       /// does not exceed the largest cost before the last this-many BB
       /// attempts (non-monotone safeguard); 0 = monotone (every increase

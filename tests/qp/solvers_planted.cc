@@ -4,7 +4,8 @@
 // multipliers are chosen, b = A x* + sum mu_j n_j(x*).  Solved from x0 = 0
 // to ||g^P|| <= 1e-10 ||b||; checks: converged, ||x - x*|| <= 1e-8 (1 +
 // ||x*||), KKT residuals small, statistics consistent (iterations = sum of
-// kinds, products counted).  Then ellipses with axis ratios up to 1e4
+// kinds, products counted); MPRGP and MPGP also with the projected-CG
+// expansion (parameter `expansion`).  Then ellipses with axis ratios up to 1e4
 // under each of the three stopping criteria.
 #include "test_tools.h"
 
@@ -47,10 +48,21 @@ main()
             << std::setw(6) << "half" << std::setw(6) << "exp" << std::setw(6)
             << "prop" << std::setw(6) << "A*x" << std::setw(11) << "|x-x*|"
             << std::setw(11) << "crit" << std::endl;
-  for (const std::string solver : {"mprgp", "mpgp", "mpgp-bb", "mwpgp"})
-    for (const Case &c : (solver == "mprgp" ? bound_sets : all_sets))
+  // projected-CG expansions: accepted ones (half-steps without a
+  // fall-back to alpha_bar), so that the test exercises them
+  unsigned int n_projected_cg = 0;
+  // "name/expansion": MPRGP and MPGP also with the projected-CG expansion
+  for (const std::string config : {"mprgp",
+                                   "mprgp/projected-cg",
+                                   "mpgp",
+                                   "mpgp/projected-cg",
+                                   "mpgp-bb",
+                                   "mwpgp"})
+    for (const Case &c :
+         (config.rfind("mprgp", 0) == 0 ? bound_sets : all_sets))
       for (const unsigned int seed : {1u, 2u, 3u})
       {
+        const std::string  solver = config.substr(0, config.find('/'));
         const Planted      P = make_planted(c.types, 30, 8, 100 * seed + 7);
         const unsigned int n = P.x_star.size();
         Vec                layout(n);
@@ -58,14 +70,16 @@ main()
         SolverParameters   prm;
         prm.tolerance      = 1e-10;
         prm.max_iterations = 5000;
-        auto           qp  = create<Vec>(solver, prm);
+        if (config.find('/') != std::string::npos)
+          prm.expansion = config.substr(config.find('/') + 1);
+        auto           qp = create<Vec>(solver, prm);
         Vec            x(n);
         const auto     stats = qp->solve(problem, x);
         const double   err   = distance(x, P.x_star);
         const unsigned kinds = stats.n_cg + stats.n_half_steps +
                                stats.n_proportioning +
                                (stats.n_expansions - stats.n_half_steps);
-        std::cout << std::setw(8) << solver << std::setw(10) << c.name
+        std::cout << std::setw(8) << config << std::setw(10) << c.name
                   << std::setw(6) << seed << std::setw(5) << n << std::setw(7)
                   << P.n_active << std::setw(7) << stats.iterations
                   << std::setw(6) << stats.n_cg << std::setw(6)
@@ -75,7 +89,9 @@ main()
                   << std::setw(11) << sci(stats.final_criterion) << "  "
                   << to_string(stats.reason) << std::endl;
         const std::string tag =
-          solver + "/" + c.name + "/" + std::to_string(seed) + ": ";
+          config + "/" + c.name + "/" + std::to_string(seed) + ": ";
+        if (prm.expansion == "projected-cg")
+          n_projected_cg += stats.n_half_steps - stats.n_fall_back;
         check.verbose = false;
         check.check(stats.converged(),
                     tag + "converged (" + to_string(stats.reason) + ")");
@@ -92,6 +108,10 @@ main()
                       stats.history.size() == stats.iterations + 1,
                     tag + "statistics consistent");
       }
+  check.verbose = true;
+  check.check(n_projected_cg >= 10,
+              std::to_string(n_projected_cg) +
+                " projected-CG expansions accepted");
   // strongly curved sets: ellipses with axis ratios up to 1e4, under each
   // stopping criterion (the reduced ones are what MwPGP is made for)
   check.verbose = true;
