@@ -5,8 +5,9 @@
 // with many active blocks (a projected random vector):
 //  - cg_step: x - alpha p, g - alpha Ap, gradient_norms() at the new point
 //    and phi'Ap;
-//  - conjugate_direction: phi - beta p, max_feasible_step() along it, p'p,
-//    g'p (also beta = 0, the restart);
+//  - conjugate_direction: phi - beta p (p on the free set), the
+//    max_feasible_step() along it (finite and positive), p'p, g'p (also
+//    beta = 0, the restart);
 //  - projected_step: P(x - alpha g) and P(x - alpha phi).
 // Every value to 1e-13 relative (they differ only in summation order).
 #include "test_tools.h"
@@ -121,7 +122,10 @@ main()
                       " vs " + sci(phiAp_r));
       }
 
-      // conjugate_direction (and the restart beta = 0)
+      // conjugate_direction (and the restart beta = 0), with the old
+      // direction on the free set as in CG (else a block on its
+      // boundary with an outward direction makes every step 0)
+      set->zero_active(x, p);
       for (const double b : {beta, 0.})
       {
         Vec phi(n), pr(p);
