@@ -278,24 +278,15 @@ namespace dualcontact
         if (proportional())
         {
           this->apply_hessian(problem, Ap, p, stats);
-          double pAp, pp, gp, alpha_f;
-          if (direction_valid)
-          {
-            pAp     = internal::dot(p, Ap);
-            pp      = direction.pp;
-            gp      = direction.gp;
-            alpha_f = direction.max_step;
-          }
-          else
-          {
-            // p'Ap, p'p, g'p (= phi'p, p lives on the free set) in one
-            // pass
-            const std::array<double, 3> d = fused_dots(p, Ap, g);
-            pAp                           = d[0];
-            pp                            = d[1];
-            gp                            = d[2];
-            alpha_f                       = set.max_feasible_step(x, p);
-          }
+          // p'Ap, p'p, g'p (= phi'p, p lives on the free set) in one
+          // pass, summed in index order like every dot product, so that
+          // the iterates do not depend on how the set is stored; the
+          // largest feasible step from conjugate_direction() when p came
+          // from there
+          const std::array<double, 3> d   = fused_dots(p, Ap, g);
+          const double                pAp = d[0], pp = d[1], gp = d[2];
+          const double                alpha_f =
+            direction_valid ? direction.max_step : set.max_feasible_step(x, p);
           direction_valid = false;
           if (!std::isfinite(pAp + pp + gp))
           {

@@ -1411,7 +1411,7 @@ namespace dualcontact
         const double *d  = pv + run.begin;
         const double *a  = av + run.begin;
         const double *l  = bound_lower.data() + run.first;
-        double        fs = 0., bs = 0., ps = 0.;
+        double        fs = 0., bs = 0.;
         for (std::size_t i = 0; i < run.count; ++i)
         {
           y[i] -= alpha * d[i];
@@ -1420,11 +1420,10 @@ namespace dualcontact
           const double gm     = std::min(q[i], 0.);
           fs += active ? 0. : q[i] * q[i];
           bs += active ? gm * gm : 0.;
-          ps += active ? 0. : q[i] * a[i];
+          pa += active ? 0. : q[i] * a[i];
         }
         fsq += fs;
         bsq += bs;
-        pa += ps;
       }
       for (const Run &run : box_runs)
       {
@@ -1434,7 +1433,7 @@ namespace dualcontact
         const double *a  = av + run.begin;
         const double *l  = box_lower.data() + run.first;
         const double *u  = box_upper.data() + run.first;
-        double        fs = 0., bs = 0., ps = 0.;
+        double        fs = 0., bs = 0.;
         for (std::size_t i = 0; i < run.count; ++i)
         {
           y[i] -= alpha * d[i];
@@ -1446,12 +1445,11 @@ namespace dualcontact
               0. :
               (at_l ? std::min(q[i], 0.) : (at_u ? std::max(q[i], 0.) : 0.));
           fs += (at_l || at_u) ? 0. : q[i] * q[i];
-          ps += (at_l || at_u) ? 0. : q[i] * a[i];
+          pa += (at_l || at_u) ? 0. : q[i] * a[i];
           bs += c * c;
         }
         fsq += fs;
         bsq += bs;
-        pa += ps;
       }
       if (has_curved_blocks())
       {
