@@ -1,4 +1,5 @@
 #include <contact/contact_solver.h>
+#include <qp/solver_chain.h>
 #include <qp/solver_factory.h>
 
 #include <cmath>
@@ -62,6 +63,13 @@ namespace dualcontact
     ContactSolver<dim>::solve_qp(dealii::Vector<double> &lambda) const
     {
       const qp::Problem<dealii::Vector<double>> problem = dual_.make_problem();
+      if (qp_parameters_.solver == "auto")
+      {
+        // by the constraint types, with fall-back (SMALSE-M inside)
+        qp::SolverChain<dealii::Vector<double>> chain(qp_parameters_,
+                                                      smalse_parameters_);
+        return chain.solve(problem, lambda);
+      }
       if (problem.equality)
       {
         qp::SMALSEM<dealii::Vector<double>> solver(qp_parameters_,
@@ -89,7 +97,9 @@ namespace dualcontact
       {
         result.reason = "QP solver did not converge: " +
                         qp::to_string(result.qp_statistics.back().reason);
-        dual_.recover(result.lambda, result.displacements);
+        if (!dual_.recover(result.lambda, result.displacements, false))
+          result.reason += " (the multipliers leave the rigid-body motion "
+                           "of a floating body undetermined: set to zero)";
         return result;
       }
 
@@ -125,7 +135,7 @@ namespace dualcontact
           result.coulomb_changes.push_back(relative);
           if (on_iterate)
           {
-            dual_.recover(result.lambda, result.displacements);
+            dual_.recover(result.lambda, result.displacements, false);
             on_iterate(result);
           }
           if (!std::isfinite(relative))
@@ -175,7 +185,9 @@ namespace dualcontact
 
       if (result.converged)
         result.reason = "converged";
-      dual_.recover(result.lambda, result.displacements);
+      if (!dual_.recover(result.lambda, result.displacements, result.converged))
+        result.reason += " (the multipliers leave the rigid-body motion of a "
+                         "floating body undetermined: set to zero)";
       return result;
     }
 

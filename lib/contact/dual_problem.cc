@@ -701,10 +701,12 @@ namespace dualcontact
 
 
     template <int dim>
-    void
+    bool
     DualProblem<dim>::recover(const VectorType            &lambda,
-                              std::vector<Vector<double>> &displacements) const
+                              std::vector<Vector<double>> &displacements,
+                              const bool require_determined) const
     {
+      bool           determined = true;
       Vector<double> u;
       apply_Bt(lambda, u);
       u.sadd(-1., 1., load_);
@@ -760,20 +762,24 @@ namespace dualcontact
         double diag = 0;
         for (unsigned int k = 0; k < m; ++k)
           diag = std::max(diag, GGt(k, k));
-        AssertThrow(diag > 0,
+        AssertThrow(diag > 0 || !require_determined,
                     ExcMessage("The rigid-body motion of a floating body is "
                                "not determined: no active contact "
                                "constraint holds it."));
+        determined = diag > 0;
         FullMatrix<double> inverse(m, m);
         // Tikhonov-free solve; a singular G_A G_A' means a mode that no
         // active constraint sees (e.g. tangential motion without
         // friction): it is left at zero by the pseudo-inverse below.
         for (unsigned int k = 0; k < m; ++k)
           GGt(k, k) += 1e-14 * diag;
-        inverse.invert(GGt);
-        inverse.vmult(alpha, rhs);
-        for (unsigned int k = 0; k < m; ++k)
-          u.add(alpha(k), rigid_modes_[k]);
+        if (determined)
+        {
+          inverse.invert(GGt);
+          inverse.vmult(alpha, rhs);
+          for (unsigned int k = 0; k < m; ++k)
+            u.add(alpha(k), rigid_modes_[k]);
+        }
       }
 
       displacements.resize(bodies_.size());
@@ -785,6 +791,7 @@ namespace dualcontact
           displacements[b](i) = u(offset + i);
         bodies_[b]->distribute(displacements[b]);
       }
+      return determined;
     }
 
 

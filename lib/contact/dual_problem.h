@@ -169,10 +169,18 @@ namespace dualcontact
        * constraints whose multipliers are active (lambda_N,i > 0, and
        * tangential rows of sticking nodes) hold with equality, then the
        * constraints of each body distributed.
+       *
+       * When no active constraint sees a rigid-body mode (e.g. lambda = 0
+       * from a QP solver that did not converge) the amplitudes are not
+       * determined: with @p require_determined this throws (a converged
+       * solution of an ill-posed scene), otherwise they are left at zero
+       * and false is returned, so that a failed solve is reported as such
+       * with its output instead of ending in this error.
        */
-      void
+      bool
       recover(const VectorType                    &lambda,
-              std::vector<dealii::Vector<double>> &displacements) const;
+              std::vector<dealii::Vector<double>> &displacements,
+              const bool require_determined = true) const;
 
       /** Number of K^# applications so far (one per implicit F product). */
       unsigned long

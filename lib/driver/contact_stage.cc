@@ -166,6 +166,22 @@ namespace dualcontact
         if (k < result_.coulomb_changes.size())
           line << ", Coulomb change of psi " << result_.coulomb_changes[k];
         details.push_back(line.str());
+        // solver auto: every attempt of the fall-back chain
+        for (unsigned int a = 0; a < q.attempts.size(); ++a)
+        {
+          const auto        &t = q.attempts[a];
+          std::ostringstream attempt;
+          attempt << std::setprecision(3) << "  attempt " << a + 1 << ": "
+                  << t.solver << ", " << qp::to_string(t.reason) << ", "
+                  << t.iterations << " iterations, " << t.n_hessian_products
+                  << " Hessian products, criterion " << t.final_criterion
+                  << ", KKT stationarity " << t.kkt.stationarity
+                  << ", feasibility " << t.kkt.feasibility
+                  << (static_cast<int>(a) == q.chosen_attempt ?
+                        " (returned)" :
+                        " -> fall-back");
+          details.push_back(attempt.str());
+        }
         qp_wall_time_ += q.wall_time;
       }
       details.push_back(
@@ -182,7 +198,9 @@ namespace dualcontact
       // here again (one K^# per body) keeps the phases' timings apart
       // (the primal method computes the displacements themselves)
       if (primal_json_.empty())
-        dual_->recover(result_.lambda, scene_.displacements());
+        dual_->recover(result_.lambda,
+                       scene_.displacements(),
+                       result_.converged);
       else
         scene_.displacements() = result_.displacements;
       surfaces_ = contact_surfaces(result_.lambda, scene_.displacements());

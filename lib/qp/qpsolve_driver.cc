@@ -4,6 +4,7 @@
 #include <qp/problem_io.h>
 #include <qp/qpsolve_driver.h>
 #include <qp/smalse_m.h>
+#include <qp/solver_chain.h>
 #include <qp/solver_factory.h>
 
 #include <deal.II/base/exceptions.h>
@@ -424,6 +425,15 @@ namespace dualcontact
             stats.kkt                 = compute_kkt_residuals(problem, x);
             stats.kkt.stationarity =
               std::min(stationarity, stats.kkt.stationarity);
+          }
+          else if (options.solver == "auto")
+          {
+            // the fall-back chain; SMALSE-M around each solver when the
+            // problem has equality constraints
+            SolverChain<Vec> chain(prm);
+            stats = chain.solve(problem, x);
+            if (problem.equality)
+              equality_residual = chain.equality_residual();
           }
           else if (problem.equality)
           {

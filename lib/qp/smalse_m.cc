@@ -49,7 +49,7 @@ namespace dualcontact
                         "1",
                         dealii::Patterns::Double(0.),
                         "Converged needs ||Bx - c|| <= factor * Tolerance * "
-                        "||b||.");
+                        "min(||b||, max(||c||, ||B|| ||x||)).");
       prm.leave_subsection();
       prm.leave_subsection();
     }
@@ -210,13 +210,28 @@ namespace dualcontact
 
       const double eta       = smalse_prm.eta_factor * stats.norm_b;
       const double tolerance = prm.tolerance * stats.norm_b;
-      const double equality_tolerance =
-        smalse_prm.equality_tolerance_factor * tolerance;
-      double M             = smalse_prm.m0;
-      double previous_L    = 0.;
-      double norm_residual = equality_residual(x);
-      bool   have_previous = false;
-      stats.reason         = ConvergenceReason::max_iterations;
+      // The equality residual is measured against the size of the
+      // equality itself, never more loosely than against ||b|| (thesis):
+      // tol * min(||b||, max(||c||, ||B|| ||x||)).  Against ||b|| alone a
+      // dual contact problem whose ||b|| is dominated by the initial gaps
+      // of far-away nodes (a stiff floating body: ||b|| = 1e11 N/m against
+      // a weight ||c|| = 1e6 N/m) accepted x = 0, i.e. no contact force
+      // holding the body, as converged.  The ||B|| ||x|| term keeps the
+      // test relative when c = 0 (a floating body with balanced loads).
+      const double norm_c                = eq.c.l2_norm();
+      const double norm_B                = std::sqrt(std::max(eq.norm_sq, 0.));
+      const auto   equality_tolerance_at = [&](const VectorType &point)
+      {
+        const double size = std::max(norm_c, norm_B * point.l2_norm());
+        return smalse_prm.equality_tolerance_factor * prm.tolerance *
+               (size > 0. ? std::min(stats.norm_b, size) : stats.norm_b);
+      };
+      double equality_tolerance = equality_tolerance_at(x);
+      double M                  = smalse_prm.m0;
+      double previous_L         = 0.;
+      double norm_residual      = equality_residual(x);
+      bool   have_previous      = false;
+      stats.reason              = ConvergenceReason::max_iterations;
 
       SolverParameters inner_prm = prm;
       for (unsigned int outer = 0;; ++outer)
@@ -275,6 +290,7 @@ namespace dualcontact
         // outer stopping test: projected gradient of the Lagrangian at
         // (x, lambda + rho (Bx - c)) and the equality residual
         lagrangian_gradient(x);
+        equality_tolerance = equality_tolerance_at(x);
         const double criterion =
           problem.constraints ? std::sqrt(
                                   [&]

@@ -46,7 +46,8 @@ namespace dualcontact
       /// limit on outer iterations
       unsigned int max_outer_iterations = 100;
       /// the equality residual must satisfy ||Bx - c|| <=
-      /// equality_tolerance_factor * tolerance * ||b||
+      /// equality_tolerance_factor * tolerance * min(||b||, max(||c||,
+      /// ||B|| ||x||)) (the thesis: ||b||; see SMALSEM)
       double equality_tolerance_factor = 1.;
 
       static void
@@ -67,7 +68,13 @@ namespace dualcontact
      * counts products with A (one per product with A + rho B'B, plus one per
      * outer iteration for the Lagrangian).  Converged when the projected
      * gradient of the Lagrangian is below tolerance * ||b|| AND
-     * ||Bx - c|| <= equality_tolerance_factor * tolerance * ||b||; the
+     * ||Bx - c|| <= equality_tolerance_factor * tolerance *
+     * min(||b||, max(||c||, ||B|| ||x||)) (||B||^2 = EqualityConstraints::
+     * norm_sq).  The thesis measures the equality against ||b||; when
+     * ||b|| is much larger than the equality's own size (the dual of a stiff
+     * floating body, whose ||b|| holds the initial gaps of far nodes while
+     * c is its weight) that accepted x = 0 as feasible; the
+     * min() never makes the test looser than the thesis'; the
      * equality residual is also stored in equality_residual().  KKT:
      * stationarity is ||g^P|| of the Lagrangian gradient
      * Ax - b + B'lambda, feasibility ||x - P(x)|| + ||Bx - c||.

@@ -10,6 +10,7 @@
 #include <qp/mprgp.h>
 #include <qp/mwpgp.h>
 #include <qp/pbbf.h>
+#include <qp/solver_chain.h>
 #include <qp/spg_qp.h>
 // ---- end of registration point 1 ----
 
@@ -22,7 +23,7 @@ namespace dualcontact
     {
       // The names of the `Solver` selection, implemented or not yet: the
       // .prm pattern must not change when a solver is added.
-      return "mprgp|mpgp|mpgp-bb|mwpgp|spg-qp|pbbf|apgd";
+      return "mprgp|mpgp|mpgp-bb|mwpgp|spg-qp|pbbf|apgd|auto";
     }
 
 
@@ -49,6 +50,10 @@ namespace dualcontact
           return std::make_unique<PBBf<VectorType>>(prm);
         if (name == "apgd")
           return std::make_unique<APGD<VectorType>>(prm);
+        // the fall-back chain (default SMALSE-M parameters for problems
+        // with equality constraints; build a SolverChain to choose them)
+        if (name == "auto")
+          return std::make_unique<SolverChain<VectorType>>(prm);
         // ---- end of registration point 2 ----
         return nullptr;
       }

@@ -2,6 +2,7 @@
 #include <qp/solver_parameters.h>
 
 #include <deal.II/base/exceptions.h>
+#include <deal.II/base/utilities.h>
 
 namespace dualcontact
 {
@@ -51,15 +52,42 @@ namespace dualcontact
       const SolverParameters d;
 
       prm.enter_subsection("QP solver");
+      // the application's default is the fall-back chain; the library's
+      // (SolverParameters::solver, used by code that builds the struct
+      // itself) stays mprgp
       prm.declare_entry("Solver",
-                        d.solver,
+                        "auto",
                         Selection(solver_names()),
                         "Algorithm for the QP with separable constraints "
                         "(thesis chapter 2). mprgp: bound/box constraints "
                         "only (with the SPS solvability test of MPRGPS); "
                         "mpgp, mpgp-bb, mwpgp: any separable set; spg-qp, "
-                        "pbbf, apgd: projected-gradient methods. "
-                        "Unit: none.");
+                        "pbbf, apgd: projected-gradient methods. auto: "
+                        "chosen by the constraint types, with fall-back to "
+                        "the next solver of `Auto chain for bounds' / `Auto "
+                        "chain for general sets' when one does not converge "
+                        "(SMALSE-M around each with equality constraints; "
+                        "lib/qp/README.md). Unit: none.");
+      prm.declare_entry("Auto chain for bounds",
+                        d.auto_chain_bounds,
+                        dealii::Patterns::Anything(),
+                        "Solver auto, every block a bound or box: the "
+                        "solvers tried in this order, comma-separated; the "
+                        "next runs only when the previous did not converge "
+                        "(any reason). Unit: none.");
+      prm.declare_entry("Auto chain for general sets",
+                        d.auto_chain_general,
+                        dealii::Patterns::Anything(),
+                        "Solver auto, some block a disc, ellipse or cone: "
+                        "the solvers tried in this order (not mprgp, which "
+                        "takes bounds and boxes only). Unit: none.");
+      prm.declare_entry("Auto warm start",
+                        d.auto_warm_start ? "true" : "false",
+                        Bool(),
+                        "Solver auto: a fall-back starts from the last "
+                        "iterate of the failed attempt (true) or from the "
+                        "initial guess (false); after a non-finite value it "
+                        "always starts from the initial guess. Unit: none.");
       prm.declare_entry("Tolerance",
                         "1e-8",
                         Double(0., 1.),
@@ -198,7 +226,10 @@ namespace dualcontact
       power_safety_factor = prm.get_double("Power iteration safety factor");
       power_max_iterations =
         prm.get_integer("Power iteration maximum iterations");
-      power_tolerance = prm.get_double("Power iteration tolerance");
+      power_tolerance    = prm.get_double("Power iteration tolerance");
+      auto_chain_bounds  = prm.get("Auto chain for bounds");
+      auto_chain_general = prm.get("Auto chain for general sets");
+      auto_warm_start    = prm.get_bool("Auto warm start");
       prm.leave_subsection();
       check();
     }
@@ -244,6 +275,45 @@ namespace dualcontact
         fail("Power iteration maximum iterations", "must be at least 1.");
       if (!(power_tolerance > 0.))
         fail("Power iteration tolerance", "must be positive.");
+      parse_chain(auto_chain_bounds, false, "Auto chain for bounds");
+      parse_chain(auto_chain_general, true, "Auto chain for general sets");
+    }
+
+
+    std::vector<std::string>
+    SolverParameters::parse_chain(const std::string &chain,
+                                  const bool         general,
+                                  const std::string &parameter)
+    {
+      std::vector<std::string> names;
+      for (const std::string &item :
+           dealii::Utilities::split_string_list(chain, ','))
+      {
+        const std::string name = dealii::Utilities::trim(item);
+        if (name.empty())
+          continue;
+        const bool known =
+          ("|" + solver_names() + "|").find("|" + name + "|") !=
+            std::string::npos &&
+          name != "auto";
+        AssertThrow(known,
+                    dealii::ExcMessage(
+                      "Parameter `" + parameter +
+                      "' in `subsection QP solver': '" + name +
+                      "' is not a solver a chain can hold (" +
+                      "mprgp|mpgp|mpgp-bb|mwpgp|spg-qp|pbbf|apgd)."));
+        AssertThrow(!(general && name == "mprgp"),
+                    dealii::ExcMessage(
+                      "Parameter `" + parameter +
+                      "' in `subsection QP solver': mprgp takes bound and "
+                      "box constraints only, not discs, ellipses or cones."));
+        names.push_back(name);
+      }
+      AssertThrow(!names.empty(),
+                  dealii::ExcMessage("Parameter `" + parameter +
+                                     "' in `subsection QP solver': the chain "
+                                     "is empty; name at least one solver."));
+      return names;
     }
   } // namespace qp
 } // namespace dualcontact

@@ -11,6 +11,7 @@
 #include <deal.II/base/parameter_handler.h>
 
 #include <string>
+#include <vector>
 
 namespace dualcontact
 {
@@ -36,7 +37,10 @@ namespace dualcontact
 
     struct SolverParameters
     {
-      /// mprgp | mpgp | mpgp-bb | mwpgp | spg-qp | pbbf | apgd
+      /// mprgp | mpgp | mpgp-bb | mwpgp | spg-qp | pbbf | apgd | auto
+      /// (auto: the fall-back chain of solver_chain.h).  The .prm default
+      /// (declare_parameters) is auto; the struct's stays mprgp so that
+      /// code building it directly gets one plain solver.
       std::string solver = "mprgp";
       /// relative tolerance: stop when criterion <= tolerance * ||b||
       double            tolerance          = 1e-8;
@@ -95,6 +99,24 @@ namespace dualcontact
       /// power iteration: stop when the relative change of the estimate
       /// is below this
       double power_tolerance = 1e-4;
+
+      /// auto: the solvers tried in turn when every separable block is a
+      /// bound or a box (comma-separated names, first = primary)
+      std::string auto_chain_bounds = "mprgp, mpgp-bb, spg-qp";
+      /// auto: the solvers tried in turn when some block is a disc,
+      /// ellipse or cone (mprgp not allowed: it takes bounds only)
+      std::string auto_chain_general = "mpgp-bb, mpgp, spg-qp";
+      /// auto: a fall-back starts from the previous attempt's last iterate
+      /// (true) or from the initial guess (false); a non-finite iterate
+      /// always restarts from the initial guess
+      bool auto_warm_start = true;
+
+      /// The names of @p chain ("a, b, c"), checked: known, not `auto`,
+      /// and no mprgp when @p general.  Throws naming @p parameter.
+      static std::vector<std::string>
+      parse_chain(const std::string &chain,
+                  const bool         general,
+                  const std::string &parameter);
 
       /// Declare all of the above in subsection `QP solver` of @p prm.
       static void

@@ -87,6 +87,19 @@ namespace dualcontact
       j["kkt"]                = {{"stationarity", number(kkt.stationarity)},
                                  {"feasibility", number(kkt.feasibility)},
                                  {"complementarity", number(kkt.complementarity)}};
+      if (!attempts.empty())
+      {
+        nlohmann::json a = nlohmann::json::array();
+        for (const SolverStatistics &attempt : attempts)
+          a.push_back(nlohmann::json::parse(attempt.to_json(false)));
+        j["attempts"]       = a;
+        j["chosen_attempt"] = chosen_attempt;
+        j["chosen_solver"] =
+          chosen_attempt >= 0 &&
+              chosen_attempt < static_cast<int>(attempts.size()) ?
+            attempts[chosen_attempt].solver :
+            std::string();
+      }
       if (with_history)
       {
         nlohmann::json h = nlohmann::json::array();

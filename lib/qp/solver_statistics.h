@@ -109,6 +109,15 @@ namespace dualcontact
       /// absolute KKT residuals at the returned x
       KKTResiduals kkt;
 
+      /// The solver chain (`auto`, solver_chain.h): one record per solver
+      /// tried, in order; empty for a single solver.  The record holding
+      /// them describes the returned iterate (reason, criterion and KKT of
+      /// the last attempt; work counts and time summed over all attempts).
+      std::vector<SolverStatistics> attempts;
+      /// index into `attempts` of the attempt whose iterate was returned
+      /// (the first that converged, else the last); -1 without attempts
+      int chosen_attempt = -1;
+
       /// True only if the reason is `converged` AND the final criterion is
       /// at most the tolerance: a record cannot claim success otherwise.
       bool

@@ -28,11 +28,19 @@ main()
     SolverParameters p;
     p.parse_parameters(prm);
     const SolverParameters d;
-    check.check(p.solver == "mprgp" && p.tolerance == 1e-8 &&
-                  p.alpha_bar_factor == 1.95 && p.gamma == 1. &&
-                  p.pbbf_k == 10 && p.spg_m == 10 && p.spg_gamma == 0.1 &&
-                  p.spg_sigma2 == 0.9999 && p.spg_alpha0_factor == 1.95 &&
-                  p.apgd_l_factor == 1. && p.max_iterations == 10000 &&
+    // the one intended difference: the application's default solver is
+    // the fall-back chain, the struct's a plain solver
+    check.check(p.solver == "auto" && d.solver == "mprgp" &&
+                  p.auto_chain_bounds == d.auto_chain_bounds &&
+                  p.auto_chain_general == d.auto_chain_general &&
+                  p.auto_warm_start == d.auto_warm_start,
+                "the .prm default Solver is auto (the struct's mprgp), "
+                "chains as the struct's");
+    check.check(p.tolerance == 1e-8 && p.alpha_bar_factor == 1.95 &&
+                  p.gamma == 1. && p.pbbf_k == 10 && p.spg_m == 10 &&
+                  p.spg_gamma == 0.1 && p.spg_sigma2 == 0.9999 &&
+                  p.spg_alpha0_factor == 1.95 && p.apgd_l_factor == 1. &&
+                  p.max_iterations == 10000 &&
                   p.stopping_criterion == StoppingCriterion::projected &&
                   p.mwpgp_delta == d.mwpgp_delta &&
                   p.power_safety_factor == d.power_safety_factor,

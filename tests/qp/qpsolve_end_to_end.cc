@@ -172,6 +172,32 @@ main()
           "equality constraints: SMALSE-M wraps mprgp, exit 0");
   }
 
+  // the fall-back chain: converged at once (general set: mpgp-bb first),
+  // and every solver failing (limit 2): exit 2, three attempts listed
+  {
+    const Result r = run(dir + "/p.json --solver auto --tol 1e-10");
+    check(r.code == 0 && contains(r.out, "\"solver\": \"auto\"") &&
+            contains(r.out, "\"chosen_solver\": \"mpgp-bb\"") &&
+            contains(r.out, "\"attempts\""),
+          "--solver auto: exit 0, attempts listed, mpgp-bb chosen");
+    const Result f        = run(dir + "/p.json --solver auto --max-iter 2");
+    std::size_t  attempts = 0;
+    for (std::size_t pos = f.out.find("\"reason\": \"max_iterations\"");
+         pos != std::string::npos;
+         pos = f.out.find("\"reason\": \"max_iterations\"", pos + 1))
+      ++attempts;
+    check(f.code == 2 && contains(f.out, "\"converged\": false") &&
+            contains(f.out, "\"chosen_solver\": \"spg-qp\"") && attempts >= 4 &&
+            contains(f.err, "every solver of the chain failed"),
+          "--solver auto --max-iter 2: exit 2, all three attempts "
+          "max_iterations (" +
+            std::to_string(attempts) + " reasons in the summary)");
+    const Result e = run(dir + "/eq.json --solver auto --tol 1e-9");
+    check(e.code == 0 && contains(e.out, "smalse-m(mprgp)") &&
+            contains(e.out, "\"equality_residual\""),
+          "--solver auto with equality constraints: SMALSE-M around mprgp");
+  }
+
   // iteration limit
   {
     const Result r = run(dir + "/p.json --solver spg-qp --max-iter 2");

@@ -1,0 +1,129 @@
+#include <qp/solver_chain.h>
+#include <qp/solver_factory.h>
+
+#include <deal.II/base/exceptions.h>
+#include <deal.II/base/timer.h>
+#include <deal.II/lac/trilinos_vector.h>
+#include <deal.II/lac/vector.h>
+
+#include <cmath>
+
+namespace dualcontact
+{
+  namespace qp
+  {
+    template <typename VectorType>
+    SolverChain<VectorType>::SolverChain(
+      const SolverParameters  &parameters,
+      const SMALSEMParameters &smalse_parameters)
+        : SolverBase<VectorType>("auto", parameters)
+        , smalse_prm(smalse_parameters)
+    {
+      parameters.check();
+      smalse_prm.check();
+    }
+
+
+    template <typename VectorType>
+    std::vector<std::string>
+    SolverChain<VectorType>::chain(const Problem<VectorType> &problem) const
+    {
+      const bool general = problem.constraints != nullptr &&
+                           !problem.constraints->only_bounds_and_boxes();
+      return general ?
+               SolverParameters::parse_chain(this->prm.auto_chain_general,
+                                             true,
+                                             "Auto chain for general sets") :
+               SolverParameters::parse_chain(this->prm.auto_chain_bounds,
+                                             false,
+                                             "Auto chain for bounds");
+    }
+
+
+    template <typename VectorType>
+    double
+    SolverChain<VectorType>::equality_residual() const
+    {
+      return last_equality_residual;
+    }
+
+
+    template <typename VectorType>
+    SolverStatistics
+    SolverChain<VectorType>::solve(const Problem<VectorType> &problem,
+                                   VectorType                &x)
+    {
+      dealii::Timer                  timer;
+      const std::vector<std::string> names = chain(problem);
+      const VectorType               initial_guess(x);
+      std::vector<SolverStatistics>  attempts;
+      last_equality_residual = 0.;
+
+      for (unsigned int k = 0; k < names.size(); ++k)
+      {
+        if (k > 0)
+        {
+          // a finite iterate of a failed attempt is feasible after the next
+          // solver's projection: start there (warm) or from the caller's
+          // guess (cold, or after NaN/Inf)
+          const bool finite = std::isfinite(x.l2_norm());
+          if (!this->prm.auto_warm_start || !finite)
+            x = initial_guess;
+        }
+        SolverParameters parameters = this->prm;
+        parameters.solver           = names[k];
+        if (problem.equality)
+        {
+          SMALSEM<VectorType> smalse(parameters, smalse_prm);
+          attempts.push_back(smalse.solve(problem, x));
+          last_equality_residual = smalse.equality_residual();
+        }
+        else
+        {
+          auto solver = create<VectorType>(names[k], parameters);
+          attempts.push_back(solver->solve(problem, x));
+        }
+        if (attempts.back().converged())
+          break;
+      }
+
+      // the record of the returned iterate, with the work of all attempts
+      SolverStatistics stats = attempts.back();
+      stats.solver           = this->name();
+      stats.iterations = stats.n_cg = stats.n_half_steps = stats.n_expansions =
+        stats.n_proportioning = stats.n_bb = stats.n_fall_back = stats.n_outer =
+          0;
+      stats.n_hessian_products = stats.n_projections = 0;
+      std::string summary;
+      for (const SolverStatistics &a : attempts)
+      {
+        stats.iterations += a.iterations;
+        stats.n_cg += a.n_cg;
+        stats.n_half_steps += a.n_half_steps;
+        stats.n_expansions += a.n_expansions;
+        stats.n_proportioning += a.n_proportioning;
+        stats.n_bb += a.n_bb;
+        stats.n_fall_back += a.n_fall_back;
+        stats.n_outer += a.n_outer;
+        stats.n_hessian_products += a.n_hessian_products;
+        stats.n_projections += a.n_projections;
+        summary += (summary.empty() ? "" : ", then ") + a.solver + " " +
+                   to_string(a.reason);
+      }
+      stats.attempts       = attempts;
+      stats.chosen_attempt = static_cast<int>(attempts.size()) - 1;
+      stats.wall_time      = timer.wall_time();
+      stats.message =
+        "auto: " + summary +
+        (stats.converged() ? "" : " (every solver of the chain failed)") +
+        (attempts.back().message.empty() ?
+           "" :
+           "; last: " + attempts.back().message);
+      return stats;
+    }
+
+
+    template class SolverChain<dealii::Vector<double>>;
+    template class SolverChain<dealii::TrilinosWrappers::MPI::Vector>;
+  } // namespace qp
+} // namespace dualcontact

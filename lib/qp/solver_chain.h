@@ -1,0 +1,80 @@
+/**
+ * @file solver_chain.h
+ * The solver `auto`: a solver chosen by the constraint types, and the next
+ * one of a fixed chain when it does not converge.
+ *
+ * Why: no single algorithm of this library converges on every contact QP
+ * the application meets (the stability matrix, doc/stability.md): MPRGP is
+ * fastest on bound constraints but only takes bounds, the active-set
+ * solvers can run into their iteration limit or stagnate on badly scaled
+ * duals where a spectral projected-gradient method still makes progress.
+ * A user who does not know which one suits a scene gets the fast one first
+ * and an honest, recorded fall-back instead of a failed run.
+ */
+#ifndef dualcontact_qp_solver_chain_h
+#define dualcontact_qp_solver_chain_h
+
+#include <qp/smalse_m.h>
+#include <qp/solver_base.h>
+
+#include <string>
+#include <vector>
+
+namespace dualcontact
+{
+  namespace qp
+  {
+    /**
+     * Runs the solvers of a chain one after the other until one converges.
+     *
+     * Policy (lib/qp/README.md, "The solver chain auto"):
+     * - the chain is SolverParameters::auto_chain_bounds when every block
+     *   of the separable set is a bound or a box (or there is no set), and
+     *   SolverParameters::auto_chain_general otherwise (discs, ellipses,
+     *   cones);
+     * - with equality constraints every attempt is SMALSE-M around the
+     *   chain's solver (with the SMALSE-M parameters given here);
+     * - an attempt that ends with any reason but `converged` hands over to
+     *   the next solver; each attempt gets the full iteration limit;
+     * - warm start (SolverParameters::auto_warm_start, default true): the
+     *   next attempt starts from the last iterate of the failed one (a
+     *   feasible point nearer the solution; every solver of the chain
+     *   converges from any feasible start), except after a non-finite
+     *   value, when it starts from the caller's initial guess.
+     *
+     * Statistics: the returned record is named "auto", holds one record
+     * per attempt in SolverStatistics::attempts and the index of the
+     * returned one in chosen_attempt (the first that converged, else the
+     * last).  Its reason, message, criterion, history and KKT residuals are
+     * those of the chosen attempt, so it is converged() only if that
+     * attempt converged; iterations, products, projections and time are
+     * summed over all attempts (the work the chain did).
+     */
+    template <typename VectorType>
+    class SolverChain : public SolverBase<VectorType>
+    {
+    public:
+      SolverChain(
+        const SolverParameters  &parameters,
+        const SMALSEMParameters &smalse_parameters = SMALSEMParameters());
+
+      /// The solver names the chain tries on @p problem, in order
+      /// (without the SMALSE-M wrapping).
+      std::vector<std::string>
+      chain(const Problem<VectorType> &problem) const;
+
+      SolverStatistics
+      solve(const Problem<VectorType> &problem, VectorType &x) override;
+
+      /// ||Bx - c|| at the returned x (0 without equality constraints)
+      double
+      equality_residual() const;
+
+    private:
+      SMALSEMParameters smalse_prm;
+      double            last_equality_residual = 0.;
+    };
+  } // namespace qp
+} // namespace dualcontact
+
+#endif
