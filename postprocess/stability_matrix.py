@@ -75,6 +75,22 @@ def auto_note(case):
                                                     a["final_criterion"]) for a in attempts)
 
 
+def spread(row):
+    """Largest difference of the contact force between two converged runs
+    of a row, relative to the largest force: ~tolerance when the solution
+    is unique, large when the solvers found different solutions."""
+    forces = [c["contact_force"] for c in row["cases"].values()
+              if c["status"] == "converged" and c.get("contact_force")]
+    if len(forces) < 2:
+        return "-"
+    size = max(math.sqrt(sum(v * v for v in f)) for f in forces)
+    if size == 0:
+        return "0"
+    worst = max(math.sqrt(sum((a - b) ** 2 for a, b in zip(f, g)))
+                for f in forces for g in forces)
+    return "%.0e" % (worst / size)
+
+
 def write_markdown(data, path, command, figure):
     solvers = data["solvers"]
     out = []
@@ -90,7 +106,12 @@ def write_markdown(data, path, command, figure):
                "(MPRGP takes bounds and boxes only); *error*: the run stopped "
                "with exit code 1 (message below).  `auto` is the fall-back "
                "chain of `lib/qp/solver_chain.h`: *via X* names the solver "
-               "that converged after a fall-back.\n")
+               "that converged after a fall-back.  *spread*: the largest "
+               "difference of the total contact force (normal and tangential, "
+               "summed over the pairs) between two converged runs of the row, "
+               "relative to the force: near the tolerance when the solvers "
+               "agree, large when they found different solutions "
+               "(non-uniqueness, or a loose criterion).\n")
     out.append("Settings for every run: ||g^P|| <= %g ||b|| (projected gradient), at most %d "
                "iterations per QP, stagnation window 1000, SMALSE-M at most 100 outer "
                "iterations, time limit %g s per run.\n"
@@ -107,8 +128,8 @@ def write_markdown(data, path, command, figure):
         out.append("## %s\n" % scenario["title"])
         out.append("Input `%s`, parameter %s [%s].\n" % (scenario["input"], scenario["parameter"],
                                                          scenario["unit"]))
-        out.append("| %s | %s |" % (scenario["parameter"], " | ".join(solvers)))
-        out.append("|---|" + "---|" * len(solvers))
+        out.append("| %s | %s | spread |" % (scenario["parameter"], " | ".join(solvers)))
+        out.append("|---|" + "---|" * len(solvers) + "---|")
         for row in scenario["rows"]:
             cells = []
             for s in solvers:
@@ -121,7 +142,7 @@ def write_markdown(data, path, command, figure):
                         (case.get("fall_backs", 0) > 0 or case["status"] != "converged"):
                     notes.append("%s %s = %g, auto: %s" % (scenario["key"], scenario["parameter"],
                                                            row["value"], auto_note(case)))
-            out.append("| %g | %s |" % (row["value"], " | ".join(cells)))
+            out.append("| %g | %s | %s |" % (row["value"], " | ".join(cells), spread(row)))
         out.append("")
     if notes:
         out.append("## Notes on single runs\n")

@@ -165,6 +165,11 @@ def outcome(case_dir):
         "coulomb_changes": contact.get("coulomb_changes", []),
         "n_multipliers": contact["n_multipliers"],
         "n_dofs": sum(b["n_dofs"] for b in stats["bodies"]),
+        # the contact force (normal + tangential, summed over pairs): the
+        # matrix compares it between solvers (non-unique Coulomb solutions)
+        "contact_force": [sum(p["normal_force"] for p in contact["pairs"])] +
+        [sum(p["tangential_force"][k] for p in contact["pairs"])
+         for k in range(len(contact["pairs"][0]["tangential_force"]))],
     })
     if "attempts" in last:
         record["attempts"] = [{"solver": a["solver"], "reason": a["reason"],
