@@ -91,7 +91,7 @@ def spread(row):
     return "%.0e" % (worst / size)
 
 
-def write_markdown(data, path, command, figure):
+def write_markdown(data, path, command, figure, notes_file=None):
     solvers = data["solvers"]
     out = []
     out.append("# The stability matrix\n")
@@ -123,6 +123,13 @@ def write_markdown(data, path, command, figure):
                   " ".join(data["load_average_end"]), data["wall_time_s"]))
     if figure:
         out.append("![The stability matrix](%s)\n" % figure)
+    if notes_file and os.path.exists(notes_file):
+        # the hand-written reading of the matrix (not generated)
+        out.append("## Findings\n")
+        out.append("*From `%s` (written by hand for the committed run; "
+                   "check it against the tables when they change).*\n"
+                   % os.path.relpath(notes_file, os.path.dirname(os.path.abspath(path))))
+        out.append(open(notes_file).read().strip() + "\n")
     notes = []
     for scenario in data["scenarios"]:
         out.append("## %s\n" % scenario["title"])
@@ -215,11 +222,13 @@ def main():
     parser.add_argument("--png", default=os.path.join(root, "doc", "figures",
                                                       "stability_matrix.png"))
     parser.add_argument("--command", default="scripts/bench_stability")
+    parser.add_argument("--notes", default=None,
+                        help="markdown file included as the Findings section")
     args = parser.parse_args()
     data = json.load(open(args.stability_json))
     draw(data, args.png)
     figure = os.path.relpath(args.png, os.path.dirname(os.path.abspath(args.md)))
-    write_markdown(data, args.md, args.command, figure)
+    write_markdown(data, args.md, args.command, figure, args.notes)
     print("stability_matrix: wrote %s and %s" % (args.md, args.png))
 
 
