@@ -53,10 +53,17 @@ def cell_text(case, markdown=True):
         if case.get("n_qp_solves", 1) > 1:
             text += " (%d QPs)" % case["n_qp_solves"]
         if case.get("attempts") is not None and case.get("fall_backs", 0) > 0:
-            text += (" via %s" if markdown else "\nvia %s") % case["chosen_solver"]
+            chosen = sorted(set(f["chosen_solver"] for f in case.get("fall_back_solves", [])))
+            text += (" via %s" if markdown else "\nvia %s") % "/".join(chosen)
         return text
     if status == "failed":
         kind = failure_kind(case)
+        if kind.startswith("Coulomb") and case.get("coulomb_changes"):
+            # the fixed point failed: the last relative change of psi
+            change = case["coulomb_changes"][-1]
+            text = "%s, change %.1e" % (kind, change) if markdown else \
+                "%s\n%.0e" % (kind, change)
+            return ("**%s**" % text) if markdown else text
         text = "%s %.1e" % (kind, case["final_criterion"]) if markdown else \
             "%s\n%.0e" % (kind, case["final_criterion"])
         return ("**%s**" % text) if markdown else text
@@ -68,11 +75,19 @@ def cell_text(case, markdown=True):
 
 
 def auto_note(case):
-    attempts = case.get("attempts")
-    if not attempts:
+    def chain(attempts):
+        return ", then ".join("%s %s (%d it, %.1e)" % (a["solver"], a["reason"], a["iterations"],
+                                                        a["final_criterion"]) for a in attempts)
+    if not case.get("attempts"):
         return None
-    return ", then ".join("%s %s (%d it, %.1e)" % (a["solver"], a["reason"], a["iterations"],
-                                                    a["final_criterion"]) for a in attempts)
+    if case.get("n_qp_solves", 1) == 1:
+        return chain(case["attempts"])
+    # a Coulomb fixed point: the QPs that fell back, and the last QP
+    parts = ["QP %d: %s" % (f["qp"], chain(f["attempts"]))
+             for f in case.get("fall_back_solves", [])]
+    if not case.get("fall_back_solves") or case["fall_back_solves"][-1]["qp"] != case["n_qp_solves"]:
+        parts.append("last QP (%d): %s" % (case["n_qp_solves"], chain(case["attempts"])))
+    return "; ".join(parts)
 
 
 def spread(row):
@@ -113,9 +128,12 @@ def write_markdown(data, path, command, figure, notes_file=None):
                "agree, large when they found different solutions "
                "(non-uniqueness, or a loose criterion).\n")
     out.append("Settings for every run: ||g^P|| <= %g ||b|| (projected gradient), at most %d "
-               "iterations per QP, stagnation window 1000, SMALSE-M at most 100 outer "
-               "iterations, time limit %g s per run.\n"
-               % (data["tolerance"], data["max_iterations"], data["time_limit_s"]))
+               "iterations per QP, stagnation window 1000, SMALSE-M outer limit as in the "
+               "input (cylinder and Coulomb block 1000, two bodies 100), Coulomb fixed "
+               "point to a relative change of %g (its failures show the last change), "
+               "time limit %g s per run.\n"
+               % (data["tolerance"], data["max_iterations"], 100 * data["tolerance"],
+                  data["time_limit_s"]))
     out.append("Command: `%s`  \nRun %s, %s cores, load average %s at the start and %s at "
                "the end (the machine is shared), %.0f s in all (runs already on disk are not "
                "repeated).  No times are compared here, only outcomes and counts.\n"

@@ -17,8 +17,9 @@ written to BENCH_DIR/stability.json for postprocess/stability_matrix.py.
 
 Every scenario uses the same QP settings: relative tolerance T (default
 1e-6) of the projected gradient, at most N (default 10000, table 14 of the
-thesis) iterations per QP, the application's stagnation window (1000) and
-SMALSE-M limit (100 outer iterations), VTU output off.
+thesis) iterations per QP, the application's stagnation window (1000), VTU
+output off; the SMALSE-M outer limit is the input's (cylinder and Coulomb
+block 1000, two bodies the default 100), the Coulomb tolerance 100 T.
 """
 import argparse
 import json
@@ -29,6 +30,7 @@ import sys
 import time
 
 SOLVERS = "mprgp mpgp mpgp-bb mwpgp spg-qp pbbf apgd auto"
+TOLERANCE = [1e-6]  # set from --tolerance
 
 
 def fmt(value):
@@ -50,7 +52,10 @@ def scenarios(quick):
                 (("Contact pair 1",), "Slip bounds", "%g, %g" % (10.0, 10.0 / ratio))]
 
     def coulomb(mu):
+        # the fixed point's tolerance 100 times the QP's (the input's
+        # ratio, 1e-8 / 1e-10): its change cannot fall below the QPs' error
         return [(("Output",), "Write Coulomb iterates", "false"),
+                (("Coulomb",), "Tolerance", "%g" % (100 * TOLERANCE[0])),
                 (("Contact pair 1",), "Friction coefficient", "%g" % mu)]
 
     def contrast(c):
@@ -123,8 +128,7 @@ def make_input(root, scenario_input, edits, solver, args):
               (("QP solver",), "Solver", solver),
               (("QP solver",), "Tolerance", "%g" % args.tolerance),
               (("QP solver",), "Maximum iterations", str(args.max_iterations)),
-              (("QP solver",), "Stagnation window", "1000"),
-              (("QP solver", "SMALSE-M"), "Maximum outer iterations", "100")]
+              (("QP solver",), "Stagnation window", "1000")]
     for path, name, value in common + edits:
         set_parameter(lines, path, name, value)
     return "".join(lines)
@@ -178,6 +182,14 @@ def outcome(case_dir):
                               for a in last["attempts"]]
         record["chosen_solver"] = last.get("chosen_solver", "")
         record["fall_backs"] = sum(len(q.get("attempts", [])) - 1 for q in solves)
+        # every QP (Coulomb iterate) in which the chain fell back
+        record["fall_back_solves"] = [
+            {"qp": k + 1, "chosen_solver": q.get("chosen_solver", ""),
+             "attempts": [{"solver": a["solver"], "reason": a["reason"],
+                           "iterations": a["iterations"],
+                           "final_criterion": a["final_criterion"]}
+                          for a in q["attempts"]]}
+            for k, q in enumerate(solves) if len(q.get("attempts", [])) > 1]
     return record
 
 
@@ -193,6 +205,7 @@ def main():
     parser.add_argument("--solvers", default=None)
     parser.add_argument("--scenarios", default=None)
     args = parser.parse_args()
+    TOLERANCE[0] = args.tolerance
     solvers = (args.solvers or ("mprgp auto" if args.quick else SOLVERS)).split()
     chosen = args.scenarios.split() if args.scenarios else None
     os.makedirs(args.bench_dir, exist_ok=True)
@@ -204,6 +217,7 @@ def main():
                "load_average_start": load, "cores": os.cpu_count(),
                "started": time.strftime("%Y-%m-%d %H:%M:%S"), "solvers": solvers,
                "scenarios": []}
+    n_run = 0
     for key, title, prm, label, unit, values, edits in scenarios(args.quick):
         if chosen and key not in chosen:
             continue
@@ -219,6 +233,7 @@ def main():
                 fresh = os.path.exists(os.path.join(case_dir, "run.json")) and \
                     os.path.exists(prm_file) and open(prm_file).read() == text
                 if not fresh:
+                    n_run += 1
                     with open(prm_file, "w") as f:
                         f.write(text)
                     for name in ("run.json",):
@@ -234,7 +249,15 @@ def main():
         results["scenarios"].append(scenario)
     results["load_average_end"] = open("/proc/loadavg").read().split()[:3]
     results["wall_time_s"] = time.time() - start
-    with open(os.path.join(args.bench_dir, "stability.json"), "w") as f:
+    out_file = os.path.join(args.bench_dir, "stability.json")
+    if n_run == 0 and os.path.exists(out_file):
+        # nothing was run: the timing and load are those of the run that
+        # produced the outcomes
+        old = json.load(open(out_file))
+        for key in ("started", "load_average_start", "load_average_end", "wall_time_s"):
+            if key in old:
+                results[key] = old[key]
+    with open(out_file, "w") as f:
         json.dump(results, f, indent=1)
     print("bench_stability: %d scenarios in %.0f s, outcomes in %s"
           % (len(results["scenarios"]), results["wall_time_s"],
