@@ -335,7 +335,7 @@ namespace dualcontact
             }
             if (!std::isfinite(beta_cg))
             {
-              stats.history.push_back(value / stats.norm_b);
+              stats.record_criterion(value / stats.norm_b, this->elapsed());
               stats.final_criterion = value / stats.norm_b;
               stats.reason          = ConvergenceReason::non_finite;
               stats.message         = "non-finite CG coefficient";
@@ -445,7 +445,7 @@ namespace dualcontact
           // (one product), which differs when rounding or an inexact
           // operator made the recurrence drift.  If it fails, go on
           // from the true gradient with a CG restart.
-          stats.history.pop_back();
+          stats.drop_last_criterion();
           recompute_gradient();
           direction_valid = false;
           stop = this->check_stop(stats, refresh(p), f); // restart: p = phi

@@ -539,7 +539,7 @@ namespace dualcontact
         J                    = run.active_rows();
         double       norm_Pr = 0., norm_negative = 0.;
         const double value = run.criterion(J, u, norm_Pr, norm_negative);
-        stats.history.push_back(value / stats.norm_b);
+        stats.record_criterion(value / stats.norm_b, timer.wall_time());
         stats.final_criterion = value / stats.norm_b;
         if (!std::isfinite(value))
         {

@@ -300,7 +300,7 @@ namespace dualcontact
                                     return n.free_sq + n.chopped_sq;
                                   }()) :
                                 g.l2_norm();
-        stats.history.push_back(criterion / stats.norm_b);
+        stats.record_criterion(criterion / stats.norm_b, this->elapsed());
         stats.final_criterion =
           std::max(criterion,
                    norm_residual * tolerance /

@@ -182,7 +182,7 @@ namespace dualcontact
       // above the rounding of a cost kept by recurrences (1e-16 per step)
       constexpr double cost_progress = 1e-12;
       const double     relative      = value / stats.norm_b;
-      stats.history.push_back(relative);
+      stats.record_criterion(relative, timer.wall_time());
       stats.final_criterion = relative;
       if (!std::isfinite(relative))
       {
@@ -234,6 +234,14 @@ namespace dualcontact
         return true;
       }
       return false;
+    }
+
+
+    template <typename VectorType>
+    double
+    SolverBase<VectorType>::elapsed() const
+    {
+      return timer.wall_time();
     }
 
 

@@ -112,6 +112,10 @@ namespace dualcontact
                  double            value,
                  double cost = std::numeric_limits<double>::quiet_NaN());
 
+      /// Wall time since start() [s] (the time stamps of the history).
+      double
+      elapsed() const;
+
       /// Fill KKT residuals and wall time.
       void
       finish(const Problem<VectorType> &problem,

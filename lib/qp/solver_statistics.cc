@@ -42,6 +42,31 @@ namespace dualcontact
     }
 
 
+    void
+    SolverStatistics::record_criterion(const double relative,
+                                       const double seconds)
+    {
+      history.push_back(relative);
+      history_time.push_back(seconds);
+      history_iterations.push_back(iterations);
+      history_products.push_back(n_hessian_products);
+    }
+
+
+    void
+    SolverStatistics::drop_last_criterion()
+    {
+      Assert(!history.empty() && history_time.size() == history.size() &&
+               history_iterations.size() == history.size() &&
+               history_products.size() == history.size(),
+             dealii::ExcInternalError());
+      history.pop_back();
+      history_time.pop_back();
+      history_iterations.pop_back();
+      history_products.pop_back();
+    }
+
+
     namespace
     {
       // JSON has no Inf/NaN: write them as strings so nothing is lost.
@@ -106,6 +131,14 @@ namespace dualcontact
         for (const double v : history)
           h.push_back(number(v));
         j["history"] = h;
+        // the time stamps etc. exist only where the history was recorded
+        // through record_criterion(); a record filled by hand may lack them
+        if (history_time.size() == history.size())
+        {
+          j["history_time_s"]     = history_time;
+          j["history_iterations"] = history_iterations;
+          j["history_products"]   = history_products;
+        }
       }
       out << j.dump(2);
     }

@@ -104,6 +104,14 @@ namespace dualcontact
       /// relative criterion ||g_*|| / ||b|| at every checked iterate,
       /// history[0] at the initial guess
       std::vector<double> history;
+      /// per entry of `history`: the wall time since solve() started [s],
+      /// and the iterations and Hessian products counted so far, so that a
+      /// convergence history can be charted against time and work (the
+      /// iteration count is not the entry's index for solvers that record
+      /// only some iterates, e.g. SMALSE-M's outer loop)
+      std::vector<double>        history_time;
+      std::vector<unsigned int>  history_iterations;
+      std::vector<unsigned long> history_products;
       /// last relative criterion value
       double final_criterion = 0.;
       /// absolute KKT residuals at the returned x
@@ -118,12 +126,24 @@ namespace dualcontact
       /// (the first that converged, else the last); -1 without attempts
       int chosen_attempt = -1;
 
+      /// Append the relative criterion @p relative to `history`, with the
+      /// time stamp @p seconds and the current iteration and product counts.
+      /// Does not touch final_criterion.
+      void
+      record_criterion(const double relative, const double seconds);
+
+      /// Remove the last entry of the history (a value that a recomputation
+      /// supersedes).
+      void
+      drop_last_criterion();
+
       /// True only if the reason is `converged` AND the final criterion is
       /// at most the tolerance: a record cannot claim success otherwise.
       bool
       converged() const;
 
-      /// Write the record (without history unless @p with_history) as JSON.
+      /// Write the record (without the history arrays unless
+      /// @p with_history) as JSON.
       void
       write_json(std::ostream &out, const bool with_history = true) const;
 

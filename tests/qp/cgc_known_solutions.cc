@@ -21,6 +21,8 @@
 
 #include <qp/cgc.h>
 
+#include "test_tools.h"
+
 #include <cmath>
 #include <iostream>
 #include <random>
@@ -91,6 +93,8 @@ main()
               << stats.n_half_steps << " hits, " << stats.n_proportioning
               << " releases, criterion " << stats.final_criterion << std::endl;
     check(stats.converged(), "bounds (" + label + "): converged");
+    check(qptest::history_consistent(stats),
+          "bounds (" + label + "): history with time stamps and counts");
     check(distance(x, x_star) <= 1e-8 * x_star.l2_norm(),
           "bounds (" + label + "): ||x - x*|| <= 1e-8 ||x*||");
     double max_mu_error = 0.;

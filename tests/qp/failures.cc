@@ -170,5 +170,23 @@ main()
                   j["history"].size() == 3 && j["history"][1] == "inf",
                 "JSON: converged record, history with inf as a string");
   }
+  {
+    // the history's time stamps and counts go with every entry; a
+    // superseded entry is dropped with them
+    SolverStatistics s;
+    s.record_criterion(1., 0.);
+    s.iterations         = 4;
+    s.n_hessian_products = 9;
+    s.record_criterion(1e-3, 0.25);
+    s.record_criterion(1e-2, 0.5);
+    s.drop_last_criterion();
+    const auto j = nlohmann::json::parse(s.to_json());
+    check.check(
+      j["history"].size() == 2 && j["history_time_s"].size() == 2 &&
+        j["history_time_s"][1] == 0.25 && j["history_iterations"][1] == 4 &&
+        j["history_products"][1] == 9 &&
+        nlohmann::json::parse(s.to_json(false)).count("history_time_s") == 0,
+      "JSON: history with time stamps, iterations and products");
+  }
   return check.finish("failures");
 }

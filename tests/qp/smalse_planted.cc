@@ -17,6 +17,8 @@
 #include <qp/separable_set.h>
 #include <qp/smalse_m.h>
 
+#include "test_tools.h"
+
 #include <cmath>
 #include <iostream>
 #include <random>
@@ -124,6 +126,12 @@ main()
               error.l2_norm() <= 1e-6 * std::max(1., x_star.l2_norm()) &&
               smalse.equality_residual() <= 1e-8 * stats.norm_b,
             "SMALSE-M " + kind + " / " + inner + ": converged to x*, Bx = c");
+      // one history entry per outer iteration, with time stamps and counts
+      check(qptest::history_consistent(stats, false) &&
+              stats.history.size() == stats.n_outer &&
+              stats.history_iterations.back() == stats.iterations,
+            "SMALSE-M " + kind + " / " + inner +
+              ": history per outer iteration with time stamps and counts");
       // KKT residuals of the Lagrangian (stationarity, complementarity with
       // the multiplier estimates from Ax - b + B'lambda): small at x*
       check(stats.kkt.stationarity <= 1e-8 * stats.norm_b &&

@@ -105,8 +105,11 @@ main()
                       sci(stats.kkt.complementarity));
         check.check(kinds == stats.iterations &&
                       stats.n_hessian_products >= stats.iterations &&
-                      stats.history.size() == stats.iterations + 1,
-                    tag + "statistics consistent");
+                      stats.history.size() == stats.iterations + 1 &&
+                      history_consistent(stats) &&
+                      stats.history_iterations.back() == stats.iterations,
+                    tag + "statistics consistent (history with time "
+                          "stamps and counts)");
       }
   check.verbose = true;
   check.check(n_projected_cg >= 10,

@@ -17,6 +17,8 @@
 #include <qp/separable_set.h>
 #include <qp/solver_factory.h>
 
+#include "test_tools.h"
+
 #include <cmath>
 #include <iostream>
 #include <memory>
@@ -190,6 +192,9 @@ main()
               stats.kkt.feasibility <= 1e-12 &&
               stats.kkt.stationarity <= 1e-9 * stats.norm_b,
             name + " / " + type + ": converged to x*");
+      check(qptest::history_consistent(stats) &&
+              stats.history_iterations.back() == stats.iterations,
+            name + " / " + type + ": history with time stamps and counts");
 
       prm.max_iterations = 5;
       auto       limited = create<Vec>(prm);

@@ -15,6 +15,7 @@
 
 #include <qp/problem.h>
 #include <qp/separable_set.h>
+#include <qp/solver_statistics.h>
 
 #include <cmath>
 #include <cstdio>
@@ -492,6 +493,35 @@ namespace qptest
     for (const double x : v)
       s += x * x;
     return std::sqrt(s);
+  }
+
+  /**
+   * The history's time stamps and counts are consistent with the record:
+   * one of each per history entry, non-decreasing, the time within
+   * [0, wall_time], the counts at most the final ones, the last criterion
+   * the final one (SMALSE-M, whose final criterion also weighs the
+   * equality residual, passes @p last_is_final = false).
+   */
+  inline bool
+  history_consistent(const dualcontact::qp::SolverStatistics &s,
+                     const bool last_is_final = true)
+  {
+    const std::size_t n = s.history.size();
+    if (n == 0 || s.history_time.size() != n ||
+        s.history_iterations.size() != n || s.history_products.size() != n)
+      return false;
+    for (std::size_t k = 0; k < n; ++k)
+    {
+      if (s.history_time[k] < 0. || s.history_time[k] > s.wall_time ||
+          s.history_iterations[k] > s.iterations ||
+          s.history_products[k] > s.n_hessian_products)
+        return false;
+      if (k > 0 && (s.history_time[k] < s.history_time[k - 1] ||
+                    s.history_iterations[k] < s.history_iterations[k - 1] ||
+                    s.history_products[k] < s.history_products[k - 1]))
+        return false;
+    }
+    return !last_is_final || s.history.back() == s.final_criterion;
   }
 } // namespace qptest
 
