@@ -8,18 +8,21 @@ A run counts as solved when its final FCLIB error (the same measure for every
 solver, computed from the returned r) is at most the tolerance it was given;
 the solver's own verdict is listed beside it in the table.  Per problem the
 ratio r_ps = t_ps / min_s t_ps over the solved runs; unsolved runs get r_max
-(larger than every ratio), so that their curve never reaches them.  One
-figure per measure (time, iterations) and tolerance.
+(twice the largest finite ratio), so that their curve never reaches them
+(postprocess/performance_profiles.py).  One figure per measure (time,
+iterations) and tolerance.
 """
 import csv
+import os
 import sys
-from collections import defaultdict
 
 import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
-import numpy as np  # noqa: E402
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import performance_profiles  # noqa: E402
 
 
 def load(path):
@@ -31,7 +34,7 @@ def profile(rows, tol, measure, prefix):
     runs = [r for r in rows if float(r["tolerance"]) == tol]
     problems = sorted({r["problem"] for r in runs})
     solvers = list(dict.fromkeys(r["solver"] for r in runs))
-    value = {}
+    costs = {p: {} for p in problems}
     for r in runs:
         solved = float(r["fclib_error"]) <= tol
         v = float(r[measure])
@@ -39,43 +42,23 @@ def profile(rows, tol, measure, prefix):
             v = 1.0
         if measure == "time_s":
             v = max(v, 1e-6)
-        value[(r["problem"], r["solver"])] = v if solved else None
-    ratios = defaultdict(list)
-    finite = []
-    for p in problems:
-        best = [value.get((p, s)) for s in solvers if value.get((p, s)) is not None]
-        if not best:
-            continue
-        b = min(best)
-        for s in solvers:
-            v = value.get((p, s))
-            if v is not None:
-                ratios[s].append(v / b)
-                finite.append(v / b)
-            else:
-                ratios[s].append(None)
-    if not finite:
+        costs[r["problem"]][r["solver"]] = v if solved else None
+    solved_problems, solvers, ratios, r_max, _ = \
+        performance_profiles.performance_ratios(costs, solvers)
+    if not solved_problems:
         return
-    r_max = 2.0 * max(finite)
-    taus = np.logspace(0, np.log10(r_max), 400)[:-1]
     fig, ax = plt.subplots(figsize=(7, 4.5))
     colours = plt.get_cmap("tab20")
-    for k, s in enumerate(solvers):
-        # failures sit at r_max, beyond the drawn range: their curve stays
-        # below 1
-        rs = np.array([r if r is not None else np.inf for r in ratios[s]])
-        if len(rs) == 0:
-            continue
-        rho = [(rs <= t).mean() for t in taus]
-        style = "-" if "/" in s else "--"
-        ax.step(taus, rho, style, where="post", label=s, color=colours(k % 20))
-    ax.set_xscale("log", base=2)
-    ax.set_xlabel("tau (ratio to the best %s)" % ("time" if measure == "time_s" else "iteration count"))
+    # failures sit at r_max, beyond the drawn range: their curve stays
+    # below 1
+    performance_profiles.draw(
+        ax, solvers, ratios, r_max,
+        "time" if measure == "time_s" else "iteration count",
+        colours=lambda k: colours(k % 20),
+        style=lambda s: "-" if "/" in s else "--",
+        title="Performance profile, %s, tolerance %g (%d problems)" % (
+            "time" if measure == "time_s" else "iterations", tol, len(problems)))
     ax.set_ylabel("fraction of problems solved within tau")
-    ax.set_ylim(0, 1.02)
-    ax.set_title("Performance profile, %s, tolerance %g (%d problems)" % (
-        "time" if measure == "time_s" else "iterations", tol, len(problems)))
-    ax.grid(True, which="both", alpha=0.3)
     ax.legend(fontsize=7, ncol=2, loc="lower right")
     name = "%s_%s_%g.png" % (prefix, "time" if measure == "time_s" else "iterations", tol)
     fig.tight_layout()
