@@ -64,7 +64,6 @@ import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
-import matplotlib.ticker  # noqa: E402
 import numpy  # noqa: E402
 
 HERE = os.path.dirname(os.path.abspath(__file__))
@@ -506,7 +505,8 @@ def work_precision(case, cfg, runs, out):
                     if alg:
                         ax.loglog([a[0] for a in alg], [a[1] for a in alg], ":",
                                   marker=MARKERS[s], color=COLOURS[s], ms=3, lw=1)
-            ax.xaxis.set_minor_formatter(matplotlib.ticker.NullFormatter())
+            # narrow ranges get labelled minor ticks: small and slanted
+            ax.tick_params(axis="x", which="both", labelsize=7, labelrotation=30)
             ax.set_xlabel(x_label)
             ax.set_ylabel("relative error")
             ax.grid(True, which="both", alpha=0.3)
