@@ -21,8 +21,6 @@
 
 #include <qp/cgc.h>
 
-#include "test_tools.h"
-
 #include <cmath>
 #include <iostream>
 #include <random>

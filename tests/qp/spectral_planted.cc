@@ -17,8 +17,6 @@
 #include <qp/separable_set.h>
 #include <qp/solver_factory.h>
 
-#include "test_tools.h"
-
 #include <cmath>
 #include <iostream>
 #include <memory>
