@@ -562,9 +562,17 @@ def convergence(case, level, cfg, runs, out):
         h = history_of(r)
         tol = h["tolerance"]
         data["solvers"][r.solver] = h
-        label = r.solver + ("" if h["converged"] else " (%s)" % h["reason"])
+        label = r.solver + ("" if h["converged"] else " (%s after %d iterations, %.2g s)" % (
+            h["reason"], h["iterations"][-1], h["time_s"][-1]))
         for ax, key in zip(axes, ("iterations", "time_s")):
             ax.semilogy(h[key], h["criterion"], "-", color=COLOURS[r.solver], label=label, lw=1)
+    # a run that stopped at its limit would squeeze the others into a corner:
+    # the x range ends at 1.5 times the last converged entry, and the label
+    # says how far a failed run went
+    for ax, key in zip(axes, ("iterations", "time_s")):
+        ends = [h[key][-1] for h in data["solvers"].values() if h["converged"]]
+        if ends and any(not h["converged"] for h in data["solvers"].values()):
+            ax.set_xlim(0, 1.5 * max(ends))
     for ax, xl in zip(axes, ("iterations", "time since the QP started [s]")):
         if tol:
             ax.axhline(tol, color="k", ls="--", lw=0.8)
