@@ -94,9 +94,29 @@ namespace dualcontact
         stats.n_proportioning = stats.n_bb = stats.n_fall_back = stats.n_outer =
           0;
       stats.n_hessian_products = stats.n_projections = 0;
+      // the history runs through all attempts: each attempt's time stamps
+      // and work counts are offset by those of the attempts before it, so a
+      // convergence chart of `auto` shows the fall-back where it happened
+      stats.history.clear();
+      stats.history_time.clear();
+      stats.history_iterations.clear();
+      stats.history_products.clear();
+      double      time_offset = 0.;
       std::string summary;
       for (const SolverStatistics &a : attempts)
       {
+        const bool stamped = a.history_time.size() == a.history.size();
+        for (unsigned int i = 0; i < a.history.size(); ++i)
+        {
+          stats.history.push_back(a.history[i]);
+          stats.history_time.push_back(
+            time_offset + (stamped ? a.history_time[i] : a.wall_time));
+          stats.history_iterations.push_back(
+            stats.iterations + (stamped ? a.history_iterations[i] : 0u));
+          stats.history_products.push_back(
+            stats.n_hessian_products + (stamped ? a.history_products[i] : 0ul));
+        }
+        time_offset += a.wall_time;
         stats.iterations += a.iterations;
         stats.n_cg += a.n_cg;
         stats.n_half_steps += a.n_half_steps;

@@ -97,6 +97,27 @@ main()
                                             s.attempts[1].n_hessian_products,
                 "record: converged, chosen attempt 2, work summed (" +
                   std::to_string(s.iterations) + " iterations)");
+    {
+      // the history runs through both attempts, stamped monotonically
+      const std::size_t h0 = s.attempts[0].history.size();
+      bool              monotone = s.history_time.size() == s.history.size() &&
+                      s.history_iterations.size() == s.history.size() &&
+                      s.history_products.size() == s.history.size();
+      for (std::size_t i = 1; monotone && i < s.history.size(); ++i)
+        monotone = s.history_time[i] >= s.history_time[i - 1] &&
+                   s.history_iterations[i] >= s.history_iterations[i - 1] &&
+                   s.history_products[i] >= s.history_products[i - 1];
+      check.check(
+        s.attempts.size() == 2 &&
+          s.history.size() == h0 + s.attempts[1].history.size() && monotone &&
+          s.history_iterations.back() == s.iterations &&
+          s.history_products.back() <= s.n_hessian_products &&
+          s.history.back() == s.attempts[1].history.back() &&
+          s.history.back() == s.final_criterion,
+        "history: both attempts (" + std::to_string(s.history.size()) +
+          " entries), stamps nondecreasing, ends at the total iterations and "
+          "the final criterion");
+    }
     const KKTResiduals kkt = compute_kkt_residuals(problem, x);
     check.check(kkt.stationarity <= 10 * tol * s.norm_b &&
                   kkt.feasibility <= 1e-14 &&
