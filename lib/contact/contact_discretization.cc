@@ -2,6 +2,7 @@
 #include <deal.II/dofs/dof_tools.h>
 #include <deal.II/fe/fe_values.h>
 #include <deal.II/fe/mapping.h>
+#include <deal.II/lac/affine_constraints.h>
 #include <deal.II/lac/dynamic_sparsity_pattern.h>
 
 #include <contact/contact_discretization.h>
@@ -194,6 +195,41 @@ namespace dualcontact
                                "': the slave body `" + slave.name() +
                                "' has no boundary with id " +
                                std::to_string(pair.slave_boundary) + "."));
+
+        // Hanging slave nodes (3D: the midpoint of a coarse face's edge
+        // next to refined faces) are no contact nodes.  Their displacement
+        // is the constraint's combination of the parent nodes', so their
+        // non-penetration rows would (nearly) repeat the parents' and make F
+        // singular, with the multipliers split arbitrarily between them.
+        // The fine shape function phi_h of such a node is part of the
+        // parents' basis functions (phi_j + c_j phi_h on the refined side),
+        // so its weight and weighted normal go to the parents with the
+        // constraint's coefficients: w_j = int (phi_j + c_j phi_h) ds.
+        {
+          AffineConstraints<double> hanging;
+          DoFTools::make_hanging_node_constraints(slave.dof_handler(), hanging);
+          hanging.close();
+          for (auto it = accumulated.begin(); it != accumulated.end();)
+          {
+            if (!hanging.is_constrained(it->first))
+            {
+              ++it;
+              continue;
+            }
+            const auto *line = hanging.get_constraint_entries(it->first);
+            Assert(line != nullptr, ExcInternalError());
+            for (const auto &[parent, coefficient] : *line)
+            {
+              const auto to = accumulated.find(parent);
+              // the parents are the vertices of the coarse face's edge:
+              // slave boundary nodes themselves, never hanging (closed)
+              Assert(to != accumulated.end(), ExcInternalError());
+              to->second.weight += coefficient * it->second.weight;
+              to->second.normal += coefficient * it->second.normal;
+            }
+            it = accumulated.erase(it);
+          }
+        }
 
         std::vector<Point<dim>> support_points(slave.n_dofs());
         DoFTools::map_dofs_to_support_points(slave.mapping(),

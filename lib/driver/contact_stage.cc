@@ -269,6 +269,22 @@ namespace dualcontact
 
 
     template <int dim>
+    void
+    ContactStage<dim>::reset()
+    {
+      dual_.reset();
+      contact_.reset();
+      result_       = typename contact::ContactSolver<dim>::Result();
+      primal_json_  = "";
+      qp_wall_time_ = 0;
+      surfaces_.clear();
+      surface_owners_.clear();
+      coulomb_iterates_.clear();
+      pair_results_.clear();
+    }
+
+
+    template <int dim>
     typename ContactStage<dim>::Surfaces
     ContactStage<dim>::contact_surfaces(
       const dealii::Vector<double>              &lambda,

@@ -79,6 +79,14 @@ namespace dualcontact
        */
       void
       recover();
+      /**
+       * Let go of everything computed on the scene's bodies (contact
+       * discretization, dual problem with its factors, results), before the
+       * scene drops them to refine its meshes (ContactRefinement); the next
+       * discretize() starts afresh.
+       */
+      void
+      reset();
 
       const qp::SolverParameters &
       qp_parameters() const

@@ -149,6 +149,37 @@ namespace dualcontact
         out << prefix << "max_pressure = " << format_number(r.max_pressure)
             << "\n";
       }
+      if (cycles_ != nullptr && !cycles_->empty())
+      {
+        out << "refinement.n_solves = " << cycles_->size() << "\n";
+        for (const auto &c : *cycles_)
+        {
+          const std::string prefix =
+            "refinement.cycle_" + std::to_string(c.cycle) + ".";
+          unsigned int n_dofs = 0, n_cells = 0;
+          for (unsigned int b = 0; b < c.n_dofs.size(); ++b)
+          {
+            n_dofs += c.n_dofs[b];
+            n_cells += c.n_cells[b];
+          }
+          out << prefix << "n_cells = " << n_cells << "\n";
+          out << prefix << "n_dofs = " << n_dofs << "\n";
+          out << prefix << "n_contact_nodes = " << c.n_contact_nodes << "\n";
+          out << prefix << "n_in_contact = " << c.n_in_contact << "\n";
+          for (unsigned int p = 0; p < c.pair_nodes.size(); ++p)
+          {
+            const std::string pair = prefix + "pair_" + std::to_string(p + 1);
+            out << pair
+                << ".normal_force = " << format_number(c.pair_normal_force[p])
+                << "\n";
+            out << pair
+                << ".max_pressure = " << format_number(c.pair_max_pressure[p])
+                << "\n";
+          }
+          if (&c != &cycles_->back())
+            out << prefix << "n_marked_cells = " << c.n_marked_cells << "\n";
+        }
+      }
       return out.str();
     }
 
@@ -253,6 +284,41 @@ namespace dualcontact
         }
         contact["pairs"] = pairs;
         json["contact"]  = contact;
+      }
+      if (cycles_ != nullptr && !cycles_->empty())
+      {
+        nlohmann::json cycles = nlohmann::json::array();
+        for (const auto &c : *cycles_)
+        {
+          unsigned int n_dofs = 0;
+          for (const auto n : c.n_dofs)
+            n_dofs += n;
+          nlohmann::json pairs = nlohmann::json::array();
+          for (unsigned int p = 0; p < c.pair_nodes.size(); ++p)
+            pairs.push_back({{"n_nodes", c.pair_nodes[p]},
+                             {"n_in_contact", c.pair_in_contact[p]},
+                             {"normal_force", c.pair_normal_force[p]},
+                             {"max_pressure_Pa", c.pair_max_pressure[p]}});
+          nlohmann::json boxes = nlohmann::json::array();
+          for (const auto &[lower, upper] : c.marked_box)
+            boxes.push_back(lower[0] > upper[0] ?
+                              nlohmann::json() :
+                              nlohmann::json{{"lower", to_vector<dim>(lower)},
+                                             {"upper", to_vector<dim>(upper)}});
+          cycles.push_back({{"cycle", c.cycle},
+                            {"marked_cells_box_by_body", boxes},
+                            {"n_cells_by_body", c.n_cells},
+                            {"n_dofs_by_body", c.n_dofs},
+                            {"n_dofs", n_dofs},
+                            {"n_contact_nodes", c.n_contact_nodes},
+                            {"n_in_contact", c.n_in_contact},
+                            {"n_marked_cells", c.n_marked_cells},
+                            {"qp_iterations", c.qp_iterations},
+                            {"qp_hessian_products", c.qp_hessian_products},
+                            {"wall_time_s", c.wall_time},
+                            {"pairs", pairs}});
+        }
+        json["refinement"] = {{"cycles", cycles}};
       }
       json["units"] = dim == 2 ? "SI; forces in N/m and energies in J/m "
                                  "(plane strain, per metre of thickness)" :

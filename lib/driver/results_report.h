@@ -3,6 +3,7 @@
 #include <deal.II/base/parameter_handler.h>
 #include <deal.II/base/timer.h>
 
+#include <driver/contact_refinement.h>
 #include <driver/contact_stage.h>
 #include <driver/scene.h>
 #include <io/output_folder.h>
@@ -60,6 +61,18 @@ namespace dualcontact
                     const dealii::ParameterHandler &prm,
                     const dealii::TimerOutput      &timer) const;
 
+      /**
+       * The solves of a contact refinement loop (ContactRefinement), one
+       * record per cycle, written as `refinement.*' to results.txt and
+       * statistics.json; null or empty (no refinement): nothing written.
+       */
+      void
+      set_refinement_cycles(
+        const std::vector<typename ContactRefinement<dim>::CycleRecord> *cycles)
+      {
+        cycles_ = cycles;
+      }
+
       /** The text of results.txt. */
       std::string
       results_text() const;
@@ -71,6 +84,8 @@ namespace dualcontact
       const Scene<dim>        &scene_;
       const ContactStage<dim> *contact_;
       const std::string        parameter_file_;
+      const std::vector<typename ContactRefinement<dim>::CycleRecord> *cycles_ =
+        nullptr;
     };
   } // namespace driver
 } // namespace dualcontact

@@ -129,6 +129,7 @@ namespace dualcontact
     void
     Scene<dim>::setup(std::vector<std::string> &details)
     {
+      bodies_.clear();
       for (unsigned int b = 0; b < body_parameters_.size(); ++b)
       {
         const BodyParameters<dim> &parameters = body_parameters_[b];
@@ -155,6 +156,27 @@ namespace dualcontact
         }
         details.push_back(line);
         bodies_.push_back(std::move(body));
+      }
+    }
+
+
+    template <int dim>
+    void
+    Scene<dim>::refine(std::vector<std::string> &details)
+    {
+      // the bodies' DoFHandlers must not outlive the meshes' old cells
+      bodies_.clear();
+      displacements_.clear();
+      results_.clear();
+      for (unsigned int b = 0; b < triangulations_.size(); ++b)
+      {
+        const unsigned int before = triangulations_[b]->n_active_cells();
+        triangulations_[b]->execute_coarsening_and_refinement();
+        details.push_back(body_parameters_[b].name + ": " +
+                          std::to_string(before) + " -> " +
+                          std::to_string(triangulations_[b]->n_active_cells()) +
+                          " cells, finest level " +
+                          std::to_string(triangulations_[b]->n_levels() - 1));
       }
     }
 

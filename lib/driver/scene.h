@@ -74,6 +74,20 @@ namespace dualcontact
       /** Postprocessing phase: BodyResults of every body. */
       void
       postprocess();
+      /**
+       * Refinement phase (ContactRefinement): drop the bodies (their dofs,
+       * systems, displacements and results; a ContactStage must have let
+       * go of them first, ContactStage::reset()) and refine every mesh by
+       * its refine flags; setup() and the rest then run on the new meshes.
+       */
+      void
+      refine(std::vector<std::string> &details);
+      /** The mesh of body @p b (after create_meshes()), to flag cells. */
+      dealii::Triangulation<dim> &
+      triangulation(const unsigned int b)
+      {
+        return *triangulations_[b];
+      }
 
       bool
       has_contact() const

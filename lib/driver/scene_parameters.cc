@@ -3,6 +3,7 @@
 #include <contact/contact_solver.h>
 #include <driver/body_parameters.h>
 #include <driver/contact_pair_parameters.h>
+#include <driver/contact_refinement.h>
 #include <driver/obstacle_parameters.h>
 #include <driver/scene_parameters.h>
 #include <fem/stiffness_solver.h>
@@ -150,6 +151,7 @@ namespace dualcontact
       qp::SMALSEMParameters::declare_parameters(prm);
       contact::CoulombParameters::declare_parameters(prm);
       primal::PrimalParameters::declare_parameters(prm);
+      ContactRefinement<3>::declare_parameters(prm);
 
       if (layout.dimension == 2)
       {

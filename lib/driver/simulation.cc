@@ -41,7 +41,9 @@ namespace dualcontact
                     "under MPI. " +
                     io::parameter_location("Output", "FCLIB problem")));
 
-      scene_ = std::make_unique<Scene<dim>>(prm, parameter_file);
+      scene_      = std::make_unique<Scene<dim>>(prm, parameter_file);
+      refinement_ = std::make_unique<ContactRefinement<dim>>(
+        prm, scene_->pair_parameters().size());
       if (scene_->has_contact())
         contact_ = std::make_unique<ContactStage<dim>>(prm, *scene_);
     }
@@ -92,20 +94,74 @@ namespace dualcontact
       console_ << std::endl;
 
       run_phase("Mesh", [&]() { scene.create_meshes(details_); });
-      run_phase("Setup", [&]() { scene.setup(details_); });
-      run_phase("Assembly", [&]() { scene.assemble(); });
-      if (has_contact)
+      // Contact refinement: cycle 0 solves on the meshes as given, each
+      // further cycle refines the contact zone of the previous solution and
+      // solves again (the phase timings add up over the cycles)
+      const unsigned int n_cycles = refinement_->n_cycles();
+      for (unsigned int cycle = 0; cycle <= n_cycles; ++cycle)
       {
-        ContactStage<dim> &contact = *contact_;
-        run_phase("Contact search", [&]() { contact.discretize(details_); });
-        run_phase("Factorization",
-                  [&]() { contact.setup_dual_problem(details_); });
-        run_phase("QP", [&]() { contact.solve(details_); });
-        run_phase("Recovery", [&]() { contact.recover(); });
+        dealii::Timer cycle_timer;
+        if (cycle > 0)
+        {
+          console_ << "Refinement cycle " << cycle << " of " << n_cycles << " ("
+                   << refinement_->description() << ")" << std::endl;
+          run_phase("Refinement",
+                    [&]()
+                    {
+                      refinement_->mark(scene, *contact_, cycles_.back());
+                      details_.push_back(
+                        std::to_string(cycles_.back().n_marked_cells) +
+                        " cells marked");
+                      contact_->reset();
+                      scene.refine(details_);
+                    });
+        }
+        run_phase("Setup", [&]() { scene.setup(details_); });
+        run_phase("Assembly", [&]() { scene.assemble(); });
+        if (has_contact)
+        {
+          ContactStage<dim> &contact = *contact_;
+          run_phase("Contact search", [&]() { contact.discretize(details_); });
+          run_phase("Factorization",
+                    [&]() { contact.setup_dual_problem(details_); });
+          run_phase("QP", [&]() { contact.solve(details_); });
+          run_phase("Recovery", [&]() { contact.recover(); });
+        }
+        else
+          run_phase("Solve", [&]() { scene.solve(details_); });
+        run_phase("Postprocessing", [&]() { scene.postprocess(); });
+        if (n_cycles == 0)
+          break;
+
+        cycle_timer.stop();
+        cycles_.push_back(refinement_->record(
+          cycle, scene, *contact_, cycle_timer.wall_time()));
+        const auto        &r = cycles_.back();
+        std::ostringstream line;
+        unsigned int       n_dofs = 0;
+        for (const auto n : r.n_dofs)
+          n_dofs += n;
+        line << std::setprecision(4) << "  cycle " << cycle << ": " << n_dofs
+             << " dofs, " << r.n_contact_nodes << " contact nodes ("
+             << r.n_in_contact << " in contact), max pressure "
+             << r.pair_max_pressure[0] << " Pa, " << r.wall_time << " s";
+        console_ << line.str() << std::endl;
+        if (!contact_->result().converged)
+        {
+          console_ << "  the contact solver did not converge: no further "
+                      "refinement"
+                   << std::endl;
+          break;
+        }
+        if (refinement_->max_dofs() > 0 && n_dofs >= refinement_->max_dofs() &&
+            cycle < n_cycles)
+        {
+          console_ << "  " << n_dofs << " dofs reach the `Maximum dofs' "
+                   << refinement_->max_dofs() << ": no further refinement"
+                   << std::endl;
+          break;
+        }
       }
-      else
-        run_phase("Solve", [&]() { scene.solve(details_); });
-      run_phase("Postprocessing", [&]() { scene.postprocess(); });
 
       console_ << "Results:" << std::endl;
       for (unsigned int b = 0; b < scene.n_bodies(); ++b)
@@ -132,7 +188,8 @@ namespace dualcontact
 
       // every process writes its pieces (io::write_solution is collective);
       // process 0 also the master files and the records
-      const ResultsReport<dim> report(scene, contact_.get(), parameter_file_);
+      ResultsReport<dim> report(scene, contact_.get(), parameter_file_);
+      report.set_refinement_cycles(&cycles_);
       run_phase("Output",
                 [&]()
                 {

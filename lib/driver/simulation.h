@@ -4,6 +4,7 @@
 #include <deal.II/base/parameter_handler.h>
 #include <deal.II/base/timer.h>
 
+#include <driver/contact_refinement.h>
 #include <driver/contact_stage.h>
 #include <driver/scene.h>
 #include <io/output_folder.h>
@@ -37,7 +38,10 @@ namespace dualcontact
      * The work is in Scene (bodies: meshes, assembly, solve, per-body
      * results), ContactStage (contact search, dual problem, QP, recovery,
      * contact surfaces) and ResultsReport (the files written); this class
-     * runs the phases and prints the log.
+     * runs the phases and prints the log.  With `Contact refinement/Cycles'
+     * > 0 it repeats Setup .. Postprocessing on meshes refined at the
+     * contact zone by ContactRefinement (a Refinement phase before each
+     * repeat); the output is the last solve's.
      */
     template <int dim>
     class Simulation
@@ -76,6 +80,10 @@ namespace dualcontact
       std::unique_ptr<Scene<dim>>       scene_;
       /** Null for a scene without contact pairs. */
       std::unique_ptr<ContactStage<dim>> contact_;
+      /** Subsection `Contact refinement' (0 cycles: one solve). */
+      std::unique_ptr<ContactRefinement<dim>> refinement_;
+      /** Per solve of the refinement loop (empty without refinement). */
+      std::vector<typename ContactRefinement<dim>::CycleRecord> cycles_;
       /** The console lines of the current phase. */
       std::vector<std::string> details_;
     };
