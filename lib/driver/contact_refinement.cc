@@ -25,7 +25,37 @@ namespace dualcontact
     namespace
     {
       const std::string subsection = "Contact refinement";
-    }
+
+      /**
+       * The number of active cells of @p tria flagged for refinement and
+       * the bounding box (lower, upper corner) of their vertices; lower >
+       * upper when none.
+       */
+      template <int dim>
+      std::pair<unsigned int, std::pair<dealii::Point<dim>, dealii::Point<dim>>>
+      flagged_box(const dealii::Triangulation<dim> &tria)
+      {
+        dealii::Point<dim> lower, upper;
+        for (unsigned int d = 0; d < dim; ++d)
+        {
+          lower[d] = std::numeric_limits<double>::max();
+          upper[d] = -std::numeric_limits<double>::max();
+        }
+        unsigned int n = 0;
+        for (const auto &cell : tria.active_cell_iterators())
+          if (cell->refine_flag_set())
+          {
+            ++n;
+            for (const unsigned int v : cell->vertex_indices())
+              for (unsigned int d = 0; d < dim; ++d)
+              {
+                lower[d] = std::min(lower[d], cell->vertex(v)[d]);
+                upper[d] = std::max(upper[d], cell->vertex(v)[d]);
+              }
+          }
+        return {n, {lower, upper}};
+      }
+    } // namespace
 
 
     template <int dim>
@@ -61,7 +91,7 @@ namespace dualcontact
         "grow under a finer mesh); 0 = the nodes in contact only.");
       prm.declare_entry(
         "Zone factor",
-        "1",
+        "0.25",
         dealii::Patterns::Double(0.),
         "Besides the cells at the marked nodes, the cells within this "
         "factor [-] times the size of the pair's marked zone (the diagonal "
@@ -73,12 +103,12 @@ namespace dualcontact
         "a marked node.");
       prm.declare_entry(
         "Indicator fraction",
-        "0",
+        "0.1",
         dealii::Patterns::Double(0., 1.),
         "Fraction [-] of the cells of every body of a selected pair with the "
         "largest Kelly error indicator of the displacement (jumps of the "
         "normal derivative across faces) refined in addition to the contact "
-        "zone; 0 (default) = contact zone only, 1 = every cell with a "
+        "zone; 0 = contact zone only, 1 = every cell with a "
         "non-zero indicator.");
       prm.declare_entry("Maximum level",
                         "0",
@@ -213,49 +243,7 @@ namespace dualcontact
           selected_body[pair.master_body] = true;
       }
 
-      // 1. The error indicator (before the contact marks: it only adds).
-      if (indicator_fraction_ > 0)
-        for (unsigned int b = 0; b < n_bodies; ++b)
-          if (selected_body[b])
-          {
-            const fem::ElasticBody<dim> &body = scene.body(b);
-            dealii::Vector<float>        indicator(
-              body.triangulation().n_active_cells());
-            dealii::KellyErrorEstimator<dim>::estimate(body.mapping(),
-                                                       body.dof_handler(),
-                                                       dealii::QGauss<dim - 1>(
-                                                         body.fe().degree + 1),
-                                                       {},
-                                                       scene.displacements()[b],
-                                                       indicator);
-            // a parallel (shared) mesh: each process estimates its own
-            // cells, zero elsewhere; the sum is the whole indicator on every
-            // process, so that all mark alike
-            if (dealii::Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD) > 1)
-            {
-              std::vector<float> local(indicator.begin(), indicator.end()),
-                total(local.size());
-              dealii::Utilities::MPI::sum(local, MPI_COMM_WORLD, total);
-              std::copy(total.begin(), total.end(), indicator.begin());
-            }
-            std::vector<unsigned int> order(indicator.size());
-            std::iota(order.begin(), order.end(), 0u);
-            std::stable_sort(order.begin(),
-                             order.end(),
-                             [&](const unsigned int i, const unsigned int j)
-                             { return indicator[i] > indicator[j]; });
-            const unsigned int n_mark = static_cast<unsigned int>(
-              std::ceil(indicator_fraction_ * indicator.size()));
-            std::vector<bool> marked(indicator.size(), false);
-            for (unsigned int k = 0; k < n_mark && k < order.size(); ++k)
-              if (indicator[order[k]] > 0)
-                marked[order[k]] = true;
-            for (const auto &cell : body.dof_handler().active_cell_iterators())
-              if (marked[cell->active_cell_index()])
-                cell->set_refine_flag();
-          }
-
-      // 2. The contact zone: the marked nodes (in contact, or closer than
+      // 1. The contact zone: the marked nodes (in contact, or closer than
       // the gap threshold) and the closest master points of body-body
       // pairs; the cells with a dof of a marked slave node, the master
       // cells at the master points, and the cells within zone factor times
@@ -353,6 +341,59 @@ namespace dualcontact
         }
       }
 
+      // the contact zone's own flags (before the indicator and the
+      // hanging-node balance add theirs): where the zone criteria refine
+      record.n_zone_cells = 0;
+      record.zone_box.clear();
+      for (unsigned int b = 0; b < n_bodies; ++b)
+      {
+        const auto box = flagged_box(scene.triangulation(b));
+        record.n_zone_cells += box.first;
+        record.zone_box.push_back(box.second);
+      }
+
+      // 2. The error indicator (adds to the contact zone's flags).
+      if (indicator_fraction_ > 0)
+        for (unsigned int b = 0; b < n_bodies; ++b)
+          if (selected_body[b])
+          {
+            const fem::ElasticBody<dim> &body = scene.body(b);
+            dealii::Vector<float>        indicator(
+              body.triangulation().n_active_cells());
+            dealii::KellyErrorEstimator<dim>::estimate(body.mapping(),
+                                                       body.dof_handler(),
+                                                       dealii::QGauss<dim - 1>(
+                                                         body.fe().degree + 1),
+                                                       {},
+                                                       scene.displacements()[b],
+                                                       indicator);
+            // a parallel (shared) mesh: each process estimates its own
+            // cells, zero elsewhere; the sum is the whole indicator on every
+            // process, so that all mark alike
+            if (dealii::Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD) > 1)
+            {
+              std::vector<float> local(indicator.begin(), indicator.end()),
+                total(local.size());
+              dealii::Utilities::MPI::sum(local, MPI_COMM_WORLD, total);
+              std::copy(total.begin(), total.end(), indicator.begin());
+            }
+            std::vector<unsigned int> order(indicator.size());
+            std::iota(order.begin(), order.end(), 0u);
+            std::stable_sort(order.begin(),
+                             order.end(),
+                             [&](const unsigned int i, const unsigned int j)
+                             { return indicator[i] > indicator[j]; });
+            const unsigned int n_mark = static_cast<unsigned int>(
+              std::ceil(indicator_fraction_ * indicator.size()));
+            std::vector<bool> marked(indicator.size(), false);
+            for (unsigned int k = 0; k < n_mark && k < order.size(); ++k)
+              if (indicator[order[k]] > 0)
+                marked[order[k]] = true;
+            for (const auto &cell : body.dof_handler().active_cell_iterators())
+              if (marked[cell->active_cell_index()])
+                cell->set_refine_flag();
+          }
+
       // 3. The level limit; then the flags the mesh adds to keep one
       // hanging node per face (prepare_coarsening_and_refinement), so that
       // the count and the boxes say what will be refined.
@@ -367,24 +408,9 @@ namespace dualcontact
                 static_cast<unsigned int>(cell->level()) >= max_level_)
               cell->clear_refine_flag();
         tria.prepare_coarsening_and_refinement();
-        dealii::Point<dim> lower, upper;
-        for (unsigned int d = 0; d < dim; ++d)
-        {
-          lower[d] = std::numeric_limits<double>::max();
-          upper[d] = -std::numeric_limits<double>::max();
-        }
-        for (const auto &cell : tria.active_cell_iterators())
-          if (cell->refine_flag_set())
-          {
-            ++record.n_marked_cells;
-            for (const unsigned int v : cell->vertex_indices())
-              for (unsigned int d = 0; d < dim; ++d)
-              {
-                lower[d] = std::min(lower[d], cell->vertex(v)[d]);
-                upper[d] = std::max(upper[d], cell->vertex(v)[d]);
-              }
-          }
-        record.marked_box.emplace_back(lower, upper);
+        const auto box = flagged_box(tria);
+        record.n_marked_cells += box.first;
+        record.marked_box.push_back(box.second);
       }
     }
 

@@ -76,6 +76,13 @@ namespace dualcontact
          */
         std::vector<std::pair<dealii::Point<dim>, dealii::Point<dim>>>
           marked_box;
+        /**
+         * The same for the cells the contact zone criteria flagged (nodes,
+         * gap threshold, zone factor), before the error indicator and the
+         * balance add theirs.
+         */
+        unsigned int n_zone_cells = 0;
+        std::vector<std::pair<dealii::Point<dim>, dealii::Point<dim>>> zone_box;
         /** Per pair: contact nodes, in contact, normal force, max pressure. */
         std::vector<unsigned int> pair_nodes, pair_in_contact;
         std::vector<double>       pair_normal_force, pair_max_pressure;
@@ -139,7 +146,7 @@ namespace dualcontact
       std::vector<unsigned int> pairs_;
       bool                      all_pairs_          = true;
       double                    gap_threshold_      = 0;
-      double                    zone_factor_        = 1;
+      double                    zone_factor_        = 0.25;
       double                    indicator_fraction_ = 0;
       unsigned int              max_level_          = 0;
       unsigned int              max_dofs_           = 0;

@@ -305,8 +305,17 @@ namespace dualcontact
                               nlohmann::json() :
                               nlohmann::json{{"lower", to_vector<dim>(lower)},
                                              {"upper", to_vector<dim>(upper)}});
+          nlohmann::json zone_boxes = nlohmann::json::array();
+          for (const auto &[lower, upper] : c.zone_box)
+            zone_boxes.push_back(
+              lower[0] > upper[0] ?
+                nlohmann::json() :
+                nlohmann::json{{"lower", to_vector<dim>(lower)},
+                               {"upper", to_vector<dim>(upper)}});
           cycles.push_back({{"cycle", c.cycle},
                             {"marked_cells_box_by_body", boxes},
+                            {"n_zone_cells", c.n_zone_cells},
+                            {"zone_cells_box_by_body", zone_boxes},
                             {"n_cells_by_body", c.n_cells},
                             {"n_dofs_by_body", c.n_dofs},
                             {"n_dofs", n_dofs},

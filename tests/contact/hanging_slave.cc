@@ -17,8 +17,8 @@
 #include <contact/contact_solver.h>
 #include <fem/cholmod_solver.h>
 
+#include "unit_box.h"
 #include <test_tools.h>
-#include <unit_box.h>
 
 #include <cmath>
 #include <iostream>
