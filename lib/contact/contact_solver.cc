@@ -3,6 +3,7 @@
 #include <qp/solver_factory.h>
 
 #include <cmath>
+#include <type_traits>
 
 namespace dualcontact
 {
@@ -58,25 +59,74 @@ namespace dualcontact
     }
 
 
-    template <int dim>
-    qp::SolverStatistics
-    ContactSolver<dim>::solve_qp(dealii::Vector<double> &lambda) const
+    namespace
     {
-      const qp::Problem<dealii::Vector<double>> problem = dual_.make_problem();
+      using Replicated  = dealii::Vector<double>;
+      using Distributed = dealii::TrilinosWrappers::MPI::Vector;
+
+      template <int dim>
+      qp::Problem<Replicated>
+      make_problem(const DualProblem<dim> &dual, const Replicated &)
+      {
+        return dual.make_problem();
+      }
+
+      template <int dim>
+      qp::Problem<Distributed>
+      make_problem(const DualProblem<dim> &dual, const Distributed &)
+      {
+        return dual.make_distributed_problem();
+      }
+
+      template <int dim>
+      void
+      update_bounds(DualProblem<dim> &dual, const Replicated &lambda)
+      {
+        dual.update_slip_bounds(&lambda);
+      }
+
+      template <int dim>
+      void
+      update_bounds(DualProblem<dim> &dual, const Distributed &lambda)
+      {
+        dual.update_slip_bounds(lambda);
+      }
+
+      /** Result::lambda: the whole vector (gathered if distributed). */
+      template <int dim>
+      void
+      whole(const DualProblem<dim> &, const Replicated &v, Replicated &out)
+      {
+        out = v;
+      }
+
+      template <int dim>
+      void
+      whole(const DualProblem<dim> &dual, const Distributed &v, Replicated &out)
+      {
+        dual.gather(v, out);
+      }
+    } // namespace
+
+
+    template <int dim>
+    template <typename V>
+    qp::SolverStatistics
+    ContactSolver<dim>::solve_qp(V &lambda) const
+    {
+      const qp::Problem<V> problem = make_problem(dual_, lambda);
       if (qp_parameters_.solver == "auto")
       {
         // by the constraint types, with fall-back (SMALSE-M inside)
-        qp::SolverChain<dealii::Vector<double>> chain(qp_parameters_,
-                                                      smalse_parameters_);
+        qp::SolverChain<V> chain(qp_parameters_, smalse_parameters_);
         return chain.solve(problem, lambda);
       }
       if (problem.equality)
       {
-        qp::SMALSEM<dealii::Vector<double>> solver(qp_parameters_,
-                                                   smalse_parameters_);
+        qp::SMALSEM<V> solver(qp_parameters_, smalse_parameters_);
         return solver.solve(problem, lambda);
       }
-      auto solver = qp::create<dealii::Vector<double>>(qp_parameters_);
+      auto solver = qp::create<V>(qp_parameters_);
       return solver->solve(problem, lambda);
     }
 
@@ -86,18 +136,47 @@ namespace dualcontact
     ContactSolver<dim>::solve(
       const std::function<void(const Result &)> &on_iterate)
     {
+      if (dual_.is_distributed())
+        return solve_on<Distributed>(on_iterate);
+      return solve_on<Replicated>(on_iterate);
+    }
+
+
+    template <int dim>
+    template <typename V>
+    typename ContactSolver<dim>::Result
+    ContactSolver<dim>::solve_on(
+      const std::function<void(const Result &)> &on_iterate)
+    {
       Result result;
-      result.lambda.reinit(dual_.n_multipliers());
+      V      lambda;
+      if constexpr (std::is_same_v<V, Distributed>)
+      {
+        dual_.initialize_multipliers(lambda);
+        result.qp_vectors = "dealii::TrilinosWrappers::MPI::Vector";
+        result.multipliers_per_process =
+          dealii::Utilities::MPI::all_gather(lambda.get_mpi_communicator(),
+                                             static_cast<unsigned int>(
+                                               lambda.locally_owned_size()));
+      }
+      else
+      {
+        lambda.reinit(dual_.n_multipliers());
+        result.qp_vectors              = "dealii::Vector<double>";
+        result.multipliers_per_process = {
+          static_cast<unsigned int>(lambda.size())};
+      }
       dual_.update_slip_bounds(nullptr);
 
       const bool has_coulomb = dual_.has_coulomb_friction();
 
-      result.qp_statistics.push_back(solve_qp(result.lambda));
+      result.qp_statistics.push_back(solve_qp(lambda));
       if (!result.qp_statistics.back().converged())
       {
         result.reason = "QP solver did not converge: " +
                         qp::to_string(result.qp_statistics.back().reason);
-        if (!dual_.recover(result.lambda, result.displacements, false))
+        whole(dual_, lambda, result.lambda);
+        if (!dual_.recover(lambda, result.displacements, false))
           result.reason += " (the multipliers leave the rigid-body motion "
                            "of a floating body undetermined: set to zero)";
         return result;
@@ -110,7 +189,7 @@ namespace dualcontact
         {
           const std::vector<double> old_first  = dual_.slip_bounds_first();
           const std::vector<double> old_second = dual_.slip_bounds_second();
-          dual_.update_slip_bounds(&result.lambda);
+          update_bounds(dual_, lambda);
           double change = 0, norm = 0;
           bool   from_bonded = false;
           for (unsigned int j = 0; j < old_first.size(); ++j)
@@ -135,7 +214,8 @@ namespace dualcontact
           result.coulomb_changes.push_back(relative);
           if (on_iterate)
           {
-            dual_.recover(result.lambda, result.displacements, false);
+            whole(dual_, lambda, result.lambda);
+            dual_.recover(lambda, result.displacements, false);
             on_iterate(result);
           }
           if (!std::isfinite(relative))
@@ -170,7 +250,7 @@ namespace dualcontact
                             std::to_string(relative);
             break;
           }
-          result.qp_statistics.push_back(solve_qp(result.lambda));
+          result.qp_statistics.push_back(solve_qp(lambda));
           if (!result.qp_statistics.back().converged())
           {
             result.reason = "QP solver did not converge in Coulomb iteration " +
@@ -185,7 +265,8 @@ namespace dualcontact
 
       if (result.converged)
         result.reason = "converged";
-      if (!dual_.recover(result.lambda, result.displacements, result.converged))
+      whole(dual_, lambda, result.lambda);
+      if (!dual_.recover(lambda, result.displacements, result.converged))
         result.reason += " (the multipliers leave the rigid-body motion of a "
                          "floating body undetermined: set to zero)";
       return result;

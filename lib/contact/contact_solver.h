@@ -8,6 +8,7 @@
 #include <qp/solver_parameters.h>
 #include <qp/solver_statistics.h>
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -42,6 +43,13 @@ namespace dualcontact
      * lambda_T, which is feasible for any load), each QP warm
      * started from the previous multipliers.  QPs with equality constraints
      * (floating bodies) go through SMALSE-M with the chosen solver inside.
+     *
+     * The QPs run on the DualProblem's vectors: dealii::Vector<double>
+     * (replicated), or dealii::TrilinosWrappers::MPI::Vector with each
+     * contact node's multipliers on one process (DualProblem::
+     * is_distributed()); then the Coulomb bounds and the recovery are
+     * computed from the owned multipliers too, and Result::lambda is the
+     * gathered whole vector (for the output).
      */
     template <int dim>
     class ContactSolver
@@ -58,6 +66,16 @@ namespace dualcontact
         bool                converged = false;
         /** "converged", or why not (QP failure, Coulomb limit/divergence). */
         std::string reason;
+        /**
+         * The vector type the QPs ran on: "dealii::Vector<double>" or
+         * "dealii::TrilinosWrappers::MPI::Vector".
+         */
+        std::string qp_vectors;
+        /**
+         * The multipliers each process held in the QP's vector (its locally
+         * owned size, gathered; one entry when replicated).
+         */
+        std::vector<unsigned int> multipliers_per_process;
       };
 
       ContactSolver(DualProblem<dim>            &dual,
@@ -70,8 +88,15 @@ namespace dualcontact
       solve(const std::function<void(const Result &)> &on_iterate = {});
 
     private:
+      /** solve() on the vectors @p V of the QP. */
+      template <typename V>
+      Result
+      solve_on(const std::function<void(const Result &)> &on_iterate);
+
+      /** One QP from the dual's current slip bounds, warm started. */
+      template <typename V>
       qp::SolverStatistics
-      solve_qp(dealii::Vector<double> &lambda) const;
+      solve_qp(V &lambda) const;
 
       DualProblem<dim>     &dual_;
       qp::SolverParameters  qp_parameters_;

@@ -42,6 +42,17 @@ namespace dualcontact
                         "assembled operator (F, and per body L and W) may "
                         "take; `automatic' falls back to implicit above it, "
                         "`assembled' stops with an error.");
+      prm.declare_entry(
+        "QP vectors",
+        "automatic",
+        Patterns::Selection("automatic|replicated|distributed"),
+        "The vectors the dual QP runs on. replicated: "
+        "dealii::Vector<double>, the whole QP on every process. "
+        "distributed: dealii::TrilinosWrappers::MPI::Vector, the "
+        "multipliers of each contact node (normal and tangential) on the "
+        "process owning the node's first slave dof; F products gather what "
+        "they need. automatic: distributed when run on more than one MPI "
+        "process, else replicated.");
       prm.leave_subsection();
     }
 
@@ -55,6 +66,10 @@ namespace dualcontact
                                name == "implicit"  ? Operator::implicit :
                                                      Operator::automatic;
       memory_limit           = prm.get_double("Memory limit");
+      const std::string kind = prm.get("QP vectors");
+      vectors                = kind == "replicated"  ? Vectors::replicated :
+                               kind == "distributed" ? Vectors::distributed :
+                                                       Vectors::automatic;
       prm.leave_subsection();
     }
 
@@ -264,6 +279,170 @@ namespace dualcontact
       AssertThrow(scale_ > 0 && std::isfinite(scale_),
                   ExcMessage("The dual operator F = B K^# B' is zero or not "
                              "finite: are there contact constraints?"));
+
+      distribute_multipliers(parameters);
+    }
+
+
+    template <int dim>
+    void
+    DualProblem<dim>::distribute_multipliers(
+      const DualProblemParameters &parameters)
+    {
+      const unsigned int n_processes =
+        Utilities::MPI::job_supports_mpi() ?
+          Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD) :
+          1;
+      const unsigned int m       = n_multipliers();
+      const unsigned int n_nodes = contact_.n_nodes();
+      AssertThrow(parameters.vectors !=
+                      DualProblemParameters::Vectors::distributed ||
+                    Utilities::MPI::job_supports_mpi(),
+                  ExcMessage("`set QP vectors = distributed' in `subsection "
+                             "Dual problem' needs MPI (Trilinos vectors), "
+                             "which this program did not initialize."));
+      distributed_ =
+        parameters.vectors == DualProblemParameters::Vectors::distributed ||
+        (parameters.vectors == DualProblemParameters::Vectors::automatic &&
+         n_processes > 1);
+      if (!distributed_)
+      {
+        owned_multipliers_ = complete_index_set(m);
+        nodes_per_process_.assign(1, n_nodes);
+        multipliers_per_process_.assign(1, m);
+        return;
+      }
+      communicator_           = MPI_COMM_WORLD;
+      const unsigned int rank = Utilities::MPI::this_mpi_process(communicator_);
+
+      // a node belongs to the process owning its first slave dof, if the
+      // bodies are partitioned (every node claimed exactly once); else
+      // (bodies on plain triangulations: every process owns all dofs) the
+      // nodes are split evenly in their order
+      std::vector<unsigned int> mine(n_nodes, 0), claims(n_nodes, 0);
+      for (unsigned int i = 0; i < n_nodes; ++i)
+      {
+        const ContactNode<dim> &node = contact_.nodes()[i];
+        const unsigned int      b    = contact_.pairs()[node.pair].slave_body;
+        mine[i] = bodies_[b]->dof_handler().locally_owned_dofs().is_element(
+                    node.dofs[0]) ?
+                    1 :
+                    0;
+      }
+      Utilities::MPI::sum(mine, communicator_, claims);
+      const bool partitioned =
+        std::all_of(claims.begin(),
+                    claims.end(),
+                    [](const unsigned int c) { return c == 1; });
+      owned_nodes_.clear();
+      owned_frictional_.clear();
+      for (unsigned int i = 0; i < n_nodes; ++i)
+      {
+        const bool owned =
+          partitioned ?
+            mine[i] == 1 :
+            (i >= static_cast<unsigned long>(n_nodes) * rank / n_processes &&
+             i <
+               static_cast<unsigned long>(n_nodes) * (rank + 1) / n_processes);
+        if (!owned)
+          continue;
+        owned_nodes_.push_back(i);
+        if (frictional_index_[i] >= 0)
+          owned_frictional_.push_back(frictional_index_[i]);
+      }
+
+      owned_multipliers_ = IndexSet(m);
+      for (const unsigned int i : owned_nodes_)
+        owned_multipliers_.add_index(i);
+      for (const unsigned int j : owned_frictional_)
+        owned_multipliers_.add_range(n_nodes + (dim - 1) * j,
+                                     n_nodes + (dim - 1) * (j + 1));
+      owned_multipliers_.compress();
+      owned_rows_.clear();
+      for (const auto r : owned_multipliers_)
+        owned_rows_.push_back(r);
+      nodes_per_process_ = Utilities::MPI::all_gather(
+        communicator_, static_cast<unsigned int>(owned_nodes_.size()));
+      multipliers_per_process_ = Utilities::MPI::all_gather(
+        communicator_, static_cast<unsigned int>(owned_rows_.size()));
+
+      initialize_multipliers(d_distributed_);
+      for (unsigned int k = 0; k < owned_rows_.size(); ++k)
+        d_distributed_.begin()[k] = d_(owned_rows_[k]);
+
+      // the few rows of G and e: on process 0
+      const unsigned int n_modes = rigid_modes_.size();
+      owned_modes_               = IndexSet(n_modes);
+      if (rank == 0)
+        owned_modes_.add_range(0, n_modes);
+      owned_modes_.compress();
+      e_distributed_.reinit(owned_modes_, communicator_);
+      for (unsigned int k = 0; k < e_distributed_.locally_owned_size(); ++k)
+        e_distributed_.begin()[k] =
+          e_orthonormal_(owned_modes_.nth_index_in_set(k));
+    }
+
+
+    template <int dim>
+    bool
+    DualProblem<dim>::is_distributed() const
+    {
+      return distributed_;
+    }
+
+
+    template <int dim>
+    const IndexSet &
+    DualProblem<dim>::locally_owned_multipliers() const
+    {
+      return owned_multipliers_;
+    }
+
+
+    template <int dim>
+    const std::vector<unsigned int> &
+    DualProblem<dim>::contact_nodes_per_process() const
+    {
+      return nodes_per_process_;
+    }
+
+
+    template <int dim>
+    const std::vector<unsigned int> &
+    DualProblem<dim>::multipliers_per_process() const
+    {
+      return multipliers_per_process_;
+    }
+
+
+    template <int dim>
+    void
+    DualProblem<dim>::initialize_multipliers(DistributedVector &lambda) const
+    {
+      AssertThrow(distributed_,
+                  ExcMessage("DualProblem: distributed multipliers asked "
+                             "for a replicated dual problem."));
+      lambda.reinit(owned_multipliers_, communicator_);
+    }
+
+
+    template <int dim>
+    void
+    DualProblem<dim>::gather(const DistributedVector &lambda,
+                             VectorType              &whole) const
+    {
+      AssertDimension(lambda.locally_owned_size(), owned_rows_.size());
+      whole.reinit(n_multipliers());
+      for (unsigned int k = 0; k < owned_rows_.size(); ++k)
+        whole(owned_rows_[k]) = lambda.begin()[k];
+      // each entry is owned by one process: the sum is the entry itself
+      const int ierr = MPI_Allreduce(MPI_IN_PLACE,
+                                     whole.begin(),
+                                     whole.size(),
+                                     MPI_DOUBLE,
+                                     MPI_SUM,
+                                     communicator_);
+      AssertThrowMPI(ierr);
     }
 
 
@@ -324,6 +503,15 @@ namespace dualcontact
                                            const unsigned int j) const
     {
       const unsigned int first = n_contact_nodes() + (dim - 1) * j;
+      return friction_utilization(j, lambda.begin() + first);
+    }
+
+
+    template <int dim>
+    double
+    DualProblem<dim>::friction_utilization(const unsigned int j,
+                                           const double      *tangential) const
+    {
       const FrictionLaw &law =
         contact_.pairs()[contact_.nodes()[frictional_nodes_[j]].pair].friction;
       double ratio2 = 0;
@@ -333,7 +521,7 @@ namespace dualcontact
         const double bound = (dim == 3 && law.is_orthotropic() && k == 1) ?
                                psi_second_[j] :
                                psi_first_[j];
-        const double value = lambda(first + k);
+        const double value = tangential[k];
         if (std::isinf(bound))
           continue;
         if (bound > 0)
@@ -394,6 +582,41 @@ namespace dualcontact
             (law.is_orthotropic() ? law.second : law.first) * n.weight;
         }
       }
+    }
+
+
+    template <int dim>
+    void
+    DualProblem<dim>::update_slip_bounds(const DistributedVector &lambda)
+    {
+      Assert(distributed_, ExcInternalError());
+      // the owned nodes' bounds, zero elsewhere, summed: each node's bound
+      // comes from the one process that owns it
+      const unsigned int  n_frictional = frictional_nodes_.size();
+      std::vector<double> first(n_frictional, 0.), second(n_frictional, 0.);
+      for (const unsigned int j : owned_frictional_)
+      {
+        const unsigned int      node = frictional_nodes_[j];
+        const ContactNode<dim> &n    = contact_.nodes()[node];
+        const FrictionLaw      &law  = contact_.pairs()[n.pair].friction;
+        if (law.is_coulomb())
+        {
+          const double lambda_n =
+            std::max(lambda.begin()[owned_multipliers_.index_within_set(node)],
+                     0.);
+          first[j] = law.first * lambda_n;
+          second[j] =
+            (law.is_orthotropic() ? law.second : law.first) * lambda_n;
+        }
+        else
+        {
+          first[j] = law.first * n.weight;
+          second[j] =
+            (law.is_orthotropic() ? law.second : law.first) * n.weight;
+        }
+      }
+      Utilities::MPI::sum(first, communicator_, psi_first_);
+      Utilities::MPI::sum(second, communicator_, psi_second_);
     }
 
 
@@ -474,6 +697,174 @@ namespace dualcontact
         problem.semidefinite    = true;
       }
       return problem;
+    }
+
+
+    template <int dim>
+    qp::Problem<typename DualProblem<dim>::DistributedVector>
+    DualProblem<dim>::make_distributed_problem() const
+    {
+      AssertThrow(distributed_,
+                  ExcMessage("DualProblem: a distributed QP asked for a "
+                             "replicated dual problem."));
+      using V = DistributedVector;
+      qp::Problem<V> problem;
+      problem.hessian = [this](V &dst, const V &src)
+      {
+        apply_F(dst, src);
+        dst /= scale_;
+      };
+      problem.b = d_distributed_;
+      problem.b /= scale_;
+      problem.lambda_max = 1.05;
+
+      // the blocks of the owned nodes only (the same as make_problem()'s)
+      auto               set     = std::make_shared<qp::SeparableSet<V>>();
+      const unsigned int n_nodes = contact_.n_nodes();
+      for (const unsigned int i : owned_nodes_)
+        set->add_bound(i, 0.);
+      for (const unsigned int j : owned_frictional_)
+      {
+        const unsigned int first = n_nodes + (dim - 1) * j;
+        const FrictionLaw &law =
+          contact_.pairs()[contact_.nodes()[frictional_nodes_[j]].pair]
+            .friction;
+        if (std::isinf(psi_first_[j]) || std::isinf(psi_second_[j]))
+          continue;
+        if (dim == 2)
+          set->add_box(first, -psi_first_[j], psi_first_[j]);
+        else if (law.is_orthotropic() && psi_first_[j] > 0 &&
+                 psi_second_[j] > 0)
+          set->add_ellipse(first, psi_first_[j], psi_second_[j]);
+        else
+          set->add_disc(first, std::min(psi_first_[j], psi_second_[j]));
+      }
+      set->finalize(problem.b);
+      problem.constraints = set;
+
+      if (!G_rows_.empty())
+      {
+        auto equality = std::make_shared<qp::EqualityConstraints<V>>();
+        // dst = G~ src: partial dot products over the owned multipliers,
+        // summed; the rows live on process 0
+        equality->vmult = [this](V &dst, const V &src)
+        {
+          const unsigned int  n_modes = G_orthonormal_.size();
+          std::vector<double> partial(n_modes, 0.), total(n_modes);
+          for (unsigned int k = 0; k < n_modes; ++k)
+            for (unsigned int l = 0; l < owned_rows_.size(); ++l)
+              partial[k] += G_orthonormal_[k](owned_rows_[l]) * src.begin()[l];
+          Utilities::MPI::sum(partial, communicator_, total);
+          if (dst.size() != n_modes)
+            dst.reinit(owned_modes_, communicator_);
+          for (unsigned int l = 0; l < dst.locally_owned_size(); ++l)
+            dst.begin()[l] = total[owned_modes_.nth_index_in_set(l)];
+        };
+        // dst = G~' src: the few coefficients to every process, then the
+        // owned entries
+        equality->Tvmult = [this](V &dst, const V &src)
+        {
+          const unsigned int  n_modes = G_orthonormal_.size();
+          std::vector<double> partial(n_modes, 0.), total(n_modes);
+          for (unsigned int l = 0; l < src.locally_owned_size(); ++l)
+            partial[owned_modes_.nth_index_in_set(l)] = src.begin()[l];
+          Utilities::MPI::sum(partial, communicator_, total);
+          if (dst.size() != n_multipliers())
+            initialize_multipliers(dst);
+          for (unsigned int l = 0; l < owned_rows_.size(); ++l)
+          {
+            double value = 0;
+            for (unsigned int k = 0; k < n_modes; ++k)
+              value += total[k] * G_orthonormal_[k](owned_rows_[l]);
+            dst.begin()[l] = value;
+          }
+        };
+        equality->c             = e_distributed_;
+        equality->n_constraints = G_orthonormal_.size();
+        equality->norm_sq       = 1.;
+        problem.equality        = equality;
+        problem.semidefinite    = true;
+      }
+      return problem;
+    }
+
+
+    template <int dim>
+    void
+    DualProblem<dim>::apply_F(DistributedVector       &dst,
+                              const DistributedVector &src) const
+    {
+      Assert(distributed_, ExcInternalError());
+      if (dst.size() != n_multipliers())
+        initialize_multipliers(dst);
+      if (is_assembled())
+      {
+        // the whole src, then the owned rows of F (= columns, F is
+        // symmetric and column-major) by runs of consecutive rows
+        gather(src, work_lambda_);
+        const types::blas_int m = n_multipliers(), one = 1;
+        const double          alpha = 1., beta = 0.;
+        for (unsigned int k = 0; k < owned_rows_.size();)
+        {
+          unsigned int end = k + 1;
+          while (end < owned_rows_.size() &&
+                 owned_rows_[end] == owned_rows_[end - 1] + 1)
+            ++end;
+          const types::blas_int n_rows = end - k;
+          gemv("T",
+               &m,
+               &n_rows,
+               &alpha,
+               F_dense_.data() + static_cast<std::size_t>(owned_rows_[k]) * m,
+               &m,
+               work_lambda_.begin(),
+               &one,
+               &beta,
+               dst.begin() + k,
+               &one);
+          k = end;
+        }
+        return;
+      }
+      Vector<double> u;
+      apply_Bt_distributed(src, u);
+      apply_K_inverse(u);
+      for (unsigned int k = 0; k < owned_rows_.size(); ++k)
+        dst.begin()[k] = row_times(owned_rows_[k], u);
+    }
+
+
+    template <int dim>
+    void
+    DualProblem<dim>::apply_Bt_distributed(const DistributedVector &lambda,
+                                           Vector<double>          &u) const
+    {
+      u.reinit(contact_.n_dofs());
+      for (unsigned int k = 0; k < owned_rows_.size(); ++k)
+      {
+        const double value = lambda.begin()[k];
+        if (value != 0.)
+          for_each_in_row(owned_rows_[k],
+                          [&](const types::global_dof_index column,
+                              const double                  entry)
+                          { u(column) += entry * value; });
+      }
+      const int ierr = MPI_Allreduce(
+        MPI_IN_PLACE, u.begin(), u.size(), MPI_DOUBLE, MPI_SUM, communicator_);
+      AssertThrowMPI(ierr);
+    }
+
+
+    template <int dim>
+    double
+    DualProblem<dim>::row_times(const unsigned int    r,
+                                const Vector<double> &u) const
+    {
+      double value = 0;
+      for_each_in_row(r,
+                      [&](const types::global_dof_index column,
+                          const double entry) { value += entry * u(column); });
+      return value;
     }
 
 
@@ -706,6 +1097,14 @@ namespace dualcontact
                               std::vector<Vector<double>> &displacements,
                               const bool require_determined) const
     {
+      if (distributed_)
+      {
+        DistributedVector owned;
+        initialize_multipliers(owned);
+        for (unsigned int k = 0; k < owned_rows_.size(); ++k)
+          owned.begin()[k] = lambda(owned_rows_[k]);
+        return recover(owned, displacements, require_determined);
+      }
       bool           determined = true;
       Vector<double> u;
       apply_Bt(lambda, u);
@@ -750,7 +1149,7 @@ namespace dualcontact
         // least-squares sense.
         const unsigned int m = rigid_modes_.size();
         FullMatrix<double> GGt(m, m);
-        Vector<double>     rhs(m), alpha(m);
+        Vector<double>     rhs(m);
         for (unsigned int k = 0; k < m; ++k)
           for (unsigned int r_ = 0; r_ < n_multipliers(); ++r_)
             if (active[r_])
@@ -759,6 +1158,100 @@ namespace dualcontact
               for (unsigned int l = 0; l < m; ++l)
                 GGt(k, l) += G_rows_[k](r_) * G_rows_[l](r_);
             }
+        determined = add_rigid_motion(GGt, rhs, u, require_determined);
+      }
+      split_displacements(u, displacements);
+      return determined;
+    }
+
+
+    template <int dim>
+    bool
+    DualProblem<dim>::recover(const DistributedVector     &lambda,
+                              std::vector<Vector<double>> &displacements,
+                              const bool require_determined) const
+    {
+      Assert(distributed_, ExcInternalError());
+      bool           determined = true;
+      Vector<double> u;
+      apply_Bt_distributed(lambda, u);
+      u.sadd(-1., 1., load_);
+      apply_K_inverse(u);
+
+      if (!rigid_modes_.empty())
+      {
+        // as in the replicated recover(), over the owned rows: the owned
+        // normal multipliers come first in local order, then the owned
+        // tangential ones, node by node
+        const unsigned int n_nodes = contact_.n_nodes();
+        const unsigned int n_owned = owned_nodes_.size();
+        double             scale   = 0;
+        for (unsigned int q = 0; q < n_owned; ++q)
+          scale = std::max(scale, std::abs(lambda.begin()[q]));
+        scale                 = Utilities::MPI::max(scale, communicator_);
+        const double      tol = 1e-8 * scale;
+        std::vector<bool> active(owned_rows_.size(), false);
+        for (unsigned int q = 0; q < n_owned; ++q)
+          active[q] = lambda.begin()[q] > tol;
+        for (unsigned int p = 0; p < owned_frictional_.size(); ++p)
+        {
+          const unsigned int j     = owned_frictional_[p];
+          const unsigned int first = n_owned + (dim - 1) * p;
+          if (std::max(psi_first_[j], psi_second_[j]) > 0 &&
+              friction_utilization(j, lambda.begin() + first) < 1 - 1e-6)
+            for (unsigned int k = 0; k + 1 < dim; ++k)
+              active[first + k] = true;
+        }
+        const Vector<double> c = contact_.normal_bound();
+        const unsigned int   m = rigid_modes_.size();
+        // GGt and rhs in one buffer, summed over the processes
+        std::vector<double> sums(m * m + m, 0.), total(m * m + m);
+        for (unsigned int l = 0; l < owned_rows_.size(); ++l)
+        {
+          if (!active[l])
+            continue;
+          const unsigned int r        = owned_rows_[l];
+          double             residual = row_times(r, u);
+          if (r < n_nodes)
+            residual -= c(r);
+          else
+            residual += contact_.tangential_offset()(
+              (dim - 1) * frictional_nodes_[(r - n_nodes) / (dim - 1)] +
+              (r - n_nodes) % (dim - 1));
+          for (unsigned int k = 0; k < m; ++k)
+          {
+            sums[m * m + k] -= G_rows_[k](r) * residual;
+            for (unsigned int l2 = 0; l2 < m; ++l2)
+              sums[k * m + l2] += G_rows_[k](r) * G_rows_[l2](r);
+          }
+        }
+        Utilities::MPI::sum(sums, communicator_, total);
+        FullMatrix<double> GGt(m, m);
+        Vector<double>     rhs(m);
+        for (unsigned int k = 0; k < m; ++k)
+        {
+          rhs(k) = total[m * m + k];
+          for (unsigned int l2 = 0; l2 < m; ++l2)
+            GGt(k, l2) = total[k * m + l2];
+        }
+        determined = add_rigid_motion(GGt, rhs, u, require_determined);
+      }
+      split_displacements(u, displacements);
+      return determined;
+    }
+
+
+    template <int dim>
+    bool
+    DualProblem<dim>::add_rigid_motion(FullMatrix<double>   &GGt,
+                                       const Vector<double> &rhs,
+                                       Vector<double>       &u,
+                                       const bool require_determined) const
+    {
+      bool               determined = true;
+      const unsigned int m = rigid_modes_.size();
+      Vector<double>     alpha(m);
+      {
         double diag = 0;
         for (unsigned int k = 0; k < m; ++k)
           diag = std::max(diag, GGt(k, k));
@@ -781,7 +1274,16 @@ namespace dualcontact
             u.add(alpha(k), rigid_modes_[k]);
         }
       }
+      return determined;
+    }
 
+
+    template <int dim>
+    void
+    DualProblem<dim>::split_displacements(
+      const Vector<double>        &u,
+      std::vector<Vector<double>> &displacements) const
+    {
       displacements.resize(bodies_.size());
       for (unsigned int b = 0; b < bodies_.size(); ++b)
       {
@@ -791,7 +1293,6 @@ namespace dualcontact
           displacements[b](i) = u(offset + i);
         bodies_[b]->distribute(displacements[b]);
       }
-      return determined;
     }
 
 

@@ -1,6 +1,10 @@
 #pragma once
 
+#include <deal.II/base/index_set.h>
+#include <deal.II/base/mpi.h>
 #include <deal.II/base/parameter_handler.h>
+#include <deal.II/lac/full_matrix.h>
+#include <deal.II/lac/trilinos_vector.h>
 #include <deal.II/lac/vector.h>
 
 #include <contact/contact_discretization.h>
@@ -40,6 +44,19 @@ namespace dualcontact
       /** Limit [MB] for the dense matrices of the assembled form. */
       double memory_limit = 4096;
 
+      /** The vectors the QP runs on (see DualProblem, "Distribution"). */
+      enum class Vectors
+      {
+        /** distributed when MPI_COMM_WORLD has more than one process */
+        automatic,
+        /** dealii::Vector<double>, the whole QP on every process */
+        replicated,
+        /** dealii::TrilinosWrappers::MPI::Vector, the multipliers of
+         *  each contact node on one process (also on one process) */
+        distributed
+      };
+      Vectors vectors = Vectors::automatic;
+
       static void
       declare_parameters(dealii::ParameterHandler &prm);
       void
@@ -71,12 +88,42 @@ namespace dualcontact
      *
      * Layout of lambda: [lambda_N (one per contact node); lambda_T
      * (dim - 1 per frictional node, in node order)].
+     *
+     * <b>Distribution.</b> With more than one process (or `set QP vectors =
+     * distributed') the QP runs on dealii::TrilinosWrappers::MPI::Vector:
+     * every contact node, with its normal and tangential multipliers (one
+     * block of the separable set and the node's Coulomb bound), belongs to
+     * one process: the one owning the node's first slave dof (or, when the
+     * bodies are not partitioned, an even split of the nodes in order).
+     * The global layout above is kept; a process owns a non-contiguous set
+     * of indices.  Everything the contact search produced (B, f, R, d, G)
+     * stays replicated, as the mesh of a parallel::shared::Triangulation
+     * is; what is distributed is the QP's work: its vectors, the
+     * projections onto the friction sets, the products with G, and the
+     * product with F, which gathers what it needs and returns the owned
+     * entries:
+     *  - implicit F: each process applies B' to its owned multipliers, the
+     *    partial displacement loads are summed over the processes (one
+     *    MPI_Allreduce of the n dofs), K^# is applied by the (distributed)
+     *    stiffness solver, and each process applies its rows of B;
+     *  - assembled F: the multipliers are gathered (one MPI_Allreduce of
+     *    the m multipliers) and each process multiplies by its rows of F
+     *    (m_p x m flops instead of m x m).
+     * G and e have their (few) rows on process 0; G products reduce over
+     * the processes.  The Coulomb bounds psi of owned nodes are summed over
+     * the processes (each node counted once), so the fixed point's change
+     * is the same on every process.  The recovery applies B' to the owned
+     * multipliers and fits the rigid-body amplitudes from the owned rows
+     * (reduced sums); the displacements come out whole on every process,
+     * as the output needs them.
      */
     template <int dim>
     class DualProblem
     {
     public:
       using VectorType = dealii::Vector<double>;
+      /** The QP's vectors under MPI (see "Distribution"). */
+      using DistributedVector = dealii::TrilinosWrappers::MPI::Vector;
 
       /**
        * Factorizes every body's K with a solver made by @p make_solver
@@ -125,6 +172,9 @@ namespace dualcontact
        */
       void
       update_slip_bounds(const VectorType *lambda);
+      /** The same from distributed multipliers (collective). */
+      void
+      update_slip_bounds(const DistributedVector &lambda);
       const std::vector<double> &
       slip_bounds_first() const;
       const std::vector<double> &
@@ -142,6 +192,28 @@ namespace dualcontact
                            const unsigned int j) const;
 
       /**
+       * Whether the QP runs on DistributedVector (more than one process,
+       * or `set QP vectors = distributed').
+       */
+      bool
+      is_distributed() const;
+      /** The multipliers this process owns (all of them if replicated). */
+      const dealii::IndexSet &
+      locally_owned_multipliers() const;
+      /** Owned contact nodes per process (one entry if replicated). */
+      const std::vector<unsigned int> &
+      contact_nodes_per_process() const;
+      /** Owned multipliers per process (one entry if replicated). */
+      const std::vector<unsigned int> &
+      multipliers_per_process() const;
+      /** A distributed vector of multipliers, zero (collective). */
+      void
+      initialize_multipliers(DistributedVector &lambda) const;
+      /** The whole vector of multipliers on every process (collective). */
+      void
+      gather(const DistributedVector &lambda, VectorType &whole) const;
+
+      /**
        * The QP with the current slip bounds (F counted by the solver), in
        * scaled form: Hessian F / s and right-hand side d / s with s the
        * largest eigenvalue of F (so that the Hessian has norm 1 and the
@@ -152,9 +224,24 @@ namespace dualcontact
       qp::Problem<VectorType>
       make_problem() const;
 
+      /**
+       * The same QP on distributed vectors: each process adds the blocks
+       * of its own contact nodes to the separable set; the Hessian product
+       * and G are those of "Distribution" above.  Collective.
+       */
+      qp::Problem<DistributedVector>
+      make_distributed_problem() const;
+
       /** dst = F src. */
       void
       apply_F(VectorType &dst, const VectorType &src) const;
+
+      /**
+       * dst = F src on distributed multipliers (collective; see
+       * "Distribution" for what it communicates).
+       */
+      void
+      apply_F(DistributedVector &dst, const DistributedVector &src) const;
 
       const VectorType &
       d() const;
@@ -179,6 +266,18 @@ namespace dualcontact
        */
       bool
       recover(const VectorType                    &lambda,
+              std::vector<dealii::Vector<double>> &displacements,
+              const bool require_determined = true) const;
+
+      /**
+       * The same from distributed multipliers: B' applied to the owned
+       * ones, the rigid-body amplitudes fitted from the owned rows (sums
+       * reduced over the processes).  The displacements are whole on every
+       * process.  Collective.  @p require_determined and the return value
+       * as above.
+       */
+      bool
+      recover(const DistributedVector             &lambda,
               std::vector<dealii::Vector<double>> &displacements,
               const bool require_determined = true) const;
 
@@ -223,6 +322,43 @@ namespace dualcontact
       assemble_operator(std::vector<fem::StiffnessSolver::SchurFactor> &schur,
                         const std::vector<std::vector<unsigned int>>   &rows);
 
+      /** friction_utilization() from the node's dim - 1 tangential values. */
+      double
+      friction_utilization(const unsigned int j,
+                           const double      *tangential) const;
+
+      /**
+       * u += R alpha with alpha solving (G_A G_A') alpha = rhs (the
+       * rigid-body amplitudes of recover()); @p GGt is regularized.  A zero
+       * G_A G_A' (no active constraint sees a rigid mode) throws with
+       * @p require_determined, else leaves u and returns false.
+       */
+      bool
+      add_rigid_motion(dealii::FullMatrix<double>   &GGt,
+                       const dealii::Vector<double> &rhs,
+                       dealii::Vector<double>       &u,
+                       const bool                    require_determined) const;
+      /** The bodies' parts of @p u, their constraints distributed. */
+      void
+      split_displacements(
+        const dealii::Vector<double>        &u,
+        std::vector<dealii::Vector<double>> &displacements) const;
+
+      /** Owners of the contact nodes and the index sets (constructor). */
+      void
+      distribute_multipliers(const DualProblemParameters &parameters);
+
+      /**
+       * u = B' lambda from the owned multipliers only (the local part of
+       * B'lambda), summed over the processes: u whole on every process.
+       */
+      void
+      apply_Bt_distributed(const DistributedVector &lambda,
+                           dealii::Vector<double>  &u) const;
+      /** Row r of B u. */
+      double
+      row_times(const unsigned int r, const dealii::Vector<double> &u) const;
+
       void
       apply_K_inverse(dealii::Vector<double> &x) const;
       void
@@ -257,6 +393,21 @@ namespace dualcontact
       std::string                    operator_description_;
       double                         assembly_time_ = 0;
       mutable dealii::Vector<double> work_u_, work_t_;
+
+      /** Distribution (see above); replicated: all rows, one process. */
+      bool             distributed_  = false;
+      MPI_Comm         communicator_ = MPI_COMM_SELF;
+      dealii::IndexSet owned_multipliers_;
+      /** The owned multipliers' global indices, in local order. */
+      std::vector<unsigned int> owned_rows_;
+      /** The owned contact nodes and frictional nodes (indices j), sorted. */
+      std::vector<unsigned int> owned_nodes_, owned_frictional_;
+      std::vector<unsigned int> nodes_per_process_, multipliers_per_process_;
+      /** The rows of G (equality multipliers) live on process 0. */
+      dealii::IndexSet  owned_modes_;
+      DistributedVector d_distributed_, e_distributed_;
+      /** The gathered multipliers of an assembled distributed product. */
+      mutable dealii::Vector<double> work_lambda_;
     };
   } // namespace contact
 } // namespace dualcontact

@@ -94,6 +94,14 @@ namespace dualcontact
            << " rigid-body modes, lambda_max(F) " << dual_->scale() << " m/N";
       details.push_back(line.str());
       details.push_back("Dual operator: " + dual_->operator_description());
+      if (dual_->is_distributed())
+      {
+        std::ostringstream nodes;
+        for (const unsigned int n : dual_->contact_nodes_per_process())
+          nodes << (nodes.str().empty() ? "" : ", ") << n;
+        details.push_back("Multipliers distributed by contact node: " +
+                          nodes.str() + " nodes per process");
+      }
     }
 
 
@@ -150,6 +158,15 @@ namespace dualcontact
             contact_surfaces(iterate.lambda, iterate.displacements));
         };
       result_ = solver.solve(on_iterate);
+      {
+        std::ostringstream line;
+        line << "QP vectors: " << result_.qp_vectors << ", multipliers per "
+             << "process";
+        for (unsigned int p = 0; p < result_.multipliers_per_process.size();
+             ++p)
+          line << (p == 0 ? " " : ", ") << result_.multipliers_per_process[p];
+        details.push_back(line.str());
+      }
 
       qp_wall_time_ = 0;
       for (unsigned int k = 0; k < result_.qp_statistics.size(); ++k)

@@ -251,7 +251,13 @@ namespace dualcontact
         contact["dual_operator"] = contact_->dual().operator_description();
         contact["dual_operator_assembly_time_s"] =
           contact_->dual().assembly_time();
-        contact["qp_wall_time_s"]  = contact_->qp_wall_time();
+        contact["qp_wall_time_s"] = contact_->qp_wall_time();
+        // the vectors the QPs ran on, and how the multipliers were split
+        contact["qp_vectors"] = contact_->result().qp_vectors;
+        contact["multipliers_per_process"] =
+          contact_->result().multipliers_per_process;
+        contact["contact_nodes_per_process"] =
+          contact_->dual().contact_nodes_per_process();
         contact["coulomb_changes"] = contact_->result().coulomb_changes;
         if (!contact_->primal_json().empty())
           contact["primal"] = nlohmann::json::parse(contact_->primal_json());

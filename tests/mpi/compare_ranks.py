@@ -1,10 +1,13 @@
 #!/usr/bin/env python3
-"""Runs one input of dualcontact under mpirun with 1 and 2 processes and
-asserts that the answers agree.
+"""Runs one input of dualcontact under mpirun with 1 and more processes
+and asserts that the answers agree.
 
 Usage: compare_ranks.py DUALCONTACT MPIRUN INPUT.prm WORKDIR [TOLERANCE]
+                        [--ranks=1,2,4]
 
-Both runs must converge (exit 0, contact.converged = 1).  Asserted, with
+The runs (1 and 2 processes unless --ranks says otherwise; the first
+count must be 1) must converge (exit 0, contact.converged = 1).  Each run
+with N > 1 processes is compared with the 1-process run.  Asserted, with
 relative tolerance TOLERANCE (default 1e-8) for the reals:
   - per contact pair: normal force, tangential force, max pressure;
     the active sets: n_nodes, n_separated, n_stick, n_slip exactly;
@@ -14,7 +17,13 @@ relative tolerance TOLERANCE (default 1e-8) for the reals:
   - the total normal force of the first pair equals the applied load
     (body_1.applied_force, its norm) to TOLERANCE in both runs, when the
     scene has one body and one pair (a Hertz scene);
-  - the 2-process run wrote one piece of every body per process
+  - the dual QP ran on the vectors it should (statistics.json,
+    contact.qp_vectors): dealii::Vector<double> on 1 process,
+    dealii::TrilinosWrappers::MPI::Vector on N > 1, split over at least two
+    processes (contact.multipliers_per_process, contact_nodes_per_process:
+    N counts adding up to n_multipliers and n_nodes, two or more of them
+    positive; a METIS subdomain may hold no contact node);
+  - the N-process run wrote one piece of every body per process
     (body_N_rank_R.vtu) and solution.pvtu refers to all of them, and one
     piece of every contact surface per process (contact_N_rank_R.vtu),
     listed in contact_N.pvd, together holding all n_nodes nodes.
@@ -76,9 +85,16 @@ def run(app, mpirun, prm, workdir, ranks):
 
 
 def main():
-    app, mpirun, prm, workdir = sys.argv[1:5]
-    tolerance = float(sys.argv[5]) if len(sys.argv) > 5 else 1e-8
-    runs = [run(app, mpirun, prm, workdir, ranks) for ranks in (1, 2)]
+    arguments = [a for a in sys.argv[1:] if not a.startswith("--ranks=")]
+    counts = [1, 2]
+    for a in sys.argv[1:]:
+        if a.startswith("--ranks="):
+            counts = [int(n) for n in a[len("--ranks="):].split(",")]
+    if counts[0] != 1 or len(counts) < 2:
+        sys.exit("compare_ranks.py: --ranks must start with 1 and name more")
+    app, mpirun, prm, workdir = arguments[0:4]
+    tolerance = float(arguments[4]) if len(arguments) > 4 else 1e-8
+    runs = [run(app, mpirun, prm, workdir, ranks) for ranks in counts]
     failures = 0
 
     def check(ok, text):
@@ -86,11 +102,40 @@ def main():
         print(("  ok   " if ok else "  FAIL ") + text)
         failures += 0 if ok else 1
 
-    (out1, r1, s1), (out2, r2, s2) = runs
-    check(s1["mpi_processes"] == 1 and s2["mpi_processes"] == 2,
+    out1, r1, s1 = runs[0]
+    check(s1["contact"]["qp_vectors"] == "dealii::Vector<double>",
+          f"1 process: the QP ran on {s1['contact']['qp_vectors']}")
+    for ranks, (out2, r2, s2) in zip(counts[1:], runs[1:]):
+        print(f"--- 1 process against {ranks} processes")
+        compare(check, tolerance, ranks, (out1, r1, s1), (out2, r2, s2))
+
+    print("all checks passed" if failures == 0 else "FAILED")
+    sys.exit(0 if failures == 0 else 1)
+
+
+def compare(check, tolerance, ranks, first, second):
+    """Checks of one N-process run against the 1-process run (check()
+    counts the failures)."""
+    (out1, r1, s1), (out2, r2, s2) = first, second
+    check(s1["mpi_processes"] == 1 and s2["mpi_processes"] == ranks,
           f"mpi_processes: {s1['mpi_processes']}, {s2['mpi_processes']}")
     check(r1["contact.converged"] == [1] and r2["contact.converged"] == [1],
           "both contact solves converged")
+    c2 = s2["contact"]
+    per_process = c2.get("multipliers_per_process", [])
+    nodes_per_process = c2.get("contact_nodes_per_process", [])
+    n_nodes = sum(v[0] for k, v in r2.items()
+                  if re.match(r"pair_\d+\.n_nodes$", k))
+    check(c2.get("qp_vectors") == "dealii::TrilinosWrappers::MPI::Vector"
+          and len(per_process) == ranks
+          and sum(1 for n in per_process if n > 0) >= 2
+          and sum(per_process) == c2["n_multipliers"]
+          and len(nodes_per_process) == ranks
+          and sum(nodes_per_process) == n_nodes,
+          f"{ranks} processes: the QP ran on {c2.get('qp_vectors')}, "
+          f"multipliers per process {per_process} (of "
+          f"{c2['n_multipliers']}), contact nodes per process "
+          f"{nodes_per_process} (of {n_nodes:g})")
 
     exact = re.compile(r"pair_\d+\.n_(nodes|separated|stick|slip|contact)$")
     real = re.compile(r"(pair_\d+\.(normal_force|tangential_force|"
@@ -115,11 +160,11 @@ def main():
 
     if "pair_1.normal_force" in r1 and "pair_2.normal_force" not in r1 \
             and "body_2.n_dofs" not in r1:
-        for ranks, r in ((1, r1), (2, r2)):
+        for n, r in ((1, r1), (ranks, r2)):
             load = sum(v * v for v in r["body_1.applied_force"]) ** 0.5
             force = r["pair_1.normal_force"][0]
             diff = abs(force - load) / load
-            check(diff <= tolerance, f"{ranks} process(es): normal force "
+            check(diff <= tolerance, f"{n} process(es): normal force "
                   f"{force:.12e} = applied load {load:.12e}, relative "
                   f"difference {diff:.2e}")
 
@@ -127,17 +172,17 @@ def main():
     with open(os.path.join(out2, "solution.pvtu")) as f:
         pvtu = f.read()
     for body in range(1, n_bodies + 1):
-        for rank in (0, 1):
+        for rank in range(ranks):
             name = f"body_{body}_rank_{rank}.vtu"
             check(os.path.isfile(os.path.join(out2, name)) and name in pvtu,
-                  f"2 processes: {name} written and in solution.pvtu")
+                  f"{ranks} processes: {name} written and in solution.pvtu")
 
     pair = 1
     while f"pair_{pair}.n_nodes" in r2:
         n_nodes = 0
         with open(os.path.join(out2, f"contact_{pair}.pvd")) as f:
             master = f.read()
-        for rank in (0, 1):
+        for rank in range(ranks):
             name = f"contact_{pair}_rank_{rank}.vtu"
             path = os.path.join(out2, name)
             ok = os.path.isfile(path) and name in master
@@ -145,15 +190,12 @@ def main():
                 with open(path) as f:
                     n_nodes += int(re.search(r'NumberOfPoints="(\d+)"',
                                              f.read()).group(1))
-            check(ok, f"2 processes: {name} written and in "
+            check(ok, f"{ranks} processes: {name} written and in "
                   f"contact_{pair}.pvd")
         check(n_nodes == r2[f"pair_{pair}.n_nodes"][0],
-              f"2 processes: the pieces of contact pair {pair} hold "
+              f"{ranks} processes: the pieces of contact pair {pair} hold "
               f"{n_nodes} nodes, n_nodes = {r2[f'pair_{pair}.n_nodes'][0]:g}")
         pair += 1
-
-    print("all checks passed" if failures == 0 else "FAILED")
-    sys.exit(0 if failures == 0 else 1)
 
 
 if __name__ == "__main__":
