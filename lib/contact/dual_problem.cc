@@ -366,9 +366,10 @@ namespace dualcontact
       multipliers_per_process_ = Utilities::MPI::all_gather(
         communicator_, static_cast<unsigned int>(owned_rows_.size()));
 
-      initialize_multipliers(d_distributed_);
+      d_distributed_ = std::make_unique<DistributedVector>();
+      initialize_multipliers(*d_distributed_);
       for (unsigned int k = 0; k < owned_rows_.size(); ++k)
-        d_distributed_.begin()[k] = d_(owned_rows_[k]);
+        d_distributed_->begin()[k] = d_(owned_rows_[k]);
 
       // the few rows of G and e: on process 0
       const unsigned int n_modes = rigid_modes_.size();
@@ -376,9 +377,10 @@ namespace dualcontact
       if (rank == 0)
         owned_modes_.add_range(0, n_modes);
       owned_modes_.compress();
-      e_distributed_.reinit(owned_modes_, communicator_);
-      for (unsigned int k = 0; k < e_distributed_.locally_owned_size(); ++k)
-        e_distributed_.begin()[k] =
+      e_distributed_ = std::make_unique<DistributedVector>();
+      e_distributed_->reinit(owned_modes_, communicator_);
+      for (unsigned int k = 0; k < e_distributed_->locally_owned_size(); ++k)
+        e_distributed_->begin()[k] =
           e_orthonormal_(owned_modes_.nth_index_in_set(k));
     }
 
@@ -714,7 +716,7 @@ namespace dualcontact
         apply_F(dst, src);
         dst /= scale_;
       };
-      problem.b = d_distributed_;
+      problem.b = *d_distributed_;
       problem.b /= scale_;
       problem.lambda_max = 1.05;
 
@@ -779,7 +781,7 @@ namespace dualcontact
             dst.begin()[l] = value;
           }
         };
-        equality->c             = e_distributed_;
+        equality->c             = *e_distributed_;
         equality->n_constraints = G_orthonormal_.size();
         equality->norm_sq       = 1.;
         problem.equality        = equality;

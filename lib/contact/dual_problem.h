@@ -404,8 +404,10 @@ namespace dualcontact
       std::vector<unsigned int> owned_nodes_, owned_frictional_;
       std::vector<unsigned int> nodes_per_process_, multipliers_per_process_;
       /** The rows of G (equality multipliers) live on process 0. */
-      dealii::IndexSet  owned_modes_;
-      DistributedVector d_distributed_, e_distributed_;
+      dealii::IndexSet owned_modes_;
+      /** Made only when distributed: the constructor of a Trilinos vector
+       *  calls MPI, which serial programs do not initialize. */
+      std::unique_ptr<DistributedVector> d_distributed_, e_distributed_;
       /** The gathered multipliers of an assembled distributed product. */
       mutable dealii::Vector<double> work_lambda_;
     };
