@@ -133,6 +133,65 @@ namespace dualcontact
       }
 
 
+      /**
+       * Calls @p make (which builds a problem from data read from @p path)
+       * and puts the file's name in front of any message it throws.
+       */
+      template <typename Make>
+      auto
+      in_file(const std::string &path, const Make &make) -> decltype(make())
+      {
+        try
+        {
+          return make();
+        }
+        catch (const dealii::ExceptionBase &e)
+        {
+          AssertThrow(false,
+                      dealii::ExcMessage("FCLIB file `" + path +
+                                         "': " + exception_message(e)));
+        }
+        return {};
+      }
+
+
+      void
+      check_dimension(const std::string &path, const int spacedim)
+      {
+        AssertThrow(spacedim == 2 || spacedim == 3,
+                    dealii::ExcMessage("FCLIB file `" + path +
+                                       "': space dimension " +
+                                       std::to_string(spacedim)));
+      }
+
+
+      void
+      check_written(const int status, const std::string &what)
+      {
+        AssertThrow(status == 1,
+                    dealii::ExcMessage("libfclib could not write " + what));
+      }
+
+
+      /** /solution with r, u (and v for the global form) into @p path. */
+      void
+      write_solution(const std::string            &path,
+                     const dealii::Vector<double> &r,
+                     const dealii::Vector<double> &u,
+                     const dealii::Vector<double> *v = nullptr)
+      {
+        std::vector<double> rr(r.begin(), r.end()), uu(u.begin(), u.end()), vv;
+        if (v)
+          vv.assign(v->begin(), v->end());
+        fclib_solution solution{};
+        solution.v = v ? vv.data() : nullptr;
+        solution.r = rr.data();
+        solution.u = uu.data();
+        check_written(fclib_write_solution(&solution, path.c_str()),
+                      "the solution into `" + path + "'");
+      }
+
+
       void
       remove_existing(const std::string &path)
       {
@@ -213,7 +272,7 @@ namespace dualcontact
 
 
     LocalProblem
-    read_local(const std::string &path)
+    read_local(const std::string &path, const Storage storage)
     {
       check_is_form(path, Form::local);
       std::unique_ptr<fclib_local, void (*)(fclib_local *)> p(
@@ -227,29 +286,23 @@ namespace dualcontact
                     "FCLIB file `" + path +
                     "': local problems with equality "
                     "constraints (V, R, s) are not supported"));
-      AssertThrow(p->spacedim == 2 || p->spacedim == 3,
-                  dealii::ExcMessage("FCLIB file `" + path +
-                                     "': space dimension " +
-                                     std::to_string(p->spacedim)));
+      check_dimension(path, p->spacedim);
       const unsigned int n = p->W->m, nc = n / p->spacedim;
       AssertThrow(n % p->spacedim == 0,
                   dealii::ExcMessage("FCLIB file `" + path + "': W has " +
                                      std::to_string(n) +
                                      " rows, not a multiple of the dimension"));
-      dealii::Vector<double> q(p->q, p->q + n);
-      std::vector<double>    mu(p->mu, p->mu + nc);
-      try
-      {
-        return LocalProblem(
-          p->spacedim, to_triplets(*p->W, "W"), q, mu, title_of(p->info));
-      }
-      catch (const dealii::ExceptionBase &e)
-      {
-        AssertThrow(false,
-                    dealii::ExcMessage("FCLIB file `" + path +
-                                       "': " + exception_message(e)));
-      }
-      return {};
+      return in_file(path,
+                     [&]()
+                     {
+                       return LocalProblem(
+                         p->spacedim,
+                         to_triplets(*p->W, "W"),
+                         dealii::Vector<double>(p->q, p->q + n),
+                         std::vector<double>(p->mu, p->mu + nc),
+                         title_of(p->info),
+                         storage);
+                     });
     }
 
 
@@ -267,43 +320,34 @@ namespace dualcontact
                   dealii::ExcMessage("FCLIB file `" + path +
                                      "': global problems with equality "
                                      "constraints (G, b) are not supported"));
-      AssertThrow(p->spacedim == 2 || p->spacedim == 3,
-                  dealii::ExcMessage("FCLIB file `" + path +
-                                     "': space dimension " +
-                                     std::to_string(p->spacedim)));
+      check_dimension(path, p->spacedim);
       const unsigned int n = p->M->m, m = p->H->n;
       AssertThrow(m % p->spacedim == 0,
                   dealii::ExcMessage("FCLIB file `" + path + "': H has " +
                                      std::to_string(m) +
                                      " columns, not a multiple of the "
                                      "dimension"));
-      try
-      {
-        return GlobalProblem(p->spacedim,
-                             to_triplets(*p->M, "M"),
-                             to_triplets(*p->H, "H"),
-                             dealii::Vector<double>(p->f, p->f + n),
-                             dealii::Vector<double>(p->w, p->w + m),
-                             std::vector<double>(p->mu,
-                                                 p->mu + m / p->spacedim),
-                             title_of(p->info));
-      }
-      catch (const dealii::ExceptionBase &e)
-      {
-        AssertThrow(false,
-                    dealii::ExcMessage("FCLIB file `" + path +
-                                       "': " + exception_message(e)));
-      }
-      return {};
+      return in_file(path,
+                     [&]()
+                     {
+                       return GlobalProblem(
+                         p->spacedim,
+                         to_triplets(*p->M, "M"),
+                         to_triplets(*p->H, "H"),
+                         dealii::Vector<double>(p->f, p->f + n),
+                         dealii::Vector<double>(p->w, p->w + m),
+                         std::vector<double>(p->mu, p->mu + m / p->spacedim),
+                         title_of(p->info));
+                     });
     }
 
 
     LocalProblem
-    read_as_local(const std::string &path)
+    read_as_local(const std::string &path, const Storage storage)
     {
       if (form_of(path) == Form::local)
-        return read_local(path);
-      return read_global(path).reduce_to_local();
+        return read_local(path, storage);
+      return read_global(path).reduce_to_local(storage);
     }
 
 
@@ -313,6 +357,8 @@ namespace dualcontact
                 const dealii::Vector<double> &r,
                 const std::string            &description)
     {
+      AssertThrow(r.size() == 0 || r.size() == problem.size(),
+                  dealii::ExcMessage("FCLIB solution of wrong size"));
       remove_existing(path);
       CscMatrix           W(problem.W());
       std::vector<double> q(problem.q().begin(), problem.q().end());
@@ -326,23 +372,12 @@ namespace dualcontact
       local.q        = q.data();
       local.spacedim = problem.spacedim();
       local.info     = &info.info;
-      AssertThrow(fclib_write_local(&local, path.c_str()) == 1,
-                  dealii::ExcMessage("libfclib could not write `" + path +
-                                     "'"));
+      check_written(fclib_write_local(&local, path.c_str()), "`" + path + "'");
       if (r.size() > 0)
       {
-        AssertThrow(r.size() == problem.size(),
-                    dealii::ExcMessage("FCLIB solution of wrong size"));
         dealii::Vector<double> u;
         problem.velocity(u, r);
-        std::vector<double> rr(r.begin(), r.end()), uu(u.begin(), u.end());
-        fclib_solution      solution{};
-        solution.r = rr.data();
-        solution.u = uu.data();
-        AssertThrow(fclib_write_solution(&solution, path.c_str()) == 1,
-                    dealii::ExcMessage("libfclib could not write the solution "
-                                       "into `" +
-                                       path + "'"));
+        write_solution(path, r, u);
       }
     }
 
@@ -353,6 +388,8 @@ namespace dualcontact
                  const dealii::Vector<double> &r,
                  const std::string            &description)
     {
+      AssertThrow(r.size() == 0 || r.size() == problem.H().n(),
+                  dealii::ExcMessage("FCLIB solution of wrong size"));
       remove_existing(path);
       // M in full (both triangles): the reader mirrors only upper-only data
       CscMatrix           M(problem.M()), H(problem.H());
@@ -371,27 +408,15 @@ namespace dualcontact
       global.w        = w.data();
       global.spacedim = problem.spacedim();
       global.info     = &info.info;
-      AssertThrow(fclib_write_global(&global, path.c_str()) == 1,
-                  dealii::ExcMessage("libfclib could not write `" + path +
-                                     "'"));
+      check_written(fclib_write_global(&global, path.c_str()),
+                    "`" + path + "'");
       if (r.size() > 0)
       {
-        AssertThrow(r.size() == problem.H().n(),
-                    dealii::ExcMessage("FCLIB solution of wrong size"));
         dealii::Vector<double> v, u(r.size());
         problem.velocity(v, r);
         problem.H().Tvmult(u, v);
         u += problem.w();
-        std::vector<double> rr(r.begin(), r.end()), uu(u.begin(), u.end()),
-          vv(v.begin(), v.end());
-        fclib_solution solution{};
-        solution.v = vv.data();
-        solution.r = rr.data();
-        solution.u = uu.data();
-        AssertThrow(fclib_write_solution(&solution, path.c_str()) == 1,
-                    dealii::ExcMessage("libfclib could not write the solution "
-                                       "into `" +
-                                       path + "'"));
+        write_solution(path, r, u, &v);
       }
     }
 

@@ -43,15 +43,18 @@ namespace dualcontact
     Form
     form_of(const std::string &path);
 
+    /** @p storage: how W is kept for the products (DelassusOperator). */
     LocalProblem
-    read_local(const std::string &path);
+    read_local(const std::string &path,
+               const Storage      storage = Storage::automatic);
 
     GlobalProblem
     read_global(const std::string &path);
 
     /** The local form of either kind of file (a global one is reduced). */
     LocalProblem
-    read_as_local(const std::string &path);
+    read_as_local(const std::string &path,
+                  const Storage      storage = Storage::automatic);
 
     /**
      * Write @p problem to @p path (replacing the file), and, if @p r is not

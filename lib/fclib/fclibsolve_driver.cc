@@ -49,30 +49,14 @@ namespace dualcontact
       void
       declare(dealii::ParameterHandler &prm)
       {
-        prm.declare_entry("Model",
-                          "coulomb",
-                          dealii::Patterns::Selection("coulomb|cone"),
-                          "coulomb: the fixed point over Tresca QPs (bound x "
-                          "disc blocks), which solves the Coulomb problem; "
-                          "cone: one QP over the Coulomb cones, a convex "
-                          "relaxation (no De Saxce shift), 3D only.");
-        prm.declare_entry("First Coulomb iterate",
-                          "bonded",
-                          dealii::Patterns::Selection("bonded|frictionless"),
-                          "Model coulomb, cold start: bonded (no bound on the "
-                          "tangential forces, as the contact solver of the "
-                          "scenes) or frictionless (slip bounds 0); bonded "
-                          "can be unbounded below when W is singular "
-                          "(rigid-body problems).");
-        prm.declare_entry(
-          "Proximal regularization",
-          "0",
-          dealii::Patterns::Double(0.),
-          "rho >= 0 relative to lambda_max(W): every QP gets the term "
-          "rho lambda_max/2 ||r - r_previous||^2 (proximal point), which "
-          "makes it strictly convex for singular W (rigid-body problems); the "
-          "loop (Coulomb subsection: tolerance, maximum iterations) then also "
-          "stops on the relative step. 0: off.");
+        LocalSolver::Parameters::declare_parameters(prm);
+        prm.declare_entry("Storage of W",
+                          "auto",
+                          dealii::Patterns::Selection("auto|dense|sparse"),
+                          "How W is kept for its products: dense (BLAS "
+                          "dsymv/dgemv, column-major), sparse, or auto "
+                          "(dense when at least a quarter of the entries are "
+                          "non-zero).");
         qp::SolverParameters::declare_parameters(prm);
         // friction needs disc blocks, which mprgp (the scenes' default)
         // does not take
@@ -102,8 +86,17 @@ namespace dualcontact
              "                        (a convex relaxation, 3D only)\n"
              "  --first bonded|frictionless  first Coulomb iterate (default "
              "bonded)\n"
-             "  --prox RHO            proximal term rho lambda_max/2 ||r - "
-             "r_previous||^2 (singular W)\n"
+             "  --prox off|on|auto|RHO  proximal point, rho/2 ||r - "
+             "r_previous||^2 (singular W;\n"
+             "                        default auto: on when W is numerically "
+             "singular; RHO: on,\n"
+             "                        initial rho relative to lambda_max)\n"
+             "  --fixed-rho           do not adapt rho\n"
+             "  --exact-qps           every QP to the QP tolerance (no "
+             "inexact fixed point)\n"
+             "  --storage auto|dense|sparse  how W is kept for the products "
+             "(default auto: dense\n"
+             "                        from 1/4 non-zero entries)\n"
              "  --solver NAME         QP solver (" +
              qp::solver_names() +
              ")\n"
@@ -125,11 +118,12 @@ namespace dualcontact
                           std::ostream                   &err) const
     {
       std::string file, prm_file, json_file, write_file, model_name, solver,
-        first_name;
-      double prox = -1;
-      double tol = -1, coulomb_tol = -1;
-      long   max_iter = -1, coulomb_max_iter = -1;
-      bool   info_only = false;
+        first_name, storage_name;
+      std::string prox;
+      bool        fixed_rho = false, exact_qps = false;
+      double      tol = -1, coulomb_tol = -1;
+      long        max_iter = -1, coulomb_max_iter = -1;
+      bool        info_only = false;
       try
       {
         for (std::size_t i = 0; i < args.size(); ++i)
@@ -151,13 +145,15 @@ namespace dualcontact
           else if (a == "--model")
             model_name = value();
           else if (a == "--prox")
-          {
-            prox = to_number(a, value());
-            if (prox < 0)
-              throw UsageError("--prox must be >= 0");
-          }
+            prox = value();
+          else if (a == "--fixed-rho")
+            fixed_rho = true;
+          else if (a == "--exact-qps")
+            exact_qps = true;
           else if (a == "--first")
             first_name = value();
+          else if (a == "--storage")
+            storage_name = value();
           else if (a == "--solver")
             solver = value();
           else if (a == "--tol")
@@ -208,17 +204,21 @@ namespace dualcontact
         qp_parameters.parse_parameters(prm);
         contact::CoulombParameters coulomb;
         coulomb.parse_parameters(prm);
-        Model model = parse_model(prm.get("Model"));
+        LocalSolver::Parameters loop;
+        loop.parse_parameters(prm);
         if (!model_name.empty())
-          model = parse_model(model_name);
-        FirstIterate first =
-          parse_first_iterate(prm.get("First Coulomb iterate"));
+          loop.model = parse_model(model_name);
         if (!first_name.empty())
-          first = parse_first_iterate(first_name);
-        double proximal = prm.get_double("Proximal regularization");
-        if (prox >= 0)
-          proximal = prox;
-        AssertThrow(proximal >= 0, dealii::ExcMessage("--prox must be >= 0"));
+          loop.first = parse_first_iterate(first_name);
+        if (!prox.empty())
+          loop.parse_proximal(prox);
+        if (fixed_rho)
+          loop.adaptive_rho = false;
+        if (exact_qps)
+          loop.inexact = false;
+        loop.check();
+        const Model        model = loop.model;
+        const FirstIterate first = loop.first;
         if (!solver.empty())
         {
           qp::create<dealii::Vector<double>>(solver, qp_parameters); // checks
@@ -234,6 +234,10 @@ namespace dualcontact
           coulomb.max_iterations = coulomb_max_iter;
         qp_parameters.check();
 
+        Storage storage = parse_storage(prm.get("Storage of W"));
+        if (!storage_name.empty())
+          storage = parse_storage(storage_name);
+
         dealii::Timer  reading;
         const Form     form = form_of(file);
         nlohmann::json summary;
@@ -241,7 +245,7 @@ namespace dualcontact
         summary["form"] = to_string(form);
         LocalProblem problem;
         if (form == Form::local)
-          problem = read_local(file);
+          problem = read_local(file, storage);
         else
         {
           const GlobalProblem global = read_global(file);
@@ -252,7 +256,7 @@ namespace dualcontact
                     "")
               << "\n";
           summary["n_dofs"] = global.n_dofs();
-          problem           = global.reduce_to_local();
+          problem           = global.reduce_to_local(storage);
           out << "reduced to local form with " << global.factorization_name()
               << "\n";
           summary["factorization"] = global.factorization_name();
@@ -263,22 +267,29 @@ namespace dualcontact
             << problem.size() << " unknowns, dimension " << problem.spacedim()
             << ", mu in [" << (problem.n_contacts() ? *mu_min : 0.) << ", "
             << (problem.n_contacts() ? *mu_max : 0.)
-            << "], nnz(W) = " << problem.W().n_nonzero_elements()
-            << ", asymmetry of W " << problem.asymmetry() << ", read in "
-            << reading.wall_time() << " s\n";
-        summary["n_contacts"]  = problem.n_contacts();
-        summary["spacedim"]    = problem.spacedim();
-        summary["asymmetry_W"] = problem.asymmetry();
+            << "], nnz(W) = " << problem.delassus().n_nonzero() << " ("
+            << (problem.delassus().dense() ? "dense" : "sparse") << " storage)"
+            << ", asymmetry of W " << problem.delassus().asymmetry()
+            << ", read in " << reading.wall_time() << " s\n";
+        summary["n_contacts"] = problem.n_contacts();
+        summary["spacedim"]   = problem.spacedim();
+        summary["storage"]    = problem.delassus().dense() ? "dense" : "sparse";
+        summary["asymmetry_W"] = problem.delassus().asymmetry();
         summary["read_time_s"] = reading.wall_time();
         if (info_only)
         {
+          const int rank = problem.delassus().numerical_rank(1e-10);
+          out << "rank of W_s (pivots above 1e-10 max diag) " << rank
+              << ", zero rows of W " << problem.delassus().n_zero_rows()
+              << "\n";
+          summary["rank_W"]      = rank;
+          summary["zero_rows_W"] = problem.delassus().n_zero_rows();
           if (!json_file.empty())
             std::ofstream(json_file) << summary.dump(2) << "\n";
           return 0;
         }
 
-        LocalSolver local_solver(
-          problem, qp_parameters, coulomb, model, first, proximal);
+        LocalSolver local_solver(problem, qp_parameters, coulomb, loop);
         dealii::Vector<double> r(problem.size());
         const auto             result = local_solver.solve(r);
         const auto            &last   = result.qp_statistics.back();
@@ -298,9 +309,18 @@ namespace dualcontact
             << "  last QP: criterion " << last.final_criterion
             << " (relative), KKT stationarity " << last.kkt.stationarity
             << "\n";
-        if (!result.proximal_steps.empty())
-          out << "  proximal rho " << proximal << " lambda_max, last relative "
-              << "step " << result.proximal_steps.back() << "\n";
+        out << "  proximal point " << result.proximal_reason;
+        if (!result.rhos.empty())
+          out << ", rho / lambda_max first " << loop.rho << ", last "
+              << result.rhos.back() << ", range ["
+              << *std::min_element(result.rhos.begin(), result.rhos.end())
+              << ", "
+              << *std::max_element(result.rhos.begin(), result.rhos.end())
+              << "]";
+        out << "\n";
+        if (!result.perturbations.empty())
+          out << "  last perturbation of q ||rho dr + W_a dr|| / ||q|| "
+              << result.perturbations.back() << "\n";
         if (!result.coulomb_changes.empty())
           out << "  Coulomb iterations " << result.coulomb_changes.size()
               << ", last relative change of psi "
@@ -325,8 +345,11 @@ namespace dualcontact
         }
         summary["model"]            = to_string(model);
         summary["first_iterate"]    = to_string(first);
-        summary["proximal"]         = proximal;
-        summary["proximal_steps"]   = result.proximal_steps;
+        summary["proximal"]         = result.proximal;
+        summary["proximal_reason"]  = result.proximal_reason;
+        summary["rhos"]             = result.rhos;
+        summary["perturbations"]    = result.perturbations;
+        summary["inexact"]          = loop.inexact;
         summary["solver"]           = qp_parameters.solver;
         summary["tolerance"]        = qp_parameters.tolerance;
         summary["converged"]        = result.converged;

@@ -17,17 +17,11 @@ namespace dualcontact
                                  const dealii::Vector<double> &w,
                                  const std::vector<double>    &mu,
                                  const std::string            &title)
-        : spacedim_(spacedim)
+        : ContactList(spacedim, mu, title)
         , f_(f)
         , w_(w)
-        , mu_(mu)
-        , title_(title)
     {
-      AssertThrow(spacedim == 2 || spacedim == 3,
-                  dealii::ExcMessage("FCLIB problem: space dimension " +
-                                     std::to_string(spacedim) +
-                                     ", expected 2 or 3"));
-      const unsigned int n = M.n_rows(), m = spacedim * mu.size();
+      const unsigned int n = M.n_rows(), m = n_contact_unknowns();
       AssertThrow(
         M.n_cols() == n && H.n_rows() == n && H.n_cols() == m &&
           f.size() == n && w.size() == m,
@@ -38,12 +32,6 @@ namespace dualcontact
           std::to_string(H.n_cols()) + ", f " + std::to_string(f.size()) +
           ", w " + std::to_string(w.size()) + ", " + std::to_string(mu.size()) +
           " contacts in dimension " + std::to_string(spacedim) + ")"));
-      for (const double v : mu)
-        AssertThrow(v >= 0 && std::isfinite(v),
-                    dealii::ExcMessage(
-                      "FCLIB problem: negative or non-finite friction "
-                      "coefficient mu = " +
-                      std::to_string(v)));
       M_upper_ = M.upper_triangle_only();
       if (M_upper_)
         M.symmetrize_from_upper();
@@ -56,23 +44,9 @@ namespace dualcontact
 
 
     unsigned int
-    GlobalProblem::spacedim() const
-    {
-      return spacedim_;
-    }
-
-
-    unsigned int
     GlobalProblem::n_dofs() const
     {
       return f_.size();
-    }
-
-
-    unsigned int
-    GlobalProblem::n_contacts() const
-    {
-      return mu_.size();
     }
 
 
@@ -101,20 +75,6 @@ namespace dualcontact
     GlobalProblem::w() const
     {
       return w_;
-    }
-
-
-    const std::vector<double> &
-    GlobalProblem::mu() const
-    {
-      return mu_;
-    }
-
-
-    const std::string &
-    GlobalProblem::title() const
-    {
-      return title_;
     }
 
 
@@ -154,7 +114,7 @@ namespace dualcontact
 
 
     LocalProblem
-    GlobalProblem::reduce_to_local() const
+    GlobalProblem::reduce_to_local(const Storage storage) const
     {
       factorize();
       const unsigned int                  n = n_dofs(), m = H_.matrix.n();
@@ -186,7 +146,7 @@ namespace dualcontact
       factorization_->solve(x, f_);
       H.Tvmult(q, x);
       q += w_;
-      return LocalProblem(spacedim_, W, q, mu_, title_);
+      return LocalProblem(spacedim(), W, q, mu(), title(), storage);
     }
 
 

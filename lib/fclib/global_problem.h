@@ -2,6 +2,7 @@
 
 #include <deal.II/lac/vector.h>
 
+#include <fclib/contact_list.h>
 #include <fclib/local_problem.h>
 #include <fclib/triplets.h>
 #include <fem/stiffness_solver.h>
@@ -29,7 +30,7 @@ namespace dualcontact
      *
      * Equality constraints (G, b of the format) are not supported.
      */
-    class GlobalProblem
+    class GlobalProblem : public ContactList
     {
     public:
       GlobalProblem() = default;
@@ -47,11 +48,7 @@ namespace dualcontact
       operator=(GlobalProblem &&) = default;
 
       unsigned int
-      spacedim() const;
-      unsigned int
       n_dofs() const;
-      unsigned int
-      n_contacts() const;
       const dealii::SparseMatrix<double> &
       M() const;
       const dealii::SparseMatrix<double> &
@@ -60,10 +57,6 @@ namespace dualcontact
       f() const;
       const dealii::Vector<double> &
       w() const;
-      const std::vector<double> &
-      mu() const;
-      const std::string &
-      title() const;
       /** Whether M was stored as its upper triangle only (then mirrored). */
       bool
       M_was_upper_triangle() const;
@@ -76,7 +69,7 @@ namespace dualcontact
        * factorization_name().
        */
       LocalProblem
-      reduce_to_local() const;
+      reduce_to_local(const Storage storage = Storage::automatic) const;
 
       /** v = M^-1 (H r + f), the global velocity for contact forces r. */
       void
@@ -91,11 +84,8 @@ namespace dualcontact
       void
       factorize() const;
 
-      unsigned int                                  spacedim_ = 3;
       OwnedSparseMatrix                             M_, H_;
       dealii::Vector<double>                        f_, w_;
-      std::vector<double>                           mu_;
-      std::string                                   title_;
       bool                                          M_upper_ = false;
       mutable std::unique_ptr<fem::StiffnessSolver> factorization_;
     };

@@ -2,6 +2,8 @@
 
 #include <deal.II/lac/vector.h>
 
+#include <fclib/contact_list.h>
+#include <fclib/delassus_operator.h>
 #include <fclib/triplets.h>
 
 #include <string>
@@ -22,66 +24,45 @@ namespace dualcontact
      * B K^-1 B' in the contact frames, r the nodal contact forces lambda and
      * q = -d, so that u = F lambda - d is the gap after deformation (normal)
      * and minus the slip (tangential).
+     *
+     * W is kept by a DelassusOperator: dense (BLAS) when it is dense, sparse
+     * otherwise, with its symmetric part formed once.
      */
-    class LocalProblem
+    class LocalProblem : public ContactList
     {
     public:
       LocalProblem() = default;
       /**
        * @p spacedim 2 or 3; @p W square of size spacedim * mu.size();
-       * @p q of that size.
+       * @p q of that size; @p storage of W for the products.
        */
       LocalProblem(const unsigned int            spacedim,
                    const Triplets               &W,
                    const dealii::Vector<double> &q,
                    const std::vector<double>    &mu,
-                   const std::string            &title = "");
+                   const std::string            &title   = "",
+                   const Storage                 storage = Storage::automatic);
 
-      unsigned int
-      spacedim() const;
-      unsigned int
-      n_contacts() const;
       /** spacedim * n_contacts(). */
       unsigned int
       size() const;
+      /** W as read (writing, entries); products go through delassus(). */
       const dealii::SparseMatrix<double> &
       W() const;
+      /** The products with W (dense or sparse storage). */
+      const DelassusOperator &
+      delassus() const;
       const dealii::Vector<double> &
       q() const;
-      const std::vector<double> &
-      mu() const;
-      const std::string &
-      title() const;
 
       /** u = W r + q. */
       void
       velocity(dealii::Vector<double>       &u,
                const dealii::Vector<double> &r) const;
 
-      /** dst = (W + W')/2 src, the Hessian of 1/2 r'W r. */
-      void
-      symmetric_vmult(dealii::Vector<double>       &dst,
-                      const dealii::Vector<double> &src) const;
-
-      /** dst = (W - W')/2 src, the part of W that 1/2 r'W r does not see. */
-      void
-      antisymmetric_vmult(dealii::Vector<double>       &dst,
-                          const dealii::Vector<double> &src) const;
-
-      /**
-       * max |W_ij - W_ji| / max |W_ij|: how far W is from symmetric (some
-       * distributed files are slightly non-symmetric).
-       */
-      double
-      asymmetry() const;
-
     private:
-      unsigned int                   spacedim_ = 3;
-      OwnedSparseMatrix              W_;
-      dealii::Vector<double>         q_;
-      std::vector<double>            mu_;
-      std::string                    title_;
-      mutable dealii::Vector<double> work_;
+      DelassusOperator       W_;
+      dealii::Vector<double> q_;
     };
   } // namespace fclib
 } // namespace dualcontact

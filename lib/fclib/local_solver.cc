@@ -56,24 +56,227 @@ namespace dualcontact
     }
 
 
+    std::string
+    to_string(const Proximal proximal)
+    {
+      return proximal == Proximal::off ? "off" :
+             proximal == Proximal::on  ? "on" :
+                                         "auto";
+    }
+
+
+    void
+    LocalSolver::Parameters::declare_parameters(dealii::ParameterHandler &prm)
+    {
+      prm.declare_entry("Model",
+                        "coulomb",
+                        dealii::Patterns::Selection("coulomb|cone"),
+                        "coulomb: the fixed point over Tresca QPs (bound x "
+                        "disc blocks), which solves the Coulomb problem; "
+                        "cone: one QP over the Coulomb cones, a convex "
+                        "relaxation (no De Saxce shift), 3D only.");
+      prm.declare_entry("First Coulomb iterate",
+                        "bonded",
+                        dealii::Patterns::Selection("bonded|frictionless"),
+                        "Model coulomb, cold start: bonded (no bound on the "
+                        "tangential forces, as the contact solver of the "
+                        "scenes) or frictionless (slip bounds 0); bonded "
+                        "can be unbounded below when W is singular "
+                        "(rigid-body problems).");
+      prm.declare_entry("Inexact QPs",
+                        "true",
+                        dealii::Patterns::Bool(),
+                        "Adapt the QP tolerance to the progress of the loop "
+                        "(loose first, the QP tolerance at the end): "
+                        "eps_{k+1} = max(eps, min(eps_k, factor * change_k)).");
+      prm.declare_entry("Initial QP tolerance",
+                        "1e-2",
+                        dealii::Patterns::Double(0.),
+                        "Inexact QPs: relative tolerance of the first QP [-] "
+                        "(never below the QP solver's tolerance).");
+      prm.declare_entry("QP tolerance factor",
+                        "0.1",
+                        dealii::Patterns::Double(0.),
+                        "Inexact QPs: factor of the last change of the loop "
+                        "in the next QP tolerance [-].");
+      prm.declare_entry(
+        "Proximal regularization",
+        "auto",
+        dealii::Patterns::Anything(),
+        "off | on | auto | RHO.  Proximal point: every QP gets rho/2 ||r - "
+        "r_previous||^2, strictly convex for singular W (rigid-body "
+        "problems); the loop then stops on the perturbation of q it leaves, "
+        "||rho (r - r_previous)|| <= (Coulomb tolerance) ||q||.  auto: the "
+        "plain loop first, and the proximal loop from its last good iterate "
+        "if it fails (singular W); a number: on, with that initial rho "
+        "(relative to lambda_max(W)); 0 = off.");
+      prm.declare_entry("Initial rho",
+                        "0.1",
+                        dealii::Patterns::Double(0.),
+                        "Proximal point: initial rho relative to "
+                        "lambda_max(W) [-].");
+      prm.declare_entry("Adaptive rho",
+                        "true",
+                        dealii::Patterns::Bool(),
+                        "Proximal point: divide rho by the rho factor after a "
+                        "cheap QP, multiply it (and redo the QP) after a QP "
+                        "that did not converge.");
+      prm.declare_entry("Rho range",
+                        "1e-6, 10",
+                        dealii::Patterns::List(dealii::Patterns::Double(0.),
+                                               2,
+                                               2),
+                        "Proximal point: smallest and largest rho relative to "
+                        "lambda_max(W) [-].");
+      prm.declare_entry("Rho factor",
+                        "2",
+                        dealii::Patterns::Double(1.),
+                        "Proximal point: factor of the changes of rho [-].");
+      prm.declare_entry("Rho decrease below",
+                        "50",
+                        dealii::Patterns::Integer(0),
+                        "Proximal point: rho decreases after a QP of at most "
+                        "this many iterations.");
+      prm.declare_entry("Rho increase above",
+                        "5000",
+                        dealii::Patterns::Integer(0),
+                        "Proximal point: rho increases after a QP of more "
+                        "than this many iterations.");
+      prm.declare_entry("Proximal maximum iterations",
+                        "1000",
+                        dealii::Patterns::Integer(1),
+                        "Limit of the proximal loop's iterations (the larger "
+                        "of this and Coulomb/Maximum iterations).");
+    }
+
+
+    void
+    LocalSolver::Parameters::parse_parameters(dealii::ParameterHandler &prm)
+    {
+      model   = parse_model(prm.get("Model"));
+      first   = parse_first_iterate(prm.get("First Coulomb iterate"));
+      inexact = prm.get_bool("Inexact QPs");
+      initial_qp_tolerance = prm.get_double("Initial QP tolerance");
+      qp_tolerance_factor  = prm.get_double("QP tolerance factor");
+      rho                  = prm.get_double("Initial rho");
+      // (a number there sets rho)
+      parse_proximal(prm.get("Proximal regularization"));
+      adaptive_rho            = prm.get_bool("Adaptive rho");
+      const std::string range = prm.get("Rho range");
+      rho_min                 = std::stod(range.substr(0, range.find(',')));
+      rho_max                 = std::stod(range.substr(range.find(',') + 1));
+      rho_factor              = prm.get_double("Rho factor");
+      rho_decrease_below      = prm.get_integer("Rho decrease below");
+      rho_increase_above      = prm.get_integer("Rho increase above");
+      proximal_max_iterations = prm.get_integer("Proximal maximum iterations");
+      check();
+    }
+
+
+    void
+    LocalSolver::Parameters::parse_proximal(const std::string &value)
+    {
+      if (value == "off")
+        proximal = Proximal::off;
+      else if (value == "on")
+        proximal = Proximal::on;
+      else if (value == "auto")
+        proximal = Proximal::automatic;
+      else
+      {
+        double      x    = -1;
+        std::size_t used = 0;
+        try
+        {
+          x = std::stod(value, &used);
+        }
+        catch (const std::exception &)
+        {
+          used = 0;
+        }
+        AssertThrow(used == value.size() && x >= 0 && std::isfinite(x),
+                    dealii::ExcMessage("Proximal regularization: `" + value +
+                                       "' is none of off, on, auto or a "
+                                       "number >= 0"));
+        proximal = x > 0 ? Proximal::on : Proximal::off;
+        if (x > 0)
+          rho = x;
+      }
+    }
+
+
+    void
+    LocalSolver::Parameters::check() const
+    {
+      AssertThrow(initial_qp_tolerance > 0 &&
+                    std::isfinite(initial_qp_tolerance),
+                  dealii::ExcMessage("Initial QP tolerance must be > 0"));
+      AssertThrow(qp_tolerance_factor > 0 && std::isfinite(qp_tolerance_factor),
+                  dealii::ExcMessage("QP tolerance factor must be > 0"));
+      AssertThrow(rho > 0 && std::isfinite(rho),
+                  dealii::ExcMessage("Initial rho must be > 0"));
+      AssertThrow(rho_min > 0 && rho_min <= rho_max && std::isfinite(rho_max),
+                  dealii::ExcMessage("Rho range: need 0 < rho_min <= rho_max"));
+      AssertThrow(rho_factor >= 1 && std::isfinite(rho_factor),
+                  dealii::ExcMessage("Rho factor must be >= 1"));
+      AssertThrow(rho_increase_above >= rho_decrease_below,
+                  dealii::ExcMessage("Rho increase above must be >= Rho "
+                                     "decrease below"));
+      AssertThrow(proximal_max_iterations >= 1,
+                  dealii::ExcMessage("Proximal maximum iterations must be "
+                                     ">= 1"));
+    }
+
+
+    namespace
+    {
+      LocalSolver::Parameters
+      first_version(const Model        model,
+                    const FirstIterate first,
+                    const double       proximal)
+      {
+        AssertThrow(proximal >= 0 && std::isfinite(proximal),
+                    dealii::ExcMessage("proximal regularization must be >= 0"));
+        LocalSolver::Parameters p;
+        p.model        = model;
+        p.first        = first;
+        p.inexact      = false;
+        p.proximal     = proximal > 0 ? Proximal::on : Proximal::off;
+        p.adaptive_rho = false;
+        if (proximal > 0)
+          p.rho = proximal;
+        return p;
+      }
+    } // namespace
+
+
     LocalSolver::LocalSolver(const LocalProblem               &problem,
                              const qp::SolverParameters       &qp_parameters,
                              const contact::CoulombParameters &coulomb,
                              const Model                       model,
                              const FirstIterate                first,
                              const double                      proximal)
+        : LocalSolver(problem,
+                      qp_parameters,
+                      coulomb,
+                      first_version(model, first, proximal))
+    {
+    }
+
+
+    LocalSolver::LocalSolver(const LocalProblem               &problem,
+                             const qp::SolverParameters       &qp_parameters,
+                             const contact::CoulombParameters &coulomb,
+                             const Parameters                 &parameters)
         : problem_(problem)
         , qp_parameters_(qp_parameters)
         , coulomb_parameters_(coulomb)
-        , model_(model)
-        , first_(first)
+        , parameters_(parameters)
     {
-      proximal_ = proximal;
+      parameters.check();
       // round-off asymmetry (reduced global problems) is not worth a loop
-      asymmetric_ = problem.asymmetry() > 1e-12;
-      AssertThrow(proximal >= 0 && std::isfinite(proximal),
-                  dealii::ExcMessage("proximal regularization must be >= 0"));
-      AssertThrow(model != Model::cone || problem.spacedim() == 3,
+      asymmetric_ = problem.delassus().asymmetry() > 1e-12;
+      AssertThrow(parameters.model != Model::cone || problem.spacedim() == 3,
                   dealii::ExcMessage("the cone model needs a 3D problem (the "
                                      "cone block has 3 unknowns)"));
     }
@@ -82,7 +285,8 @@ namespace dualcontact
     qp::SolverStatistics
     LocalSolver::solve_qp(dealii::Vector<double>    &r,
                           const std::vector<double> *psi,
-                          const double               lambda_max) const
+                          const double               rho,
+                          const double               tolerance) const
     {
       const unsigned int dim = problem_.spacedim();
       auto set = std::make_shared<qp::SeparableSet<dealii::Vector<double>>>();
@@ -90,7 +294,7 @@ namespace dualcontact
       {
         const unsigned int first = dim * i;
         const double       mu    = problem_.mu()[i];
-        if (model_ == Model::cone)
+        if (parameters_.model == Model::cone)
         {
           set->add_cone(first, mu);
           continue;
@@ -111,12 +315,11 @@ namespace dualcontact
       set->finalize(r);
 
       // proximal term rho/2 ||r - center||^2 around the start r
-      const double                        rho = proximal_ * lambda_max;
       qp::Problem<dealii::Vector<double>> qp;
       qp.hessian = [this, rho](dealii::Vector<double>       &dst,
                                const dealii::Vector<double> &src)
       {
-        problem_.symmetric_vmult(dst, src);
+        problem_.delassus().symmetric_vmult(dst, src);
         if (rho > 0)
           dst.add(rho, src);
       };
@@ -127,13 +330,22 @@ namespace dualcontact
       if (asymmetric_)
       {
         dealii::Vector<double> lagged;
-        problem_.antisymmetric_vmult(lagged, r);
+        problem_.delassus().antisymmetric_vmult(lagged, r);
         qp.b -= lagged;
       }
       qp.constraints  = set;
-      qp.lambda_max   = lambda_max + rho;
+      qp.lambda_max   = lambda_max_ + rho;
       qp.semidefinite = true;
-      auto solver     = qp::create<dealii::Vector<double>>(qp_parameters_);
+      // the QP criterion is relative to ||b||; the proximal and lagged
+      // terms make ||b|| larger than ||q||, and the error that matters is
+      // the one in q: tolerance relative to ||q||
+      qp::SolverParameters prm = qp_parameters_;
+      const double         b   = qp.b.l2_norm();
+      const double         q   = problem_.q().l2_norm();
+      prm.tolerance            = tolerance;
+      if (b > q && q > 0)
+        prm.tolerance *= q / b;
+      auto solver = qp::create<dealii::Vector<double>>(prm);
       return solver->solve(qp, r);
     }
 
@@ -145,19 +357,72 @@ namespace dualcontact
                   dealii::ExcMessage("LocalSolver: start vector of size " +
                                      std::to_string(r.size()) + ", expected " +
                                      std::to_string(problem_.size())));
-      dealii::Timer      timer;
-      Result             result;
-      const unsigned int dim = problem_.spacedim();
+      dealii::Timer timer;
+      Result        result;
 
-      const auto power = qp::power_iteration<dealii::Vector<double>>(
-        [this](dealii::Vector<double> &dst, const dealii::Vector<double> &src)
-        { problem_.symmetric_vmult(dst, src); },
-        problem_.q(),
-        qp_parameters_.power_max_iterations,
-        qp_parameters_.power_tolerance,
-        qp_parameters_.power_safety_factor);
-      result.hessian_products += power.n_products;
-      const double lambda_max = power.lambda_max;
+      // lambda_max(W_s): once per problem (the Hessians of all QPs are W_s
+      // + rho I, only the bounds change)
+      if (lambda_max_ == 0)
+      {
+        const auto power = qp::power_iteration<dealii::Vector<double>>(
+          [this](dealii::Vector<double> &dst, const dealii::Vector<double> &src)
+          { problem_.delassus().symmetric_vmult(dst, src); },
+          problem_.q(),
+          qp_parameters_.power_max_iterations,
+          qp_parameters_.power_tolerance,
+          qp_parameters_.power_safety_factor);
+        result.hessian_products += power.n_products;
+        lambda_max_ = power.lambda_max;
+      }
+
+      // proximal point: on, off, or (auto) on once the plain loop failed
+      if (parameters_.proximal == Proximal::on)
+      {
+        result.proximal_reason = "on (parameter)";
+        run_loop(r, true, result);
+      }
+      else
+      {
+        const dealii::Vector<double> start = r;
+        run_loop(r, false, result);
+        if (parameters_.proximal == Proximal::off)
+          result.proximal_reason = "off (parameter)";
+        else if (result.converged)
+          result.proximal_reason = "off (auto: the plain loop converged)";
+        else
+        {
+          result.proximal_reason = "on (auto: the plain loop failed after " +
+                                   std::to_string(result.qp_statistics.size()) +
+                                   " QPs: " + result.reason + ")";
+          // from the last iterate whose QP converged (the start if none)
+          if (result.last_good.size() == r.size())
+            r = result.last_good;
+          else
+            r = start;
+          run_loop(r, true, result);
+        }
+      }
+      result.fclib_error = fclib_error(problem_, r);
+      result.wall_time   = timer.wall_time();
+      return result;
+    }
+
+
+    void
+    LocalSolver::run_loop(dealii::Vector<double> &r,
+                          const bool              proximal,
+                          Result                 &result) const
+    {
+      const unsigned int dim        = problem_.spacedim();
+      const double       lambda_max = lambda_max_;
+      result.proximal               = proximal;
+      result.converged              = false;
+      result.reason.clear();
+      double             rho = proximal ? parameters_.rho : 0.;
+      const unsigned int max_iterations =
+        proximal ? std::max(coulomb_parameters_.max_iterations,
+                            parameters_.proximal_max_iterations) :
+                   coulomb_parameters_.max_iterations;
 
       auto record = [&](const qp::SolverStatistics &s)
       {
@@ -174,6 +439,8 @@ namespace dualcontact
                 << ": " << qp::to_string(s.reason) << " after " << s.iterations
                 << " iterations, criterion " << s.final_criterion
                 << " (tolerance " << s.tolerance << ")";
+        if (proximal)
+          message << ", proximal rho " << rho << " lambda_max";
         result.reason = message.str();
       };
 
@@ -181,7 +448,8 @@ namespace dualcontact
       for (const double mu : problem_.mu())
         has_friction = has_friction || mu > 0;
       const bool coulomb_loop =
-        model_ == Model::coulomb_fixed_point && has_friction;
+        parameters_.model == Model::coulomb_fixed_point && has_friction;
+      const bool stepping = proximal || asymmetric_;
 
       auto slip_bounds = [&](const dealii::Vector<double> &x)
       {
@@ -196,105 +464,145 @@ namespace dualcontact
       bool                bonded = false;
       if (r.linfty_norm() > 0)
         psi = slip_bounds(r);
-      else if (first_ == FirstIterate::bonded)
+      else if (parameters_.first == FirstIterate::bonded)
         bonded = true;
       else
         psi.assign(problem_.n_contacts(), 0.);
       bool first_change = r.linfty_norm() == 0;
 
+      // inexact fixed point: the QP tolerance follows the loop's progress
+      const double final_tolerance = qp_parameters_.tolerance;
+      double       tolerance       = final_tolerance;
+      if (parameters_.inexact && (coulomb_loop || stepping))
+        tolerance = std::max(final_tolerance, parameters_.initial_qp_tolerance);
+      double q_norm = problem_.q().l2_norm();
+      if (!(q_norm > 0))
+        q_norm = 1;
+
       unsigned int           growing = 0;
-      dealii::Vector<double> previous;
-      std::vector<double>   &measure =
-        coulomb_loop ? result.coulomb_changes : result.proximal_steps;
+      dealii::Vector<double> previous, step;
+      std::vector<double>    measure;
       for (unsigned int it = 0;; ++it)
       {
         previous = r;
-        if (!record(solve_qp(r, bonded ? nullptr : &psi, lambda_max)))
+        if (!record(solve_qp(
+              r, bonded ? nullptr : &psi, rho * lambda_max, tolerance)))
         {
+          // a proximal QP that does not converge: stronger proximal term,
+          // the QP again from the previous iterate
+          if (proximal && parameters_.adaptive_rho &&
+              rho < parameters_.rho_max && it + 1 < max_iterations)
+          {
+            r   = previous;
+            rho = std::min(rho * parameters_.rho_factor, parameters_.rho_max);
+            result.rhos.push_back(rho);
+            continue;
+          }
           qp_failure(it == 0 ?
                        (coulomb_loop ? " in the first Coulomb iterate" : "") :
                        " in iteration " + std::to_string(it + 1));
           break;
         }
-        const bool stepping = proximal_ > 0 || asymmetric_;
+        const unsigned int qp_iterations =
+          result.qp_statistics.back().iterations;
         if (!coulomb_loop && !stepping)
         {
           result.converged = true;
           result.reason    = "converged";
           break;
         }
+        double perturbation = 0;
         if (stepping)
         {
-          previous -= r;
-          const double norm = r.l2_norm();
-          result.proximal_steps.push_back(norm > 0 ? previous.l2_norm() / norm :
-                                                     previous.l2_norm());
+          // r solves the problem exactly for q + rho (r - r^k) + W_a (r - r^k)
+          step = r;
+          step -= previous;
+          dealii::Vector<double> shift(step.size());
+          if (asymmetric_)
+            problem_.delassus().antisymmetric_vmult(shift, step);
+          shift.add(rho * lambda_max, step);
+          perturbation = shift.l2_norm() / q_norm;
+          result.perturbations.push_back(perturbation);
         }
+        double change = 0;
         if (coulomb_loop)
         {
           const std::vector<double> old = psi;
           psi                           = slip_bounds(r);
-          double relative               = 1.;
+          change                        = 1.;
           if (!first_change && !bonded)
           {
-            double change = 0, norm = 0;
+            double difference = 0, norm = 0;
             for (unsigned int i = 0; i < psi.size(); ++i)
             {
-              change += std::pow(psi[i] - old[i], 2);
+              difference += std::pow(psi[i] - old[i], 2);
               norm += psi[i] * psi[i];
             }
-            relative = norm > 0 ? std::sqrt(change / norm) : std::sqrt(change);
+            change =
+              norm > 0 ? std::sqrt(difference / norm) : std::sqrt(difference);
           }
           bonded       = false;
           first_change = false;
-          result.coulomb_changes.push_back(relative);
+          result.coulomb_changes.push_back(change);
         }
-        const double change = coulomb_loop ? result.coulomb_changes.back() : 0.;
-        const double step   = stepping ? result.proximal_steps.back() : 0.;
-        if (!std::isfinite(change) || !std::isfinite(step))
+        if (!std::isfinite(change) || !std::isfinite(perturbation))
         {
           result.reason = "Coulomb/proximal loop: non-finite iterate";
           break;
         }
-        if (change <= coulomb_parameters_.tolerance &&
-            step <= coulomb_parameters_.tolerance)
+        const double progress = std::max(change, perturbation);
+        measure.push_back(coulomb_loop ? change : perturbation);
+        if (progress <= coulomb_parameters_.tolerance &&
+            tolerance <= final_tolerance)
         {
           result.converged = true;
           result.reason    = "converged";
           break;
         }
+        if (parameters_.inexact)
+          tolerance =
+            progress <= coulomb_parameters_.tolerance ?
+              final_tolerance :
+              std::max(final_tolerance,
+                       std::min(tolerance,
+                                parameters_.qp_tolerance_factor * progress));
+        // rho: weaker after a cheap QP (faster loop), stronger after an
+        // expensive one (better conditioned QPs)
+        if (proximal && parameters_.adaptive_rho &&
+            qp_iterations <= parameters_.rho_decrease_below)
+          rho = std::max(rho / parameters_.rho_factor, parameters_.rho_min);
+        else if (proximal && parameters_.adaptive_rho &&
+                 qp_iterations > parameters_.rho_increase_above)
+          rho = std::min(rho * parameters_.rho_factor, parameters_.rho_max);
+        if (proximal)
+          result.rhos.push_back(rho);
         // (damped by a proximal term, the changes need not decrease
         // monotonically: no divergence test then)
-        if (coulomb_loop && proximal_ == 0 && measure.size() > 1 &&
+        if (coulomb_loop && !proximal && measure.size() > 1 &&
             measure.back() > measure[measure.size() - 2])
           ++growing;
         else
           growing = 0;
         if (growing >= coulomb_parameters_.divergence_window)
         {
-          result.reason =
-            std::string(coulomb_loop ? "Coulomb fixed point" :
-                                       "proximal / lagged-asymmetry loop") +
-            " diverged (the change grew in " + std::to_string(growing) +
-            " consecutive iterations)";
+          result.reason = std::string(coulomb_loop ? "Coulomb fixed point" :
+                                                     "lagged-asymmetry loop") +
+                          " diverged (the change grew in " +
+                          std::to_string(growing) + " consecutive iterations)";
           break;
         }
-        if (it + 1 >= coulomb_parameters_.max_iterations)
+        if (it + 1 >= max_iterations)
         {
           std::ostringstream message;
           message << (coulomb_loop ? "Coulomb fixed point" :
                                      "proximal / lagged-asymmetry loop")
-                  << ": maximum iterations ("
-                  << coulomb_parameters_.max_iterations
-                  << ") reached, relative change of psi " << change
-                  << ", relative step " << step;
+                  << (proximal ? " (proximal)" : "") << ": maximum iterations ("
+                  << max_iterations << ") reached, relative change of psi "
+                  << change << ", perturbation of q " << perturbation;
           result.reason = message.str();
           break;
         }
       }
-      result.fclib_error = fclib_error(problem_, r);
-      result.wall_time   = timer.wall_time();
-      return result;
     }
   } // namespace fclib
 } // namespace dualcontact

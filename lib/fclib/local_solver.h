@@ -1,5 +1,6 @@
 #pragma once
 
+#include <deal.II/base/parameter_handler.h>
 #include <deal.II/lac/vector.h>
 
 #include <contact/contact_solver.h>
@@ -64,20 +65,107 @@ namespace dualcontact
     FirstIterate
     parse_first_iterate(const std::string &name);
 
+    /** Whether the loop gets a proximal term. */
+    enum class Proximal
+    {
+      off,
+      on,
+      /** the plain loop, and the proximal one if the plain loop fails */
+      automatic
+    };
+
+    /** "off" / "on" / "auto". */
+    std::string
+    to_string(const Proximal proximal);
+
     /**
      * Solves a LocalProblem with the project's QP solvers (any of
      * qp::solver_names() that accepts the blocks: mprgp only for mu = 0).
-     * The QP Hessian is the symmetric part W_s = (W + W')/2 (1/2 r'W r only
-     * sees it); a non-symmetric W (some distributed files) has its
-     * antisymmetric part W_a taken at the previous iterate, u = W_s r +
-     * W_a r^k + q, and the loop iterates until r^k is a fixed point, where
-     * u = W r + q.  The FCLIB error is computed with W itself.  The Coulomb
-     * loop follows contact::ContactSolver (bonded first iterate, relative
-     * change of psi, divergence window), with the same parameters.
+     *
+     * The loop.  Model coulomb: the fixed point psi_i = mu_i r_n,i over
+     * Tresca QPs (contact::ContactSolver's loop: bonded first iterate,
+     * relative change of psi, divergence window, its parameters), each QP
+     * warm started from the previous iterate.  The QP Hessian is the
+     * symmetric part W_s = (W + W')/2 (1/2 r'W r only sees it); a
+     * non-symmetric W has its antisymmetric part W_a taken at the previous
+     * iterate, u = W_s r + W_a r^k + q.
+     *
+     * Inexact fixed point (like remark 7.3 of the 1996 report): the first
+     * QPs are solved loosely, and the QP tolerance follows the progress of
+     * the loop, eps_{k+1} = max(eps, min(eps_k, factor * change_k)), down
+     * to the QP tolerance eps; the loop stops only after a QP solved to eps.
+     * An early iterate whose bounds are about to change is not worth a tight
+     * solve.
+     *
+     * Proximal point (singular W): every QP gets rho/2 ||r - r^k||^2, which
+     * makes it strictly convex; r^{k+1} then solves the Coulomb problem
+     * exactly for q perturbed by rho (r^{k+1} - r^k) (and, with lagged
+     * W_a, by W_a (r^{k+1} - r^k)).  The loop stops when that perturbation
+     * is at most the Coulomb tolerance times ||q|| and psi is a fixed point
+     * to that tolerance: the same kind of relative criterion as the QPs'
+     * (relative to ||b||), never the FCLIB error.  rho adapts: divided by
+     * rho_factor when the QP took at most rho_decrease_below iterations
+     * (cheap: the proximal term can be weaker, the loop faster),
+     * multiplied by it when the QP took more than rho_increase_above
+     * iterations (and the QP redone from r^k when it did not converge),
+     * within [rho_min, rho_max] lambda_max.  Proximal::automatic (default)
+     * runs the plain loop and, if it fails (a QP that does not converge —
+     * typical of singular W, whose zero-curvature directions stall the
+     * first-order QP solvers — or a loop that does not contract), the
+     * proximal loop from the last iterate whose QP converged; a singular W
+     * alone is no reason (many singular problems, e.g. with decoupled
+     * unknowns, are solved faster by the plain loop).
+     *
+     * The FCLIB error of the result is computed with W itself.
      */
     class LocalSolver
     {
     public:
+      /** The loop's options (fclibsolve's .prm, see declare_parameters()). */
+      struct Parameters
+      {
+        Model        model = Model::coulomb_fixed_point;
+        FirstIterate first = FirstIterate::bonded;
+
+        /** Inexact fixed point: adapt the QP tolerance to the progress. */
+        bool inexact = true;
+        /** QP tolerance of the first QP (never below the QP tolerance). */
+        double initial_qp_tolerance = 1e-2;
+        /** eps_{k+1} = max(eps, min(eps_k, factor * change_k)). */
+        double qp_tolerance_factor = 0.1;
+
+        Proximal proximal = Proximal::automatic;
+        /** Initial rho, relative to lambda_max(W). */
+        double rho = 0.1;
+        /** Adapt rho (else it stays at its initial value). */
+        bool adaptive_rho = true;
+        /** Range of rho, relative to lambda_max(W). */
+        double rho_min = 1e-6, rho_max = 10.;
+        /** rho is divided / multiplied by this. */
+        double rho_factor = 2.;
+        /** rho decreases after a QP of at most this many iterations. */
+        unsigned int rho_decrease_below = 50;
+        /** rho increases after a QP of more than this many iterations. */
+        unsigned int rho_increase_above = 5000;
+        /**
+         * Limit of the proximal loop's iterations (the larger of this and
+         * the Coulomb limit): it takes many cheap steps.
+         */
+        unsigned int proximal_max_iterations = 1000;
+
+        /** Top-level entries of fclibsolve's .prm. */
+        static void
+        declare_parameters(dealii::ParameterHandler &prm);
+        void
+        parse_parameters(dealii::ParameterHandler &prm);
+        /** Throws (naming the parameter) on values out of range. */
+        void
+        check() const;
+        /** "off", "on", "auto", or a number (> 0: on with that rho). */
+        void
+        parse_proximal(const std::string &value);
+      };
+
       struct Result
       {
         bool        converged = false;
@@ -87,10 +175,18 @@ namespace dualcontact
         /** Relative change of psi per Coulomb iterate. */
         std::vector<double> coulomb_changes;
         /**
-         * Relative step ||r^{k+1} - r^k|| / ||r^{k+1}|| per iterate (with a
-         * proximal term or a non-symmetric W).
+         * ||rho (r^{k+1} - r^k) + W_a (r^{k+1} - r^k)|| / ||q|| per iterate
+         * (with a proximal term or a non-symmetric W): how far q is from
+         * the problem r^{k+1} solves exactly.
          */
-        std::vector<double> proximal_steps;
+        std::vector<double> perturbations;
+        /** rho / lambda_max per iterate (proximal loop). */
+        std::vector<double> rhos;
+        /** Whether the proximal term was on, and why. */
+        bool        proximal = false;
+        std::string proximal_reason;
+        /** The last iterate whose QP converged (empty: none yet). */
+        dealii::Vector<double> last_good;
         /** Sum of the QP iterations. */
         unsigned long iterations = 0;
         /** Products with W (QPs and the power iteration). */
@@ -103,6 +199,13 @@ namespace dualcontact
       LocalSolver(const LocalProblem               &problem,
                   const qp::SolverParameters       &qp_parameters,
                   const contact::CoulombParameters &coulomb_parameters,
+                  const Parameters                 &parameters);
+
+      /** With the default Parameters but @p model, @p first and a fixed
+       * proximal rho (0: off) — the options of the first version. */
+      LocalSolver(const LocalProblem               &problem,
+                  const qp::SolverParameters       &qp_parameters,
+                  const contact::CoulombParameters &coulomb_parameters,
                   const Model                       model,
                   const FirstIterate first    = FirstIterate::bonded,
                   const double       proximal = 0.);
@@ -111,37 +214,38 @@ namespace dualcontact
        * @p r: the start on entry (zero: cold start, the first Coulomb
        * iterate as chosen by FirstIterate; otherwise the bounds come from
        * it), the solution on exit (also when not converged: the last
-       * iterate).
-       *
-       * With @p proximal = rho > 0 (constructor, relative to lambda_max(W))
-       * every QP is regularized around the previous iterate r^k (proximal
-       * point): minimize 1/2 r'W r + q'r + rho lambda_max/2 ||r - r^k||^2,
-       * strictly convex and well conditioned even for singular W (rigid-body
-       * problems, where the plain QPs converge slowly or are unbounded).  The
-       * loop then also runs for the cone model and without friction, and
-       * stops when both the change of psi and the step ||r^{k+1} - r^k|| /
-       * ||r^{k+1}|| are below the Coulomb tolerance: a fixed point of the
-       * regularized loop is a solution of the unregularized problem.
+       * iterate).  lambda_max(W) and the rank test are done on the first
+       * call and reused by later ones.
        */
       Result
       solve(dealii::Vector<double> &r) const;
 
     private:
+      /**
+       * The loop from @p r, plain or with the proximal term; appends to
+       * @p result (QP records, changes), sets converged and reason.
+       */
+      void
+      run_loop(dealii::Vector<double> &r,
+               const bool              proximal,
+               Result                 &result) const;
+
       qp::SolverStatistics
       solve_qp(dealii::Vector<double>    &r,
                const std::vector<double> *psi,
-               const double               lambda_max) const;
+               const double               rho,
+               const double               tolerance) const;
 
-      /** rho of the proximal term, relative to lambda_max(W); 0: none. */
-      double proximal_;
       /** Whether W is not symmetric (then the loop iterates on W_a r^k). */
       bool asymmetric_;
 
       const LocalProblem        &problem_;
       qp::SolverParameters       qp_parameters_;
       contact::CoulombParameters coulomb_parameters_;
-      Model                      model_;
-      FirstIterate               first_;
+      Parameters                 parameters_;
+      /** lambda_max(W_s) (0: not yet estimated) and its products. */
+      mutable double        lambda_max_     = 0;
+      mutable unsigned long power_products_ = 0;
     };
   } // namespace fclib
 } // namespace dualcontact

@@ -64,9 +64,9 @@ namespace
     check(q_cg.l2_norm() <= 1e-10 * local.q().l2_norm(),
           name + ": ||q - (H'M^-1 f + w)|| / ||q|| (CG)",
           q_cg.l2_norm() / local.q().l2_norm());
-    check(local.asymmetry() <= 1e-10,
+    check(local.delassus().asymmetry() <= 1e-10,
           name + ": reduced W symmetric, asymmetry",
-          local.asymmetry());
+          local.delassus().asymmetry());
   }
 } // namespace
 

@@ -1,7 +1,10 @@
 // LocalSolver and the FCLIB error on problems with closed-form solutions:
 // one contact with W = diag(k_n, k_t, k_t), sliding and sticking; the cone
-// QP (a relaxation: the projection of -q onto the cone for W = I); write and
-// read back a problem with its solution.
+// QP (a relaxation: the projection of -q onto the cone for W = I); dense and
+// sparse storage of W; the inexact fixed point; the proximal loop on the
+// rigid-body files (Capsules: the plain loop fails and says so, auto
+// switches the proximal loop on and converges; spheres-in-a-box at 1e-4);
+// write and read back a problem with its solution.
 #include <fclib/accuracy.h>
 #include <fclib/fclib_file.h>
 #include <fclib/local_solver.h>
@@ -42,6 +45,34 @@ namespace
       s += std::pow(a(i) - b[i], 2);
     return std::sqrt(s);
   }
+
+  struct Solved
+  {
+    fclib::LocalSolver::Result result;
+    dealii::Vector<double>     r;
+  };
+
+  /** A cold start of LocalSolver on @p problem. */
+  Solved
+  solve(const fclib::LocalProblem            &problem,
+        const qp::SolverParameters           &prm,
+        const contact::CoulombParameters     &coulomb,
+        const fclib::LocalSolver::Parameters &loop)
+  {
+    fclib::LocalSolver s(problem, prm, coulomb, loop);
+    Solved             out;
+    out.r.reinit(problem.size());
+    out.result = s.solve(out.r);
+    return out;
+  }
+
+  fclib::LocalSolver::Parameters
+  with_model(const fclib::Model model)
+  {
+    fclib::LocalSolver::Parameters p;
+    p.model = model;
+    return p;
+  }
 } // namespace
 
 int
@@ -49,8 +80,9 @@ main()
 {
   qp::SolverParameters       prm;
   contact::CoulombParameters coulomb;
-  prm.tolerance     = 1e-12;
-  coulomb.tolerance = 1e-12;
+  prm.tolerance            = 1e-12;
+  coulomb.tolerance        = 1e-12;
+  const auto coulomb_model = with_model(fclib::Model::coulomb_fixed_point);
 
   for (const std::string solver : {"mpgp", "mpgp-bb", "spg-qp", "apgd"})
   {
@@ -58,86 +90,72 @@ main()
     // sliding: r_n = -q_n / k_n = 2; stick would need |r_t| = |q_t| / k_t
     // = 1 > mu r_n = 0.6, so r_t = -0.6 q_t/|q_t|, u_n = 0, u_t || q_t
     {
-      const auto         problem = one_contact(2., 4., -4., 3., 4. * 0, 0.3);
-      fclib::LocalSolver s(problem,
+      const auto s = solve(one_contact(2., 4., -4., 3., 0., 0.3),
                            prm,
                            coulomb,
-                           fclib::Model::coulomb_fixed_point);
-      dealii::Vector<double> r(3);
-      const auto             result = s.solve(r);
-      check(result.converged, solver + " slip: converged", result.reason);
-      check(distance(r, {2., -0.6, 0.}) < 1e-9,
+                           coulomb_model);
+      check(s.result.converged, solver + " slip: converged", s.result.reason);
+      check(distance(s.r, {2., -0.6, 0.}) < 1e-9,
             solver + " slip: |r - r*|",
-            distance(r, {2., -0.6, 0.}));
-      check(result.fclib_error < 1e-9,
+            distance(s.r, {2., -0.6, 0.}));
+      check(s.result.fclib_error < 1e-9,
             solver + " slip: FCLIB error",
-            result.fclib_error);
-      check(result.coulomb_changes.size() <= 4,
+            s.result.fclib_error);
+      check(s.result.coulomb_changes.size() <= 6,
             solver + " slip: Coulomb iterations",
-            result.coulomb_changes.size());
+            s.result.coulomb_changes.size());
     }
     // sticking, tangential load at 45 degrees: r = -W^-1 q
     {
-      const auto             problem = one_contact(1., 2., -1., 0.2, 0.2, 0.5);
-      fclib::LocalSolver     s(problem,
+      const auto s = solve(one_contact(1., 2., -1., 0.2, 0.2, 0.5),
                            prm,
                            coulomb,
-                           fclib::Model::coulomb_fixed_point);
-      dealii::Vector<double> r(3);
-      const auto             result = s.solve(r);
-      check(result.converged, solver + " stick: converged", result.reason);
-      check(distance(r, {1., -0.1, -0.1}) < 1e-9,
+                           coulomb_model);
+      check(s.result.converged, solver + " stick: converged", s.result.reason);
+      check(distance(s.r, {1., -0.1, -0.1}) < 1e-9,
             solver + " stick: |r - r*|",
-            distance(r, {1., -0.1, -0.1}));
-      check(result.fclib_error < 1e-9,
+            distance(s.r, {1., -0.1, -0.1}));
+      check(s.result.fclib_error < 1e-9,
             solver + " stick: FCLIB error",
-            result.fclib_error);
+            s.result.fclib_error);
     }
     // separation: q_n > 0, r = 0
     {
-      const auto             problem = one_contact(1., 1., 0.5, 0.2, -0.1, 0.5);
-      fclib::LocalSolver     s(problem,
+      const auto s = solve(one_contact(1., 1., 0.5, 0.2, -0.1, 0.5),
                            prm,
                            coulomb,
-                           fclib::Model::coulomb_fixed_point);
-      dealii::Vector<double> r(3);
-      const auto             result = s.solve(r);
-      check(result.converged && r.l2_norm() < 1e-12,
+                           coulomb_model);
+      check(s.result.converged && s.r.l2_norm() < 1e-12,
             solver + " separation: r = 0",
-            r.l2_norm());
+            s.r.l2_norm());
     }
     // the cone QP with W = I: r = P_K(-q), a relaxation whose FCLIB error
     // is not zero when the contact slides
     {
-      const auto             problem = one_contact(1., 1., -1., 0.5, 0., 0.3);
-      fclib::LocalSolver     s(problem, prm, coulomb, fclib::Model::cone);
-      dealii::Vector<double> r(3);
-      const auto             result = s.solve(r);
-      const double           a      = (1. + 0.3 * 0.5) / (1. + 0.09);
-      check(result.converged, solver + " cone: converged", result.reason);
-      check(distance(r, {a, -0.3 * a, 0.}) < 1e-9,
+      const auto   s = solve(one_contact(1., 1., -1., 0.5, 0., 0.3),
+                           prm,
+                           coulomb,
+                           with_model(fclib::Model::cone));
+      const double a = (1. + 0.3 * 0.5) / (1. + 0.09);
+      check(s.result.converged, solver + " cone: converged", s.result.reason);
+      check(distance(s.r, {a, -0.3 * a, 0.}) < 1e-9,
             solver + " cone: r = P_K(-q), |r - r*|",
-            distance(r, {a, -0.3 * a, 0.}));
+            distance(s.r, {a, -0.3 * a, 0.}));
       // the Coulomb solution is (1, -0.3, 0): the relaxation differs
-      check(result.fclib_error > 1e-2,
+      check(s.result.fclib_error > 1e-2,
             solver + " cone: FCLIB error of the relaxation",
-            result.fclib_error);
+            s.result.fclib_error);
     }
   }
 
-  // mprgp takes mu = 0 (bounds only) and refuses discs with a clear message
+  // mprgp takes mu = 0 (bounds only)
   {
-    prm.solver                     = "mprgp";
-    const auto             problem = one_contact(2., 4., -4., 3., 0., 0.);
-    fclib::LocalSolver     s(problem,
-                         prm,
-                         coulomb,
-                         fclib::Model::coulomb_fixed_point);
-    dealii::Vector<double> r(3);
-    const auto             result = s.solve(r);
-    check(result.converged && distance(r, {2., 0., 0.}) < 1e-12,
+    prm.solver = "mprgp";
+    const auto s =
+      solve(one_contact(2., 4., -4., 3., 0., 0.), prm, coulomb, coulomb_model);
+    check(s.result.converged && distance(s.r, {2., 0., 0.}) < 1e-12,
           "mprgp frictionless: r = (2, 0, 0)",
-          distance(r, {2., 0., 0.}));
+          distance(s.r, {2., 0., 0.}));
   }
 
   // the FCLIB error of a wrong r is what the formula says: r = 0 on a
@@ -151,62 +169,160 @@ main()
           fclib::fclib_error(problem, r));
   }
 
+  // dense and sparse storage of a non-symmetric W: the same products, W_s =
+  // (W + W')/2 and W_a = (W - W')/2 exactly, and the rank of a singular
+  // W_s (two contacts sharing one normal: rank 5 of 6)
+  {
+    fclib::Triplets W(6, 6);
+    for (unsigned int i = 0; i < 6; ++i)
+      W.add(i, i, 2. + i);
+    W.add(0, 3, 1.5);
+    W.add(3, 0, 0.5);
+    W.add(1, 4, -0.25);
+    dealii::Vector<double> q(6), x(6);
+    for (unsigned int i = 0; i < 6; ++i)
+      x(i) = 1. + 0.3 * i * i;
+    const fclib::LocalProblem dense(
+      3, W, q, {0.3, 0.3}, "", fclib::Storage::dense);
+    const fclib::LocalProblem sparse(
+      3, W, q, {0.3, 0.3}, "", fclib::Storage::sparse);
+    check(dense.delassus().dense() && !sparse.delassus().dense(),
+          "storage as asked",
+          dense.delassus().dense());
+    dealii::Vector<double> Wx(6), Wsx(6), Wax(6), expected(6);
+    for (const fclib::LocalProblem *p : {&dense, &sparse})
+    {
+      const std::string name = p->delassus().dense() ? "dense" : "sparse";
+      p->velocity(Wx, x);
+      p->delassus().symmetric_vmult(Wsx, x);
+      p->delassus().antisymmetric_vmult(Wax, x);
+      double e_W = 0, e_s = 0, e_a = 0;
+      for (unsigned int i = 0; i < 6; ++i)
+      {
+        double w = 0, ws = 0, wa = 0;
+        for (unsigned int j = 0; j < 6; ++j)
+        {
+          const double a = p->W().el(i, j), b = p->W().el(j, i);
+          w += a * x(j);
+          ws += 0.5 * (a + b) * x(j);
+          wa += 0.5 * (a - b) * x(j);
+        }
+        e_W = std::max(e_W, std::abs(Wx(i) - w));
+        e_s = std::max(e_s, std::abs(Wsx(i) - ws));
+        e_a = std::max(e_a, std::abs(Wax(i) - wa));
+      }
+      check(e_W < 1e-14 && e_s < 1e-14 && e_a < 1e-14,
+            name + ": W x, W_s x, W_a x",
+            std::max({e_W, e_s, e_a}));
+    }
+    check(std::abs(dense.delassus().asymmetry() - 1. / 7.) < 1e-15,
+          "asymmetry max|W - W'| / max|W| = 1/7",
+          dense.delassus().asymmetry());
+    fclib::Triplets S(6, 6);
+    for (unsigned int i = 0; i < 6; ++i)
+      for (unsigned int j = 0; j < 6; ++j)
+        S.add(i, j, (i % 3 == 0 && j % 3 == 0) ? 1. : (i == j ? 1. : 0.));
+    const fclib::LocalProblem singular(3, S, q, {0.3, 0.3});
+    check(singular.delassus().numerical_rank(1e-10) == 5,
+          "rank of a singular W_s",
+          singular.delassus().numerical_rank(1e-10));
+  }
+
+  // the inexact fixed point reaches the same accuracy as exact QPs
+  // (local_problem_test: 48 contacts, mu = 0.7)
+  {
+    const fclib::LocalProblem problem =
+      fclib::read_local(FCLIB_TEST_DATA_DIR "local_problem_test.hdf5");
+    qp::SolverParameters tight = prm;
+    tight.solver               = "mpgp-bb";
+    tight.tolerance            = 1e-9;
+    contact::CoulombParameters loop;
+    loop.tolerance  = 1e-8;
+    auto exact      = coulomb_model;
+    exact.inexact   = false;
+    exact.proximal  = fclib::Proximal::off;
+    auto inexact    = exact;
+    inexact.inexact = true;
+    const auto e    = solve(problem, tight, loop, exact);
+    const auto i    = solve(problem, tight, loop, inexact);
+    check(e.result.converged && i.result.converged,
+          "local_problem_test: exact and inexact QPs converge",
+          i.result.reason);
+    check(e.result.fclib_error < 1e-8 && i.result.fclib_error < 1e-8,
+          "local_problem_test: FCLIB error of both below 1e-8",
+          std::max(e.result.fclib_error, i.result.fclib_error));
+    bool non_increasing = true;
+    for (unsigned int k = 1; k < i.result.qp_statistics.size(); ++k)
+      non_increasing = non_increasing &&
+                       i.result.qp_statistics[k].tolerance <=
+                         i.result.qp_statistics[k - 1].tolerance * (1 + 1e-12);
+    check(non_increasing,
+          "local_problem_test: inexact QP tolerances do not increase",
+          i.result.qp_statistics.size());
+    check(i.result.qp_statistics.back().tolerance <= 1e-9 &&
+            i.result.qp_statistics.front().tolerance >= 1e-3,
+          "local_problem_test: inexact: first QP loose, last one at the QP "
+          "tolerance",
+          i.result.qp_statistics.front().tolerance);
+  }
+
   // a rigid-body problem (Capsules: W singular and slightly non-symmetric):
-  // the plain first QP does not converge (reported, no crash); the proximal
-  // loop with the lagged antisymmetric part of W converges
+  // the plain first QP does not converge (reported, no crash); the
+  // automatic proximal loop takes over and converges
   {
     const fclib::LocalProblem problem =
       fclib::read_local(FCLIB_TEST_DATA_DIR "Capsules-i125-1213.hdf5");
     qp::SolverParameters plain = prm;
-    plain.solver               = "mpgp";
-    plain.tolerance            = 1e-8;
+    plain.solver               = "mpgp-bb";
+    plain.tolerance            = 1e-7;
     plain.max_iterations       = 2000;
     contact::CoulombParameters loop;
-    loop.tolerance      = 1e-6;
-    loop.max_iterations = 3000;
-    {
-      fclib::LocalSolver     s(problem,
-                           plain,
-                           loop,
-                           fclib::Model::coulomb_fixed_point);
-      dealii::Vector<double> r(problem.size());
-      const auto             result = s.solve(r);
-      check(!result.converged &&
-              result.reason.find("did not converge") != std::string::npos,
-            "Capsules, plain QP: not converged, said so",
-            result.reason);
-    }
-    {
-      plain.max_iterations = 10000;
-      fclib::LocalSolver     s(problem,
-                           plain,
-                           loop,
-                           fclib::Model::coulomb_fixed_point,
-                           fclib::FirstIterate::bonded,
-                           0.1);
-      dealii::Vector<double> r(problem.size());
-      const auto             result = s.solve(r);
-      check(result.converged,
-            "Capsules, proximal 0.1: converged",
-            result.reason);
-      check(result.fclib_error < 1e-6,
-            "Capsules, proximal 0.1: FCLIB error",
-            result.fclib_error);
-    }
+    loop.tolerance = 1e-6;
+    auto off       = coulomb_model;
+    off.proximal   = fclib::Proximal::off;
+    const auto p   = solve(problem, plain, loop, off);
+    check(!p.result.converged && !p.result.proximal &&
+            p.result.reason.find("did not converge") != std::string::npos,
+          "Capsules, proximal off: not converged, said so",
+          p.result.reason);
+    const auto a = solve(problem, plain, loop, coulomb_model);
+    check(a.result.converged && a.result.proximal &&
+            a.result.proximal_reason.find("auto: the plain loop failed") !=
+              std::string::npos,
+          "Capsules, proximal auto: switched on after the plain loop failed, "
+          "converged",
+          a.result.proximal_reason + "; " + a.result.reason);
+    check(a.result.fclib_error < 1e-6,
+          "Capsules, proximal auto: FCLIB error",
+          a.result.fclib_error);
+    check(a.result.perturbations.back() <= 1e-6,
+          "Capsules: perturbation of q at the end",
+          a.result.perturbations.back());
+  }
+
+  // spheres-in-a-box (256 contacts, W_s of rank 566 of 768): solved at 1e-4
+  {
+    const fclib::LocalProblem problem = fclib::read_as_local(
+      FCLIB_TEST_DATA_DIR "spheres-in-a-box-98-i10000-256-10.hdf5");
+    qp::SolverParameters qp = prm;
+    qp.solver               = "mpgp-bb";
+    qp.tolerance            = 1e-5;
+    contact::CoulombParameters loop;
+    loop.tolerance = 1e-4;
+    const auto s   = solve(problem, qp, loop, coulomb_model);
+    check(s.result.converged, "spheres-in-a-box: converged", s.result.reason);
+    check(s.result.fclib_error <= 1e-4,
+          "spheres-in-a-box: FCLIB error <= 1e-4",
+          s.result.fclib_error);
   }
 
   // write a problem with its solution and read both back
   {
-    prm.solver                     = "mpgp";
-    const auto             problem = one_contact(2., 4., -4., 3., 0., 0.3);
-    fclib::LocalSolver     s(problem,
-                         prm,
-                         coulomb,
-                         fclib::Model::coulomb_fixed_point);
-    dealii::Vector<double> r(3);
-    s.solve(r);
-    const std::string file = "solve_local_round_trip.hdf5";
-    fclib::write_local(file, problem, r, "test");
+    prm.solver                = "mpgp";
+    const auto        problem = one_contact(2., 4., -4., 3., 0., 0.3);
+    const auto        s       = solve(problem, prm, coulomb, coulomb_model);
+    const std::string file    = "solve_local_round_trip.hdf5";
+    fclib::write_local(file, problem, s.r, "test");
     const fclib::LocalProblem back = fclib::read_local(file);
     dealii::Vector<double>    q(back.q());
     q -= problem.q();
@@ -215,7 +331,7 @@ main()
           "written problem read back",
           back.n_contacts());
     dealii::Vector<double> r_back = fclib::read_solution_r(file);
-    check(r_back.size() == 3 && distance(r_back, {r(0), r(1), r(2)}) == 0,
+    check(r_back.size() == 3 && distance(r_back, {s.r(0), s.r(1), s.r(2)}) == 0,
           "written solution read back",
           r_back.size());
     std::filesystem::remove(file);
