@@ -160,10 +160,11 @@ namespace
     {
       close(fds[0]);
       const Outcome o          = run();
-      const double  numbers[4] = {double(o.solver_converged),
+      const double  numbers[5] = {double(o.solver_converged),
                                   double(o.iterations),
                                   o.time,
-                                  o.error};
+                                  o.error,
+                                  double(o.products)};
       (void)!write(fds[1], numbers, sizeof(numbers));
       const std::string note = o.note.substr(0, 200);
       (void)!write(fds[1], note.c_str(), note.size());

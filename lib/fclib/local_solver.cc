@@ -142,6 +142,12 @@ namespace dualcontact
                         dealii::Patterns::Integer(0),
                         "Proximal point: rho increases after a QP of more "
                         "than this many iterations.");
+      prm.declare_entry("Plain QP iterations in auto",
+                        "2000",
+                        dealii::Patterns::Integer(1),
+                        "Proximal regularization = auto: iteration limit of "
+                        "the plain loop's QPs (a QP that needs more counts "
+                        "as failed and the proximal loop takes over).");
       prm.declare_entry("Proximal maximum iterations",
                         "1000",
                         dealii::Patterns::Integer(1),
@@ -169,6 +175,8 @@ namespace dualcontact
       rho_decrease_below      = prm.get_integer("Rho decrease below");
       rho_increase_above      = prm.get_integer("Rho increase above");
       proximal_max_iterations = prm.get_integer("Proximal maximum iterations");
+      auto_plain_qp_max_iterations =
+        prm.get_integer("Plain QP iterations in auto");
       check();
     }
 
@@ -286,7 +294,8 @@ namespace dualcontact
     LocalSolver::solve_qp(dealii::Vector<double>    &r,
                           const std::vector<double> *psi,
                           const double               rho,
-                          const double               tolerance) const
+                          const double               tolerance,
+                          const unsigned int         max_iterations) const
     {
       const unsigned int dim = problem_.spacedim();
       auto set = std::make_shared<qp::SeparableSet<dealii::Vector<double>>>();
@@ -343,6 +352,7 @@ namespace dualcontact
       const double         b   = qp.b.l2_norm();
       const double         q   = problem_.q().l2_norm();
       prm.tolerance            = tolerance;
+      prm.max_iterations       = std::min(prm.max_iterations, max_iterations);
       if (b > q && q > 0)
         prm.tolerance *= q / b;
       auto solver = qp::create<dealii::Vector<double>>(prm);
@@ -423,6 +433,12 @@ namespace dualcontact
         proximal ? std::max(coulomb_parameters_.max_iterations,
                             parameters_.proximal_max_iterations) :
                    coulomb_parameters_.max_iterations;
+      // auto: a plain QP that stalls is cut short (the proximal loop takes
+      // over)
+      const unsigned int qp_iteration_limit =
+        (!proximal && parameters_.proximal == Proximal::automatic) ?
+          parameters_.auto_plain_qp_max_iterations :
+          qp_parameters_.max_iterations;
 
       auto record = [&](const qp::SolverStatistics &s)
       {
@@ -485,8 +501,11 @@ namespace dualcontact
       for (unsigned int it = 0;; ++it)
       {
         previous = r;
-        if (!record(solve_qp(
-              r, bonded ? nullptr : &psi, rho * lambda_max, tolerance)))
+        if (!record(solve_qp(r,
+                             bonded ? nullptr : &psi,
+                             rho * lambda_max,
+                             tolerance,
+                             qp_iteration_limit)))
         {
           // a proximal QP that does not converge: stronger proximal term,
           // the QP again from the previous iterate
@@ -505,6 +524,7 @@ namespace dualcontact
         }
         const unsigned int qp_iterations =
           result.qp_statistics.back().iterations;
+        result.last_good = r;
         if (!coulomb_loop && !stepping)
         {
           result.converged = true;

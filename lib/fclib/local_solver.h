@@ -152,6 +152,12 @@ namespace dualcontact
          * the Coulomb limit): it takes many cheap steps.
          */
         unsigned int proximal_max_iterations = 1000;
+        /**
+         * Proximal::automatic: iteration limit of the plain loop's QPs (a
+         * QP that stalls on a singular W is cut short; the proximal loop
+         * takes over).
+         */
+        unsigned int auto_plain_qp_max_iterations = 2000;
 
         /** Top-level entries of fclibsolve's .prm. */
         static void
@@ -234,7 +240,8 @@ namespace dualcontact
       solve_qp(dealii::Vector<double>    &r,
                const std::vector<double> *psi,
                const double               rho,
-               const double               tolerance) const;
+               const double               tolerance,
+               const unsigned int         max_iterations) const;
 
       /** Whether W is not symmetric (then the loop iterates on W_a r^k). */
       bool asymmetric_;

@@ -40,5 +40,29 @@ for form in ("global", "local"):
     for what, ok, value in checks:
         print("  %s %s %s: %s" % ("ok  " if ok else "FAIL", form, what, value))
         failures += not ok
+
+# the same local problem with W kept sparse (dense by default: W = F is
+# full), and bad option values: exit code 1, the option named, no output
+path = os.path.join(work, "output", "contact_problem_local.hdf5")
+summary = os.path.join(work, "sparse.json")
+run = subprocess.run([fclibsolve, path, "--solver", "mpgp", "--tol", "1e-12",
+                      "--coulomb-tol", "1e-11", "--coulomb-max-iter", "200",
+                      "--storage", "sparse", "--json", summary], capture_output=True, text=True)
+s = json.load(open(summary)) if os.path.exists(summary) else {}
+checks = [("sparse storage: as asked", s.get("storage") == "sparse", s.get("storage")),
+          ("sparse storage: ||r - r_scene|| / ||r_scene|| <= 1e-8",
+           s.get("difference_to_stored", 1) <= 1e-8, s.get("difference_to_stored")),
+          ("default storage of the local file is dense",
+           json.load(open(os.path.join(work, "local.json"))).get("storage") == "dense", "")]
+for args, word in ((["--prox", "sometimes"], "Proximal regularization"),
+                   (["--storage", "diagonal"], "storage of W")):
+    out = os.path.join(work, "bad.json")
+    run = subprocess.run([fclibsolve, path] + args + ["--json", out], capture_output=True, text=True)
+    checks.append(("%s: exit 1, names '%s', no output" % (" ".join(args), word),
+                   run.returncode == 1 and word in run.stderr and not os.path.exists(out),
+                   run.stderr.strip()))
+for what, ok, value in checks:
+    print("  %s %s: %s" % ("ok  " if ok else "FAIL", what, value))
+    failures += not ok
 print("all checks passed" if failures == 0 else "FAILED")
 sys.exit(1 if failures else 0)
