@@ -357,10 +357,19 @@ namespace dualcontact
         summary["n_qp"]             = result.qp_statistics.size();
         summary["iterations"]       = result.iterations;
         summary["hessian_products"] = result.hessian_products;
+        summary["power_products"]   = result.power_products;
         summary["time_s"]           = result.wall_time;
         summary["coulomb_changes"]  = result.coulomb_changes;
         summary["fclib_error"]      = result.fclib_error;
         summary["last_qp"]          = last.to_json(false);
+        // per QP of the loop: iterations, products, tolerance, criterion
+        nlohmann::json qps = nlohmann::json::array();
+        for (const auto &s : result.qp_statistics)
+          qps.push_back({s.iterations,
+                         s.n_hessian_products,
+                         s.tolerance,
+                         s.final_criterion});
+        summary["qps"] = qps;
         if (!json_file.empty())
         {
           std::ofstream json(json_file);

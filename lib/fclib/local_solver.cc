@@ -142,6 +142,14 @@ namespace dualcontact
                         dealii::Patterns::Integer(0),
                         "Proximal point: rho increases after a QP of more "
                         "than this many iterations.");
+      prm.declare_entry("Proximal extrapolation",
+                        "true",
+                        dealii::Patterns::Bool(),
+                        "Proximal point: center the next QP at the "
+                        "extrapolated iterate r + beta (r - r_previous) "
+                        "(Nesterov's beta, restarted when the step turns "
+                        "back): accelerates the proximal loop along the small "
+                        "curvatures of a singular W.");
       prm.declare_entry("Plain QP iterations in auto",
                         "2000",
                         dealii::Patterns::Integer(1),
@@ -174,6 +182,7 @@ namespace dualcontact
       rho_factor              = prm.get_double("Rho factor");
       rho_decrease_below      = prm.get_integer("Rho decrease below");
       rho_increase_above      = prm.get_integer("Rho increase above");
+      extrapolation           = prm.get_bool("Proximal extrapolation");
       proximal_max_iterations = prm.get_integer("Proximal maximum iterations");
       auto_plain_qp_max_iterations =
         prm.get_integer("Plain QP iterations in auto");
@@ -246,11 +255,12 @@ namespace dualcontact
         AssertThrow(proximal >= 0 && std::isfinite(proximal),
                     dealii::ExcMessage("proximal regularization must be >= 0"));
         LocalSolver::Parameters p;
-        p.model        = model;
-        p.first        = first;
-        p.inexact      = false;
-        p.proximal     = proximal > 0 ? Proximal::on : Proximal::off;
-        p.adaptive_rho = false;
+        p.model         = model;
+        p.first         = first;
+        p.inexact       = false;
+        p.proximal      = proximal > 0 ? Proximal::on : Proximal::off;
+        p.adaptive_rho  = false;
+        p.extrapolation = false;
         if (proximal > 0)
           p.rho = proximal;
         return p;
@@ -382,7 +392,8 @@ namespace dualcontact
           qp_parameters_.power_tolerance,
           qp_parameters_.power_safety_factor);
         result.hessian_products += power.n_products;
-        lambda_max_ = power.lambda_max;
+        result.power_products = power.n_products;
+        lambda_max_           = power.lambda_max;
       }
 
       // proximal point: on, off, or (auto) on once the plain loop failed
@@ -498,8 +509,30 @@ namespace dualcontact
       unsigned int           growing = 0;
       dealii::Vector<double> previous, step;
       std::vector<double>    measure;
+      // extrapolated proximal point: the last iterate r^k, the one before,
+      // Nesterov's t_k (1: no momentum; restart sets it back)
+      const bool extrapolate = proximal && parameters_.extrapolation;
+      dealii::Vector<double> iterate, before;
+      double                 t = 1.;
       for (unsigned int it = 0;; ++it)
       {
+        if (extrapolate)
+        {
+          // the center (and start) y = r^k + beta (r^k - r^{k-1}); the QP
+          // is then solved around y, and r^{k+1} solves the problem exactly
+          // for q perturbed by (rho I + W_a)(r^{k+1} - y)
+          iterate = r;
+          if (before.size() == r.size() && t > 1.)
+          {
+            const double t_next = 0.5 * (1. + std::sqrt(1. + 4. * t * t));
+            const double beta   = (t - 1.) / t_next;
+            r.sadd(1. + beta, -beta, before);
+            t = t_next;
+          }
+          else
+            t = 0.5 * (1. + std::sqrt(5.)); // t_1 from t_0 = 1
+          before = iterate;
+        }
         previous = r;
         if (!record(solve_qp(r,
                              bonded ? nullptr : &psi,
@@ -512,7 +545,8 @@ namespace dualcontact
           if (proximal && parameters_.adaptive_rho &&
               rho < parameters_.rho_max && it + 1 < max_iterations)
           {
-            r   = previous;
+            r   = extrapolate ? iterate : previous;
+            t   = 1.; // and no momentum
             rho = std::min(rho * parameters_.rho_factor, parameters_.rho_max);
             result.rhos.push_back(rho);
             continue;
@@ -543,6 +577,15 @@ namespace dualcontact
           shift.add(rho * lambda_max, step);
           perturbation = shift.l2_norm() / q_norm;
           result.perturbations.push_back(perturbation);
+          // gradient restart: the step r^{k+1} - y turns back against the
+          // last move r^{k+1} - r^k
+          if (extrapolate)
+          {
+            dealii::Vector<double> move(r);
+            move -= iterate;
+            if (step * move < 0)
+              t = 1.;
+          }
         }
         double change = 0;
         if (coulomb_loop)

@@ -148,6 +148,16 @@ namespace dualcontact
         /** rho increases after a QP of more than this many iterations. */
         unsigned int rho_increase_above = 5000;
         /**
+         * Proximal point: extrapolate the center of the next QP,
+         * y = r^k + beta_k (r^k - r^{k-1}) with Nesterov's beta_k, and
+         * restart (beta = 0) when the step turns back (the gradient
+         * restart of O'Donoghue and Candes).  The plain proximal point
+         * contracts a direction of curvature lambda only by rho / (rho +
+         * lambda) per QP; the extrapolated one by about 1 - sqrt(lambda /
+         * rho), which is what the small curvatures of a rigid-body W need.
+         */
+        bool extrapolation = true;
+        /**
          * Limit of the proximal loop's iterations (the larger of this and
          * the Coulomb limit): it takes many cheap steps.
          */
@@ -197,6 +207,8 @@ namespace dualcontact
         unsigned long iterations = 0;
         /** Products with W (QPs and the power iteration). */
         unsigned long hessian_products = 0;
+        /** Of these, the power iteration's (0 when lambda_max was known). */
+        unsigned long power_products = 0;
         /** The FCLIB accuracy measure of the result (fclib_error()). */
         double fclib_error = 0;
         double wall_time   = 0;

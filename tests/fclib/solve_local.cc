@@ -3,7 +3,8 @@
 // QP (a relaxation: the projection of -q onto the cone for W = I); dense and
 // sparse storage of W; the inexact fixed point; the proximal loop on the
 // rigid-body files (Capsules: the plain loop fails and says so, auto
-// switches the proximal loop on and converges; spheres-in-a-box at 1e-4);
+// switches the proximal loop on and converges; spheres-in-a-box at 1e-4
+// and, through the extrapolated proximal loop, at 1e-8);
 // write and read back a problem with its solution.
 #include <fclib/accuracy.h>
 #include <fclib/fclib_file.h>
@@ -314,6 +315,21 @@ main()
     check(s.result.fclib_error <= 1e-4,
           "spheres-in-a-box: FCLIB error <= 1e-4",
           s.result.fclib_error);
+    // at 1e-8 the plain loop stalls and the automatic proximal loop takes
+    // over; with the extrapolated centers it converges in about 190
+    // proximal QPs (without: not within 1000, FCLIB error 5.6e-8)
+    qp.tolerance   = 1e-9;
+    loop.tolerance = 1e-8;
+    const auto t   = solve(problem, qp, loop, coulomb_model);
+    check(t.result.converged && t.result.proximal,
+          "spheres-in-a-box at 1e-8: converged by the proximal loop",
+          t.result.proximal_reason + "; " + t.result.reason);
+    check(t.result.fclib_error <= 1e-8,
+          "spheres-in-a-box at 1e-8: FCLIB error <= 1e-8",
+          t.result.fclib_error);
+    check(t.result.perturbations.size() <= 400,
+          "spheres-in-a-box at 1e-8: proximal QPs",
+          t.result.perturbations.size());
   }
 
   // write a problem with its solution and read both back
