@@ -282,8 +282,22 @@ namespace dualcontact
           out << "rank of W_s (pivots above 1e-10 max diag) " << rank
               << ", zero rows of W " << problem.delassus().n_zero_rows()
               << "\n";
-          summary["rank_W"]      = rank;
-          summary["zero_rows_W"] = problem.delassus().n_zero_rows();
+          // spread of the normal diagonal entries W_nn over the contacts
+          // (how much a per-contact scaling could change the conditioning)
+          double       diag_min = 0, diag_max = 0;
+          const auto  &W = problem.delassus().matrix();
+          const double d = problem.spacedim();
+          for (unsigned int i = 0; i < problem.n_contacts(); ++i)
+          {
+            const double w = W.el(d * i, d * i);
+            diag_min       = i == 0 ? w : std::min(diag_min, w);
+            diag_max       = i == 0 ? w : std::max(diag_max, w);
+          }
+          out << "normal diagonal entries of W in [" << diag_min << ", "
+              << diag_max << "]\n";
+          summary["normal_diagonal_W"] = {diag_min, diag_max};
+          summary["rank_W"]            = rank;
+          summary["zero_rows_W"]       = problem.delassus().n_zero_rows();
           if (!json_file.empty())
             std::ofstream(json_file) << summary.dump(2) << "\n";
           return 0;

@@ -158,6 +158,16 @@ namespace dualcontact
          */
         bool extrapolation = true;
         /**
+         * Solve the QPs in r~_i = r_i / s_i, s_i = W_nn,i^-1/2 per contact
+         * (one factor for a contact's unknowns: discs and cones keep their
+         * shape, the QPs their solutions): a Jacobi scaling by contact.  The
+         * normal diagonal of W of the Hertz exports spreads over a factor
+         * 23-46 (nodes of different tributary area), which the first-order
+         * QP solvers pay for in iterations.  Plain loop only (the proximal
+         * QPs are solved unscaled).
+         */
+        bool contact_scaling = true;
+        /**
          * Limit of the proximal loop's iterations (the larger of this and
          * the Coulomb limit): it takes many cheap steps.
          */
@@ -262,9 +272,12 @@ namespace dualcontact
       qp::SolverParameters       qp_parameters_;
       contact::CoulombParameters coulomb_parameters_;
       Parameters                 parameters_;
-      /** lambda_max(W_s) (0: not yet estimated) and its products. */
-      mutable double        lambda_max_     = 0;
-      mutable unsigned long power_products_ = 0;
+      /** lambda_max(W_s) (0: not yet estimated). */
+      mutable double lambda_max_ = 0;
+      /** lambda_max of the plain QPs' S W_s S (W_s without scaling). */
+      mutable double qp_lambda_max_ = 0;
+      /** Contact scaling s per unknown (empty: none; plain loop only). */
+      dealii::Vector<double> scale_;
     };
   } // namespace fclib
 } // namespace dualcontact

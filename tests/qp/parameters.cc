@@ -130,6 +130,32 @@ main()
                 "power iteration, default budget: estimate " +
                   sci(r2.estimate) + " (from below) in " +
                   std::to_string(r2.iterations) + " products");
+    // Lanczos: from below, and far closer than the power iteration with
+    // the same tolerance and fewer products
+    const auto l = lanczos_lambda_max<Vec>(A, layout, 100, 1e-4, 1.05);
+    check.check(l.estimate <= n * (1. + 1e-12) &&
+                  std::abs(l.estimate - n) <= 1e-3 * n &&
+                  std::abs(l.lambda_max - 1.05 * l.estimate) <= 1e-12 * n &&
+                  l.n_products < r2.n_products,
+                "Lanczos on diag(1..50): estimate " + sci(l.estimate) + " in " +
+                  std::to_string(l.n_products) +
+                  " products (power iteration: " + sci(r2.estimate) + " in " +
+                  std::to_string(r2.n_products) + ")");
+    // a rank-one A = u u' (invariant subspace after one step): exact
+    const std::function<void(Vec &, const Vec &)> R =
+      [](Vec &dst, const Vec &src)
+    {
+      double s = 0;
+      for (unsigned i = 0; i < src.size(); ++i)
+        s += src[i];
+      for (unsigned i = 0; i < src.size(); ++i)
+        dst[i] = s;
+    };
+    const auto one = lanczos_lambda_max<Vec>(R, layout, 100, 1e-4, 1.);
+    check.check(std::abs(one.estimate - n) <= 1e-12 * n && one.n_products <= 2,
+                "Lanczos on the rank-one ones(50): estimate " +
+                  sci(one.estimate) + " in " + std::to_string(one.n_products) +
+                  " products");
   }
   return check.finish("parameters");
 }
