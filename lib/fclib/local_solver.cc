@@ -421,7 +421,17 @@ namespace dualcontact
       prm.max_iterations = std::min(prm.max_iterations, max_iterations);
       if (b > q && q > 0)
         prm.tolerance *= q / b;
-      auto solver = qp::create<dealii::Vector<double>>(prm);
+      // one solver for the QPs of equal tolerance and limit (most of a
+      // loop's): creating it checks and parses the parameters, a tenth of
+      // the work of a short QP on a small problem (Hertz L3)
+      if (!solver_ || solver_tolerance_ != prm.tolerance ||
+          solver_max_iterations_ != prm.max_iterations)
+      {
+        solver_                = qp::create<dealii::Vector<double>>(prm);
+        solver_tolerance_      = prm.tolerance;
+        solver_max_iterations_ = prm.max_iterations;
+      }
+      qp::SolverBase<dealii::Vector<double>> *solver = solver_.get();
       if (!scaled)
         return solver->solve(qp, r);
       dealii::Vector<double> x(r);

@@ -5,9 +5,11 @@
 
 #include <contact/contact_solver.h>
 #include <fclib/local_problem.h>
+#include <qp/solver_base.h>
 #include <qp/solver_parameters.h>
 #include <qp/solver_statistics.h>
 
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -278,6 +280,10 @@ namespace dualcontact
       mutable double qp_lambda_max_ = 0;
       /** Contact scaling s per unknown (empty: none; plain loop only). */
       dealii::Vector<double> scale_;
+      /** The last QP solver and the tolerance and limit it was made for. */
+      mutable std::unique_ptr<qp::SolverBase<dealii::Vector<double>>> solver_;
+      mutable double       solver_tolerance_      = 0;
+      mutable unsigned int solver_max_iterations_ = 0;
     };
   } // namespace fclib
 } // namespace dualcontact
