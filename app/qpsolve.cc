@@ -2,6 +2,8 @@
 // issue 3).  Thin: everything is in qp::QPSolveDriver.
 #include <qp/qpsolve_driver.h>
 
+#include <deal.II/base/mpi.h>
+
 #include <iostream>
 #include <string>
 #include <vector>
@@ -9,6 +11,8 @@
 int
 main(int argc, char **argv)
 {
+  // MPI (one process): Trilinos' AMG of --preconditioner amg needs it
+  dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
   try
   {
     const std::vector<std::string> arguments(argv + 1, argv + argc);

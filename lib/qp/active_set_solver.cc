@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <array>
+#include <chrono>
 #include <cmath>
 #include <deque>
 #include <limits>
@@ -264,6 +265,118 @@ namespace dualcontact
         ++stats.n_fall_back;
       };
 
+      // Preconditioning in face (MPRGP, Dostal 2009, sec. 5.10): while
+      // CG runs on a free set F the directions are built from z =
+      // M_F^{-1} phi (zero on the active set) instead of phi, i.e. PCG on
+      // A_FF; M_F is rebuilt when a restart finds another active set
+      // than the one it was built for.  The test and the expansions stay
+      // MPRGP's.
+      const bool preconditioned =
+        prm.preconditioner != "none" &&
+        variant.step == ActiveSetVariant::Step::proportioning && !weak;
+      typename Problem<VectorType>::FreeSetPreconditioner free_set_inverse;
+      VectorType                                          mask, built_mask, z;
+      bool have_preconditioner = false;
+      if (preconditioned)
+      {
+        mask.reinit(x);
+        built_mask.reinit(x);
+        z.reinit(x);
+        if (prm.preconditioner == "jacobi")
+        {
+          AssertThrow(problem.diagonal && problem.diagonal->size() == x.size(),
+                      dealii::ExcMessage(
+                        name + ": Preconditioner = jacobi needs the diagonal "
+                               "of the Hessian (Problem::diagonal)"));
+        }
+        else
+        {
+          AssertThrow(static_cast<bool>(problem.free_set_preconditioner),
+                      dealii::ExcMessage(
+                        name + ": Preconditioner = " + prm.preconditioner +
+                        " needs a free-set preconditioner factory "
+                        "(Problem::free_set_preconditioner; qpsolve builds "
+                        "Trilinos ML from the matrix)"));
+        }
+      }
+      using Clock        = std::chrono::steady_clock;
+      const auto seconds = [](const Clock::time_point start)
+      { return std::chrono::duration<double>(Clock::now() - start).count(); };
+      // M_F for the active set at x (rebuilt only if that set changed)
+      const auto update_preconditioner = [&]()
+      {
+        set.active_mask(x, mask);
+        if (have_preconditioner)
+        {
+          const double     *mv = mask.begin(), *bv = built_mask.begin();
+          const std::size_t n       = mask.locally_owned_size();
+          double            changed = 0.;
+          for (std::size_t i = 0; i < n; ++i)
+            if (mv[i] != bv[i])
+            {
+              changed = 1.;
+              break;
+            }
+          if (internal::max(changed, x) == 0.)
+            return;
+        }
+        const Clock::time_point start = Clock::now();
+        if (prm.preconditioner == "jacobi")
+        {
+          if (!have_preconditioner)
+          {
+            // M_F = diag(A)_FF; the active entries are zeroed by the
+            // caller, so one operator serves every free set
+            const double     *dv    = problem.diagonal->begin();
+            const std::size_t n     = x.locally_owned_size();
+            double            least = infinity;
+            for (std::size_t i = 0; i < n; ++i)
+              least = std::min(least, dv[i]);
+            AssertThrow(internal::min(least, x) > 0.,
+                        dealii::ExcMessage(name +
+                                           ": Preconditioner = jacobi needs a "
+                                           "positive diagonal of the Hessian"));
+            const std::shared_ptr<const VectorType> diagonal = problem.diagonal;
+            free_set_inverse =
+              [diagonal](VectorType &dst, const VectorType &src)
+            {
+              const double     *sv = src.begin(), *dv = diagonal->begin();
+              double           *ov = dst.begin();
+              const std::size_t n  = dst.locally_owned_size();
+              for (std::size_t i = 0; i < n; ++i)
+                ov[i] = sv[i] / dv[i];
+            };
+            ++stats.n_preconditioner_setups;
+          }
+        }
+        else
+        {
+          free_set_inverse = problem.free_set_preconditioner(mask);
+          AssertThrow(static_cast<bool>(free_set_inverse),
+                      dealii::ExcMessage(
+                        name + ": the problem's free-set preconditioner "
+                               "factory returned no operator"));
+          ++stats.n_preconditioner_setups;
+        }
+        built_mask.swap(mask);
+        have_preconditioner = true;
+        stats.preconditioner_setup_time += seconds(start);
+      };
+      // out := M_F^{-1} in restricted to the free set at x (in, out may
+      // not alias)
+      const auto apply_preconditioner =
+        [&](const VectorType &in, VectorType &out)
+      {
+        const Clock::time_point start = Clock::now();
+        free_set_inverse(out, in);
+        set.zero_active(x, out);
+        ++stats.n_preconditioner_applications;
+        stats.preconditioner_apply_time += seconds(start);
+      };
+      // p holds phi after a restart; the preconditioned variant replaces it
+      // by z = M_F^{-1} phi just before the first CG step that uses it
+      bool restart_pending = true;
+
       // The current direction p and what the loop needs of it (filled by
       // conjugate_direction() after a CG step, so that the next step
       // needs one pass for p'Ap only); invalid after a restart.
@@ -308,6 +421,15 @@ namespace dualcontact
         }
         if (proportional())
         {
+          if (preconditioned && restart_pending)
+          {
+            // restart: p := z = M_F^{-1} phi (p holds phi)
+            update_preconditioner();
+            apply_preconditioner(p, z);
+            p.swap(z);
+            direction_valid = false;
+          }
+          restart_pending = false;
           this->apply_hessian(problem, Ap, p, stats);
           // p'Ap, p'p, g'p (= phi'p, p lives on the free set) in one
           // pass, summed in index order like every dot product, so that
@@ -350,7 +472,17 @@ namespace dualcontact
             ++stats.n_cg;
             exact_gradient = false;
             double beta_cg;
-            if (!weak)
+            if (preconditioned)
+            {
+              // PCG on the free set: z = M_F^{-1} phi, beta = z'Ap / p'Ap
+              double phi_Ap = 0.;
+              norms         = set.cg_step(x, g, p, Ap, alpha_cg, phi_Ap);
+              value         = criterion_value();
+              set.free_gradient(x, g, phi);
+              apply_preconditioner(phi, z);
+              beta_cg = internal::dot(z, Ap) / pAp;
+            }
+            else if (!weak)
             {
               // x, g, norms and phi'Ap in one pass; the new direction
               // p = phi - beta p with its feasible step in a second
@@ -373,7 +505,9 @@ namespace dualcontact
               stats.message         = "non-finite CG coefficient";
               break;
             }
-            if (!weak)
+            if (preconditioned)
+              p.sadd(-beta_cg, 1., z);
+            else if (!weak)
             {
               direction       = set.conjugate_direction(x, g, beta_cg, p);
               direction_valid = true;
@@ -420,7 +554,8 @@ namespace dualcontact
               f              = f_half;
               expansion();
             }
-            value = refresh(p);
+            value           = refresh(p);
+            restart_pending = true;
           }
         }
         else if (variant.step == ActiveSetVariant::Step::proportioning)
@@ -464,13 +599,15 @@ namespace dualcontact
           exact_gradient = false;
           f += -alpha * gb + 0.5 * alpha * alpha * bAb;
           ++stats.n_proportioning;
-          value = refresh(p);
+          value           = refresh(p);
+          restart_pending = true;
         }
         else
         {
           direction_valid = false;
           expansion();
-          value = refresh(p);
+          value           = refresh(p);
+          restart_pending = true;
         }
         stop = this->check_stop(stats, value, f);
         if (stop && stats.reason == ConvergenceReason::converged &&
@@ -485,6 +622,7 @@ namespace dualcontact
           recompute_gradient();
           direction_valid = false;
           stop = this->check_stop(stats, refresh(p), f); // restart: p = phi
+          restart_pending = true;
         }
       }
 

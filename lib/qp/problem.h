@@ -58,6 +58,23 @@ namespace dualcontact
       /// largest eigenvalue of A if known (0 = estimate by power
       /// iteration when a step length needs it).  An upper bound is fine.
       double lambda_max = 0.;
+      /// z := M_F^{-1} r, a preconditioner of the free-set block A_FF
+      /// (see free_set_preconditioner)
+      using FreeSetPreconditioner =
+        std::function<void(VectorType &dst, const VectorType &src)>;
+      /**
+       * Optional factory of the preconditioner in face (MPRGP with
+       * `Preconditioner = amg`, Dostal 2009, sec. 5.10): given the active
+       * mask (1 on active unknowns, 0 elsewhere; layout of b) it returns
+       * an operator M_F^{-1} approximating the inverse of A_FF, the block
+       * of A on the free unknowns.  The solver calls it again whenever the
+       * active set changed, and zeroes the active entries of the result
+       * itself, so M_F^{-1} may act on all unknowns; it must be symmetric
+       * positive definite on the free ones.  Whoever holds A as a matrix
+       * builds it (qpsolve: FreeSetAMG); the library stays matrix-free.
+       */
+      std::function<FreeSetPreconditioner(const VectorType &active_mask)>
+        free_set_preconditioner;
       /// hint: A may be singular (SPS).  Informational: MPRGP runs the
       /// solvability test of MPRGPS (thesis 2.4.5) in any case.
       bool semidefinite = false;

@@ -1,4 +1,5 @@
 #include <qp/cgc.h>
+#include <qp/free_set_amg.h>
 #include <qp/kkt_residuals.h>
 #include <qp/membrane_generator.h>
 #include <qp/problem_io.h>
@@ -46,6 +47,7 @@ namespace dualcontact
         double      gamma             = -1.;
         long        repeat            = 1;
         std::string expansion;
+        std::string preconditioner;
         std::string x_out;
         std::string json_out;
       };
@@ -161,6 +163,14 @@ namespace dualcontact
                                o.expansion +
                                "' (valid: alpha-bar|projected-cg)");
           }
+          else if (a == "--preconditioner")
+          {
+            o.preconditioner = value();
+            if (o.preconditioner != "none" && o.preconditioner != "jacobi" &&
+                o.preconditioner != "amg")
+              throw UsageError("--preconditioner: unknown preconditioner '" +
+                               o.preconditioner + "' (valid: none|jacobi|amg)");
+          }
           else if (a == "--x-out")
             o.x_out = value();
           else if (a == "--json-out")
@@ -204,8 +214,13 @@ namespace dualcontact
              "|cgc [--tol T] [--criterion "
              "projected|reduced|reduced-projected] [--max-iter N] "
              "[--stagnation-window N] [--gamma G] "
-             "[--expansion alpha-bar|projected-cg] [--repeat N] "
+             "[--expansion alpha-bar|projected-cg] "
+             "[--preconditioner none|jacobi|amg] [--repeat N] "
              "[--x-out FILE] [--json-out FILE]\n"
+             "--preconditioner: MPRGP with preconditioning in face (jacobi: "
+             "diag(A) on the free set; amg: Trilinos ML on A with the active "
+             "rows and columns replaced by identity rows, rebuilt whenever "
+             "the active set changes).\n"
              "--repeat N solves N times from the same start and reports the "
              "least wall time (timing on a busy machine).\n"
              "Exit code 0: converged, 2: not converged, 1: bad input.";
@@ -297,6 +312,7 @@ namespace dualcontact
       SolverParameters                          prm;
       std::shared_ptr<SeparableSet<Vec>>        set;
       std::shared_ptr<EqualityConstraints<Vec>> equality;
+      std::unique_ptr<FreeSetAMG>               amg;
       try
       {
         data       = read_problem(options.problem_file);
@@ -313,6 +329,13 @@ namespace dualcontact
           prm.gamma = options.gamma;
         if (!options.expansion.empty())
           prm.expansion = options.expansion;
+        if (!options.preconditioner.empty())
+          prm.preconditioner = options.preconditioner;
+        if (prm.preconditioner != "none")
+          AssertThrow(options.solver == "mprgp",
+                      dealii::ExcMessage(
+                        "--preconditioner " + prm.preconditioner +
+                        ": only --solver mprgp preconditions in face"));
         prm.check();
 
         const ProblemData &d = *data;
@@ -323,6 +346,11 @@ namespace dualcontact
         for (unsigned int i = 0; i < d.size(); ++i)
           (*diagonal)[i] = d.hessian.diag_element(i);
         problem.diagonal = diagonal;
+        if (prm.preconditioner == "amg")
+        {
+          amg = std::make_unique<FreeSetAMG>(d.hessian);
+          problem.free_set_preconditioner = amg->factory();
+        }
 
         set = std::make_shared<SeparableSet<Vec>>();
         for (const auto &block : d.constraints)
@@ -355,6 +383,11 @@ namespace dualcontact
           equality->c             = d.equality_rhs;
           equality->n_constraints = d.equality_rhs.size();
           problem.equality        = equality;
+          AssertThrow(prm.preconditioner == "none",
+                      dealii::ExcMessage(
+                        options.problem_file +
+                        ": --preconditioner is not available with "
+                        "equality constraints (SMALSE-M)"));
         }
         if (options.solver == "cgc")
         {
@@ -484,16 +517,21 @@ namespace dualcontact
         j["statistics"] = nlohmann::json::parse(s.str());
       }
       // the headline figures also at the top level
-      j["solver"]           = stats.solver;
-      j["reason"]           = to_string(stats.reason);
-      j["converged"]        = stats.converged();
-      j["iterations"]       = stats.iterations;
-      j["hessian_products"] = stats.n_hessian_products;
-      j["time"]             = number(least_time);
-      j["runs"]             = options.repeat;
-      j["cpu_time"]         = number(least_cpu_time);
-      j["final_criterion"]  = number(stats.final_criterion);
-      j["kkt"]              = j["statistics"]["kkt"];
+      j["solver"]                    = stats.solver;
+      j["reason"]                    = to_string(stats.reason);
+      j["converged"]                 = stats.converged();
+      j["iterations"]                = stats.iterations;
+      j["hessian_products"]          = stats.n_hessian_products;
+      j["time"]                      = number(least_time);
+      j["runs"]                      = options.repeat;
+      j["cpu_time"]                  = number(least_cpu_time);
+      j["final_criterion"]           = number(stats.final_criterion);
+      j["preconditioner"]            = prm.preconditioner;
+      j["preconditioner_setups"]     = stats.n_preconditioner_setups;
+      j["preconditioner_setup_time"] = number(stats.preconditioner_setup_time);
+      j["preconditioner_applications"] = stats.n_preconditioner_applications;
+      j["preconditioner_apply_time"] = number(stats.preconditioner_apply_time);
+      j["kkt"]                       = j["statistics"]["kkt"];
       if (equality_residual >= 0.)
       {
         j["equality_residual"] = number(equality_residual);

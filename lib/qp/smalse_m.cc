@@ -264,6 +264,11 @@ namespace dualcontact
           stats.n_bb += s.n_bb;
           stats.n_fall_back += s.n_fall_back;
           stats.n_projections += s.n_projections;
+          stats.n_preconditioner_setups += s.n_preconditioner_setups;
+          stats.preconditioner_setup_time += s.preconditioner_setup_time;
+          stats.n_preconditioner_applications +=
+            s.n_preconditioner_applications;
+          stats.preconditioner_apply_time += s.preconditioner_apply_time;
           if (s.reason == ConvergenceReason::non_finite ||
               s.reason == ConvergenceReason::unbounded ||
               s.reason == ConvergenceReason::breakdown)

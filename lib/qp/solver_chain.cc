@@ -94,6 +94,9 @@ namespace dualcontact
         stats.n_proportioning = stats.n_bb = stats.n_fall_back = stats.n_outer =
           0;
       stats.n_hessian_products = stats.n_projections = 0;
+      stats.n_preconditioner_setups                  = 0;
+      stats.n_preconditioner_applications            = 0;
+      stats.preconditioner_setup_time = stats.preconditioner_apply_time = 0.;
       // the history runs through all attempts: each attempt's time stamps
       // and work counts are offset by those of the attempts before it, so a
       // convergence chart of `auto` shows the fall-back where it happened
@@ -127,6 +130,10 @@ namespace dualcontact
         stats.n_outer += a.n_outer;
         stats.n_hessian_products += a.n_hessian_products;
         stats.n_projections += a.n_projections;
+        stats.n_preconditioner_setups += a.n_preconditioner_setups;
+        stats.preconditioner_setup_time += a.preconditioner_setup_time;
+        stats.n_preconditioner_applications += a.n_preconditioner_applications;
+        stats.preconditioner_apply_time += a.preconditioner_apply_time;
         summary += (summary.empty() ? "" : ", then ") + a.solver + " " +
                    to_string(a.reason);
       }

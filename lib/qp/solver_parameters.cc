@@ -138,6 +138,18 @@ namespace dualcontact
                         "constraints at once (PERMON's projcg), replaced by "
                         "the alpha-bar step whenever it would not lower the "
                         "cost below that of the half-step. Unit: none.");
+      prm.declare_entry("Preconditioner",
+                        d.preconditioner,
+                        Selection("none|jacobi|amg"),
+                        "MPRGP only: preconditioning in face (Dostal 2009, "
+                        "sec. 5.10). The CG steps on the free set use "
+                        "z = M_F^{-1} phi, M_F a preconditioner of the "
+                        "free-set block A_FF rebuilt whenever the active set "
+                        "changes. none: plain MPRGP; jacobi: M_F = "
+                        "diag(A)_FF (needs the problem's diagonal); amg: the "
+                        "free-set preconditioner the problem supplies "
+                        "(qpsolve: Trilinos ML AMG on A with the active rows "
+                        "and columns replaced by identity rows). Unit: none.");
       prm.declare_entry("MPGP-BB memory",
                         "10",
                         Integer(0),
@@ -215,6 +227,7 @@ namespace dualcontact
       alpha_bar_factor    = prm.get_double("Alpha bar factor");
       gamma               = prm.get_double("Gamma");
       expansion           = prm.get("Expansion");
+      preconditioner      = prm.get("Preconditioner");
       mwpgp_delta         = prm.get_double("MwPGP delta");
       mpgp_bb_memory      = prm.get_integer("MPGP-BB memory");
       pbbf_k              = prm.get_integer("PBBf K");
@@ -255,6 +268,10 @@ namespace dualcontact
       if (expansion != "alpha-bar" && expansion != "projected-cg")
         fail("Expansion",
              "must be alpha-bar or projected-cg (got '" + expansion + "').");
+      if (preconditioner != "none" && preconditioner != "jacobi" &&
+          preconditioner != "amg")
+        fail("Preconditioner",
+             "must be none, jacobi or amg (got '" + preconditioner + "').");
       if (!(mwpgp_delta > 0. && mwpgp_delta < 0.5))
         fail("MwPGP delta", "must lie in (0, 1/2).");
       if (pbbf_k < 1)

@@ -67,6 +67,18 @@ namespace dualcontact
       /// the cost below that of the half-step).  Not used by MPGP-BB and
       /// MwPGP.
       std::string expansion = "alpha-bar";
+      /// MPRGP with preconditioning in face (Dostal, Optimal Quadratic
+      /// Programming Algorithms, 2009, sec. 5.10): the CG steps on the
+      /// free set F use z = M_F^{-1} phi instead of phi, M_F a
+      /// preconditioner of the free-set block A_FF, rebuilt whenever the
+      /// active set changed (after an expansion or a proportioning step).
+      /// "none" (plain MPRGP), "jacobi" (M_F = diag(A)_FF, from
+      /// Problem::diagonal) or "amg" (the operator returned by
+      /// Problem::free_set_preconditioner for the active set; qpsolve
+      /// builds Trilinos ML on A with the active rows and columns
+      /// replaced by identity rows).  The proportioning test and the
+      /// expansions are MPRGP's.  Only MPRGP uses it.
+      std::string preconditioner = "none";
       /// MPGP-BB: a Barzilai-Borwein projection is accepted when the cost
       /// does not exceed the largest cost before the last this-many BB
       /// attempts (non-monotone safeguard); 0 = monotone (every increase

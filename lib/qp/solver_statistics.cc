@@ -104,6 +104,10 @@ namespace dualcontact
                                  {"outer", n_outer}};
       j["hessian_products"]   = n_hessian_products;
       j["projections"]        = n_projections;
+      j["preconditioner"]     = {{"setups", n_preconditioner_setups},
+                                 {"setup_time", number(preconditioner_setup_time)},
+                                 {"applications", n_preconditioner_applications},
+                                 {"apply_time", number(preconditioner_apply_time)}};
       j["wall_time"]          = number(wall_time);
       j["norm_b"]             = number(norm_b);
       j["lambda_max"]         = number(lambda_max);

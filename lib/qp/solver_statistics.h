@@ -91,6 +91,14 @@ namespace dualcontact
       unsigned int  n_outer            = 0;
       unsigned long n_hessian_products = 0;
       unsigned long n_projections      = 0;
+      /// preconditioning in face (MPRGP, `Preconditioner` not none): how
+      /// often M_F was built (once per new active set), the wall time of
+      /// those builds, how often M_F^{-1} was applied and the wall time of
+      /// the applications (both included in wall_time)
+      unsigned int  n_preconditioner_setups       = 0;
+      double        preconditioner_setup_time     = 0.;
+      unsigned long n_preconditioner_applications = 0;
+      double        preconditioner_apply_time     = 0.;
 
       /// wall time of solve() in seconds
       double wall_time = 0.;
