@@ -140,6 +140,7 @@ namespace dualcontact
 
       VectorType g(x), p(x), Ap(x), phi(x), work(x);
       VectorType x_prev, g_prev; // MPGP-BB only
+      VectorType x_best, g_best;
       if (variant.barzilai_borwein)
       {
         x_prev.reinit(x);
@@ -524,26 +525,48 @@ namespace dualcontact
             bool expanded = false;
             if (projected_cg && alpha_cg < infinity)
             {
-              // the whole CG step from x, projected: work := P(x -
-              // alpha_cg p), phi := A work - b; kept if it lowers the
-              // cost below the half-step's
-              work.equ(1., x);
-              set.projected_step(work, p, alpha_cg, false);
-              if (problem.constraints)
-                ++stats.n_projections;
-              this->apply_hessian(problem, phi, work, stats);
-              phi -= problem.b;
-              const double f_cg = cost_at(work, phi);
-              if (f_cg <= f_half)
+              // the whole CG step from x, projected: work := P(x - t
+              // p), phi := A work - b, for t = alpha_cg and (with
+              // `projected_cg_trials` > 1) t = alpha_f + (alpha_cg -
+              // alpha_f) 2^-k; the trial of least cost is kept if it
+              // lowers the cost below the half-step's.  (With a
+              // preconditioner in face the whole step overshoots far into
+              // the obstacle, and the first trial below the half-step's
+              // cost activates too much, which proportioning must undo.)
+              double f_best = f_half;
+              for (unsigned int k = 0; k < prm.projected_cg_trials; ++k)
               {
-                x.swap(work);
-                g.swap(phi); // A work - b: exact
+                const double t =
+                  alpha_f + (alpha_cg - alpha_f) * std::ldexp(1., -int(k));
+                work.equ(1., x);
+                set.projected_step(work, p, t, false);
+                if (problem.constraints)
+                  ++stats.n_projections;
+                this->apply_hessian(problem, phi, work, stats);
+                phi -= problem.b;
+                const double f_cg = cost_at(work, phi);
+                if (f_cg <= f_best)
+                {
+                  if (x_best.size() != x.size())
+                  {
+                    x_best.reinit(x);
+                    g_best.reinit(x);
+                  }
+                  x_best.swap(work);
+                  g_best.swap(phi);
+                  f_best   = f_cg;
+                  expanded = true;
+                }
+              }
+              if (expanded)
+              {
+                x.swap(x_best);
+                g.swap(g_best); // A x - b: exact
                 exact_gradient = true;
-                f              = f_cg;
-                expanded       = true;
+                f              = f_best;
                 ++stats.n_expansions;
               }
-              else
+              if (!expanded)
                 ++stats.n_fall_back;
             }
             if (!expanded)

@@ -48,6 +48,7 @@ namespace dualcontact
         long        repeat            = 1;
         std::string expansion;
         std::string preconditioner;
+        long        projected_cg_trials = -1;
         std::string x_out;
         std::string json_out;
       };
@@ -163,6 +164,24 @@ namespace dualcontact
                                o.expansion +
                                "' (valid: alpha-bar|projected-cg)");
           }
+          else if (a == "--projected-cg-trials")
+          {
+            const std::string v = value();
+            try
+            {
+              std::size_t used      = 0;
+              o.projected_cg_trials = std::stol(v, &used);
+              if (used != v.size())
+                throw std::invalid_argument(v);
+            }
+            catch (const std::exception &)
+            {
+              throw UsageError("--projected-cg-trials: '" + v +
+                               "' is not an integer");
+            }
+            if (o.projected_cg_trials < 1)
+              throw UsageError("--projected-cg-trials must be >= 1");
+          }
           else if (a == "--preconditioner")
           {
             o.preconditioner = value();
@@ -215,7 +234,8 @@ namespace dualcontact
              "projected|reduced|reduced-projected] [--max-iter N] "
              "[--stagnation-window N] [--gamma G] "
              "[--expansion alpha-bar|projected-cg] "
-             "[--preconditioner none|jacobi|amg] [--repeat N] "
+             "[--projected-cg-trials N] [--preconditioner none|jacobi|amg] "
+             "[--repeat N] "
              "[--x-out FILE] [--json-out FILE]\n"
              "--preconditioner: MPRGP with preconditioning in face (jacobi: "
              "diag(A) on the free set; amg: Trilinos ML on A with the active "
@@ -329,6 +349,8 @@ namespace dualcontact
           prm.gamma = options.gamma;
         if (!options.expansion.empty())
           prm.expansion = options.expansion;
+        if (options.projected_cg_trials > 0)
+          prm.projected_cg_trials = options.projected_cg_trials;
         if (!options.preconditioner.empty())
           prm.preconditioner = options.preconditioner;
         if (prm.preconditioner != "none")

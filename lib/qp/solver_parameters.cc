@@ -138,6 +138,15 @@ namespace dualcontact
                         "constraints at once (PERMON's projcg), replaced by "
                         "the alpha-bar step whenever it would not lower the "
                         "cost below that of the half-step. Unit: none.");
+      prm.declare_entry("Projected-CG trials",
+                        std::to_string(d.projected_cg_trials),
+                        Integer(1),
+                        "Expansion = projected-cg: the step lengths tried, "
+                        "t_k = alpha_f + (alpha_cg - alpha_f) 2^-k for k = 0, "
+                        "..., trials - 1 (alpha_f: the half-step), one Hessian "
+                        "product each; the one of least cost is kept if that "
+                        "is below the half-step's. 1: the whole CG step only "
+                        "(PERMON's projcg). Unit: none.");
       prm.declare_entry("Preconditioner",
                         d.preconditioner,
                         Selection("none|jacobi|amg"),
@@ -228,6 +237,7 @@ namespace dualcontact
       gamma               = prm.get_double("Gamma");
       expansion           = prm.get("Expansion");
       preconditioner      = prm.get("Preconditioner");
+      projected_cg_trials = prm.get_integer("Projected-CG trials");
       mwpgp_delta         = prm.get_double("MwPGP delta");
       mpgp_bb_memory      = prm.get_integer("MPGP-BB memory");
       pbbf_k              = prm.get_integer("PBBf K");
@@ -268,6 +278,8 @@ namespace dualcontact
       if (expansion != "alpha-bar" && expansion != "projected-cg")
         fail("Expansion",
              "must be alpha-bar or projected-cg (got '" + expansion + "').");
+      if (projected_cg_trials < 1)
+        fail("Projected-CG trials", "must be at least 1.");
       if (preconditioner != "none" && preconditioner != "jacobi" &&
           preconditioner != "amg")
         fail("Preconditioner",

@@ -67,6 +67,14 @@ namespace dualcontact
       /// the cost below that of the half-step).  Not used by MPGP-BB and
       /// MwPGP.
       std::string expansion = "alpha-bar";
+      /// The projected-CG expansion tries the step lengths t_k = alpha_f
+      /// + (alpha_cg - alpha_f) 2^-k, k = 0, ..., this - 1 (alpha_f the
+      /// half-step), one Hessian product each, and keeps the one of least
+      /// cost if that is below the half-step's.  1 = PERMON's projcg
+      /// (the whole CG step only).  More trials pay off with a
+      /// preconditioner in face, whose whole step overshoots the
+      /// obstacle far.
+      unsigned int projected_cg_trials = 1;
       /// MPRGP with preconditioning in face (Dostal, Optimal Quadratic
       /// Programming Algorithms, 2009, sec. 5.10): the CG steps on the
       /// free set F use z = M_F^{-1} phi instead of phi, M_F a
