@@ -536,8 +536,9 @@ namespace dualcontact
               double f_best = f_half;
               for (unsigned int k = 0; k < prm.projected_cg_trials; ++k)
               {
-                const double t =
-                  alpha_f + (alpha_cg - alpha_f) * std::ldexp(1., -int(k));
+                const double t = k == 0 ? alpha_cg :
+                                          alpha_f + (alpha_cg - alpha_f) *
+                                                      std::ldexp(1., -int(k));
                 work.equ(1., x);
                 set.projected_step(work, p, t, false);
                 if (problem.constraints)

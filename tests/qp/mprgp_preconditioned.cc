@@ -300,11 +300,11 @@ main(int argc, char **argv)
     SparsePlanted P;
     make_sparse_planted(m, matrix == "DLD" ? scale : unit, P);
     Vec x_plain;
-    for (const std::string M : {"none", "jacobi", "amg"})
+    for (const std::string M : {"none", "jacobi", "amg", "amg-T8"})
     {
       Problem<Vec>                problem = sparse_problem(P);
       std::unique_ptr<FreeSetAMG> amg;
-      if (M == "amg")
+      if (M != "none" && M != "jacobi")
       {
         amg                             = std::make_unique<FreeSetAMG>(P.A);
         problem.free_set_preconditioner = amg->factory();
@@ -312,7 +312,12 @@ main(int argc, char **argv)
       SolverParameters prm;
       prm.tolerance      = 1e-10;
       prm.max_iterations = 20000;
-      prm.preconditioner = M;
+      prm.preconditioner = M == "jacobi" ? "jacobi" :
+                           M == "none"   ? "none" :
+                                           "amg";
+      // amg-T8: eight step lengths in the projected-CG expansion
+      if (M == "amg-T8")
+        prm.projected_cg_trials = 8;
       // the projected-CG expansion: with the alpha-bar one a
       // preconditioned direction hits a bound at every step and the active
       // set grows by a few unknowns per expansion (doc/benchmarks/
@@ -347,7 +352,7 @@ main(int argc, char **argv)
                     tag + "same solution as unpreconditioned MPRGP (" +
                       sci(diff.l2_norm()) + ")");
       }
-      if (M == "amg")
+      if (M != "none" && M != "jacobi")
         check.check(stats.n_preconditioner_setups >= 1 &&
                       stats.n_preconditioner_setups <=
                         1 + stats.n_half_steps + stats.n_proportioning,
@@ -365,6 +370,12 @@ main(int argc, char **argv)
               "D L D: amg " + std::to_string(iterations["DLD/amg"]) +
                 " iterations, at most a fifth of none's " +
                 std::to_string(iterations["DLD/none"]));
+  check.check(iterations["DLD/amg-T8"] * 5 <= iterations["DLD/none"] &&
+                iterations["L/amg-T8"] * 3 <= iterations["L/none"],
+              "amg with 8 projected-CG trials: " +
+                std::to_string(iterations["DLD/amg-T8"]) + " (D L D) and " +
+                std::to_string(iterations["L/amg-T8"]) +
+                " (L) iterations, at most a fifth / a third of none's");
   check.check(iterations["L/amg"] * 3 <= iterations["L/none"],
               "L: amg " + std::to_string(iterations["L/amg"]) +
                 " iterations, at most a third of none's " +

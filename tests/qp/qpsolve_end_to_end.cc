@@ -8,6 +8,8 @@
 //  - the same bound problem with --solver cgc: exit 0;
 //  - an equality-constrained problem: SMALSE-M wraps the solver, exit 0,
 //    equality_residual reported;
+//  - the bound problem with --solver mprgp --preconditioner jacobi|amg:
+//    exit 0, preconditioner setups reported;
 //  - --max-iter 2: exit 2, reason max_iterations;
 //  - bad inputs (missing file, bad field, unknown solver, cgc with a disc
 //    block, bad --tol): exit 1 with a message naming the file/field/option.
@@ -153,6 +155,19 @@ main()
     check(r.code == 0 && contains(r.out, "\"solver\": \"cgc\"") &&
             contains(r.out, "\"reason\": \"converged\""),
           "qpsolve --solver cgc on bound/box constraints: exit 0");
+    // MPRGP with preconditioning in face (jacobi, Trilinos AMG)
+    for (const std::string M : {"jacobi", "amg"})
+    {
+      const Result p =
+        run(dir + "/bounds.json --solver mprgp --tol 1e-10 --preconditioner " +
+            M + " --expansion projected-cg --projected-cg-trials 4");
+      check(p.code == 0 && contains(p.out, "\"reason\": \"converged\"") &&
+              contains(p.out, "\"preconditioner\": \"" + M + "\"") &&
+              contains(p.out, "\"preconditioner_setups\": ") &&
+              !contains(p.out, "\"preconditioner_setups\": 0,"),
+            "qpsolve --solver mprgp --preconditioner " + M +
+              ": exit 0, setups reported");
+    }
   }
 
   // equality: x_7 + x_8 + x_9 = 0.6 (x* satisfies it) -> b unchanged
@@ -219,6 +234,10 @@ main()
     {dir + "/p.json --solver cgc", {"cgc", "disc"}},
     {dir + "/p.json --tol abc", {"--tol", "abc"}},
     {dir + "/p.json --criterion nonsense", {"nonsense"}},
+    {dir + "/p.json --preconditioner ilu", {"--preconditioner", "ilu"}},
+    {dir + "/p.json --solver mpgp --preconditioner amg",
+     {"--preconditioner", "mprgp"}},
+    {dir + "/p.json --projected-cg-trials 0", {"--projected-cg-trials"}},
   };
   for (const auto &[args, pieces] : bad)
   {
