@@ -371,6 +371,11 @@ namespace dualcontact
         const Clock::time_point start = Clock::now();
         free_set_inverse(out, in);
         set.zero_active(x, out);
+        // safeguard: an operator that is not positive definite on the
+        // free set (a broken or non-symmetric M_F) would give a direction
+        // that is not a descent direction; use phi itself then
+        if (!(internal::dot(in, out) > 0.))
+          out.equ(1., in);
         ++stats.n_preconditioner_applications;
         stats.preconditioner_apply_time += seconds(start);
       };

@@ -14,7 +14,8 @@
 //     unscaled Laplacian L (measured 239 / 37 / 669 and 22 / 178):
 //     bounds that fail if the preconditioner is not applied.
 //  3. Same solution as unpreconditioned MPRGP on that problem; bad
-//     input: amg without a factory, jacobi without a diagonal.
+//     input: amg without a factory, jacobi without a diagonal; a
+//     negative definite M_F (the safeguard falls back to phi).
 #include "test_tools.h"
 
 #include <qp/free_set_amg.h>
@@ -410,6 +411,35 @@ main(int argc, char **argv)
                     " without what it needs is refused with a message "
                     "naming it");
     }
+  }
+  // a factory whose operator is negative definite (dst = -src): the
+  // safeguard falls back to phi, and the solve still reaches x*
+  {
+    SparsePlanted P;
+    make_sparse_planted(20, std::vector<double>(400, 1.), P);
+    Problem<Vec> problem            = sparse_problem(P);
+    problem.free_set_preconditioner = [](const Vec &)
+    {
+      return Problem<Vec>::FreeSetPreconditioner(
+        [](Vec &dst, const Vec &src)
+        {
+          dst = src;
+          dst *= -1.;
+        });
+    };
+    SolverParameters prm;
+    prm.tolerance      = 1e-10;
+    prm.preconditioner = "amg";
+    auto       qp      = create<Vec>("mprgp", prm);
+    Vec        x(400);
+    const auto stats = qp->solve(problem, x);
+    Vec        diff(x);
+    diff -= P.x_star;
+    check.check(stats.converged() &&
+                  diff.l2_norm() <= 1e-8 * (1. + P.x_star.l2_norm()) &&
+                  kkt_ok(stats),
+                "negative definite M_F: safeguard, converged to x* (" +
+                  sci(diff.l2_norm()) + ", " + to_string(stats.reason) + ")");
   }
   return check.finish("mprgp_preconditioned");
 }
