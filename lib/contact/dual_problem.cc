@@ -1250,33 +1250,28 @@ namespace dualcontact
                                        Vector<double>       &u,
                                        const bool require_determined) const
     {
-      bool               determined = true;
-      const unsigned int m = rigid_modes_.size();
-      Vector<double>     alpha(m);
-      {
-        double diag = 0;
-        for (unsigned int k = 0; k < m; ++k)
-          diag = std::max(diag, GGt(k, k));
-        AssertThrow(diag > 0 || !require_determined,
-                    ExcMessage("The rigid-body motion of a floating body is "
-                               "not determined: no active contact "
-                               "constraint holds it."));
-        determined = diag > 0;
-        FullMatrix<double> inverse(m, m);
-        // Tikhonov-free solve; a singular G_A G_A' means a mode that no
-        // active constraint sees (e.g. tangential motion without
-        // friction): it is left at zero by the pseudo-inverse below.
-        for (unsigned int k = 0; k < m; ++k)
-          GGt(k, k) += 1e-14 * diag;
-        if (determined)
-        {
-          inverse.invert(GGt);
-          inverse.vmult(alpha, rhs);
-          for (unsigned int k = 0; k < m; ++k)
-            u.add(alpha(k), rigid_modes_[k]);
-        }
-      }
-      return determined;
+      const unsigned int m    = rigid_modes_.size();
+      double             diag = 0;
+      for (unsigned int k = 0; k < m; ++k)
+        diag = std::max(diag, GGt(k, k));
+      AssertThrow(diag > 0 || !require_determined,
+                  ExcMessage("The rigid-body motion of a floating body is "
+                             "not determined: no active contact "
+                             "constraint holds it."));
+      if (!(diag > 0))
+        return false;
+      // Tikhonov-free solve; a singular G_A G_A' means a mode that no
+      // active constraint sees (e.g. tangential motion without
+      // friction): it is left at zero by the pseudo-inverse below.
+      for (unsigned int k = 0; k < m; ++k)
+        GGt(k, k) += 1e-14 * diag;
+      FullMatrix<double> inverse(m, m);
+      inverse.invert(GGt);
+      Vector<double> alpha(m);
+      inverse.vmult(alpha, rhs);
+      for (unsigned int k = 0; k < m; ++k)
+        u.add(alpha(k), rigid_modes_[k]);
+      return true;
     }
 
 

@@ -99,7 +99,7 @@ main()
                   std::to_string(s.iterations) + " iterations)");
     {
       // the history runs through both attempts, stamped monotonically
-      const std::size_t h0 = s.attempts[0].history.size();
+      const std::size_t h0       = s.attempts[0].history.size();
       bool              monotone = s.history_time.size() == s.history.size() &&
                       s.history_iterations.size() == s.history.size() &&
                       s.history_products.size() == s.history.size();
