@@ -7,6 +7,7 @@
 #include <cmath>
 #include <limits>
 #include <numeric>
+#include <type_traits>
 
 namespace dualcontact
 {
@@ -1392,7 +1393,127 @@ namespace dualcontact
         MinRatio ratio;
         double   pp = 0., gp = 0.;
       };
+
+      /**
+       * What the fused passes need to know of a bound block x_i >= l_i,
+       * so that cg_step(), conjugate_direction() and projected_step() have
+       * one loop body for bounds and boxes (BoxKind below has the same
+       * members): at(first) views the run of blocks starting at the
+       * type's block `first`; classify() tests unknown i of the run at
+       * the value y; chopped() is its component of beta for the gradient
+       * component g; project() is P_i; offer_step() hands the largest
+       * step along -p (p the direction component) to a MinRatio.  The
+       * expressions are those of the loops they replaced, so the results
+       * are the same to the bit.
+       */
+      struct BoundKind
+      {
+        const double *lower;
+        double        tol;
+        /// conjugate_direction() spreads a run of bounds over four lanes
+        /// (the contact problem's normal multipliers: the hot loop)
+        static constexpr std::size_t lanes = 4;
+
+        struct State
+        {
+          double room; // y - l
+          bool   active;
+        };
+
+        inline BoundKind
+        at(const std::size_t first) const
+        {
+          return {lower + first, tol};
+        }
+        inline State
+        classify(const std::size_t i, const double y) const
+        {
+          const double room = y - lower[i];
+          return {room, room <= tol * std::abs(lower[i])};
+        }
+        inline double
+        chopped(const State &state, const double g) const
+        {
+          return state.active ? std::min(g, 0.) : 0.;
+        }
+        inline double
+        project(const std::size_t i, const double y) const
+        {
+          return std::max(y, lower[i]);
+        }
+        inline void
+        offer_step(const State &state,
+                   const std::size_t,
+                   const double,
+                   const double p,
+                   MinRatio    &ratio) const
+        {
+          ratio.offer(std::max(state.room, 0.), p);
+        }
+      };
+
+      /// A box block l_i <= x_i <= u_i for the fused passes (see BoundKind)
+      struct BoxKind
+      {
+        const double *lower, *upper;
+        double        tol;
+        /// one lane: a box run's sums are accumulated in entry order
+        static constexpr std::size_t lanes = 1;
+
+        struct State
+        {
+          bool at_lower, at_upper, active;
+        };
+
+        inline BoxKind
+        at(const std::size_t first) const
+        {
+          return {lower + first, upper + first, tol};
+        }
+        inline State
+        classify(const std::size_t i, const double y) const
+        {
+          const bool at_l = y - lower[i] <= tol * std::abs(lower[i]);
+          const bool at_u = upper[i] - y <= tol * std::abs(upper[i]);
+          return {at_l, at_u, at_l || at_u};
+        }
+        // l = u: both bounds active, beta = 0
+        inline double
+        chopped(const State &state, const double g) const
+        {
+          return (state.at_lower && state.at_upper) ?
+                   0. :
+                   (state.at_lower ? std::min(g, 0.) :
+                                     (state.at_upper ? std::max(g, 0.) : 0.));
+        }
+        inline double
+        project(const std::size_t i, const double y) const
+        {
+          return std::min(std::max(y, lower[i]), upper[i]);
+        }
+        inline void
+        offer_step(const State &,
+                   const std::size_t i,
+                   const double      y,
+                   const double      p,
+                   MinRatio         &ratio) const
+        {
+          const double room =
+            p > 0. ? std::max(y - lower[i], 0.) : std::max(upper[i] - y, 0.);
+          ratio.offer(room, std::abs(p));
+        }
+      };
     } // namespace
+
+
+    template <typename VectorType>
+    template <typename Function>
+    void
+    SeparableSet<VectorType>::for_bound_and_box_runs(const Function &f) const
+    {
+      f(bound_runs, BoundKind{bound_lower.data(), tolerance});
+      f(box_runs, BoxKind{box_lower.data(), box_upper.data(), tolerance});
+    }
 
 
     template <typename VectorType>
@@ -1418,53 +1539,31 @@ namespace dualcontact
           fsq += gv[i] * gv[i];
           pa += gv[i] * av[i];
         }
-      for (const Run &run : bound_runs)
-      {
-        double       *y  = v + run.begin;
-        double       *q  = gv + run.begin;
-        const double *d  = pv + run.begin;
-        const double *a  = av + run.begin;
-        const double *l  = bound_lower.data() + run.first;
-        double        fs = 0., bs = 0.;
-        for (std::size_t i = 0; i < run.count; ++i)
+      for_bound_and_box_runs(
+        [&](const std::vector<Run> &runs, const auto &kind)
         {
-          y[i] -= alpha * d[i];
-          q[i] -= alpha * a[i];
-          const bool   active = y[i] - l[i] <= tolerance * std::abs(l[i]);
-          const double gm     = std::min(q[i], 0.);
-          fs += active ? 0. : q[i] * q[i];
-          bs += active ? gm * gm : 0.;
-          pa += active ? 0. : q[i] * a[i];
-        }
-        fsq += fs;
-        bsq += bs;
-      }
-      for (const Run &run : box_runs)
-      {
-        double       *y  = v + run.begin;
-        double       *q  = gv + run.begin;
-        const double *d  = pv + run.begin;
-        const double *a  = av + run.begin;
-        const double *l  = box_lower.data() + run.first;
-        const double *u  = box_upper.data() + run.first;
-        double        fs = 0., bs = 0.;
-        for (std::size_t i = 0; i < run.count; ++i)
-        {
-          y[i] -= alpha * d[i];
-          q[i] -= alpha * a[i];
-          const bool   at_l = y[i] - l[i] <= tolerance * std::abs(l[i]);
-          const bool   at_u = u[i] - y[i] <= tolerance * std::abs(u[i]);
-          const double c =
-            (at_l && at_u) ?
-              0. :
-              (at_l ? std::min(q[i], 0.) : (at_u ? std::max(q[i], 0.) : 0.));
-          fs += (at_l || at_u) ? 0. : q[i] * q[i];
-          pa += (at_l || at_u) ? 0. : q[i] * a[i];
-          bs += c * c;
-        }
-        fsq += fs;
-        bsq += bs;
-      }
+          for (const Run &run : runs)
+          {
+            double       *y  = v + run.begin;
+            double       *q  = gv + run.begin;
+            const double *d  = pv + run.begin;
+            const double *a  = av + run.begin;
+            const auto    k  = kind.at(run.first);
+            double        fs = 0., bs = 0.;
+            for (std::size_t i = 0; i < run.count; ++i)
+            {
+              y[i] -= alpha * d[i];
+              q[i] -= alpha * a[i];
+              const auto   state = k.classify(i, y[i]);
+              const double c     = k.chopped(state, q[i]);
+              fs += state.active ? 0. : q[i] * q[i];
+              bs += c * c;
+              pa += state.active ? 0. : q[i] * a[i];
+            }
+            fsq += fs;
+            bsq += bs;
+          }
+        });
       if (has_curved_blocks())
       {
         const auto step = [&](const size_type off, const unsigned int w)
@@ -1529,53 +1628,33 @@ namespace dualcontact
           lane[0].pp += pv[i] * pv[i];
           lane[0].gp += gv[i] * pv[i];
         }
-      for (const Run &run : bound_runs)
-      {
-        const double *y   = v + run.begin;
-        const double *q   = gv + run.begin;
-        double       *d   = pv + run.begin;
-        const double *l   = bound_lower.data() + run.first;
-        const auto    one = [&](const std::size_t i, DirectionLane &L)
+      for_bound_and_box_runs(
+        [&](const std::vector<Run> &runs, const auto &kind)
         {
-          const double room   = y[i] - l[i];
-          const bool   active = room <= tolerance * std::abs(l[i]);
-          const double di     = (active ? 0. : q[i]) - beta * d[i];
-          d[i]                = di;
-          L.pp += di * di;
-          L.gp += q[i] * di;
-          L.ratio.offer(std::max(room, 0.), di);
-        };
-        const std::size_t m = run.count & ~std::size_t(3);
-        for (std::size_t i = 0; i < m; i += 4)
-        {
-          one(i, lane[0]);
-          one(i + 1, lane[1]);
-          one(i + 2, lane[2]);
-          one(i + 3, lane[3]);
-        }
-        for (std::size_t i = m; i < run.count; ++i)
-          one(i, lane[0]);
-      }
-      for (const Run &run : box_runs)
-      {
-        const double *y = v + run.begin;
-        const double *q = gv + run.begin;
-        double       *d = pv + run.begin;
-        const double *l = box_lower.data() + run.first;
-        const double *u = box_upper.data() + run.first;
-        for (std::size_t i = 0; i < run.count; ++i)
-        {
-          const bool   at_l = y[i] - l[i] <= tolerance * std::abs(l[i]);
-          const bool   at_u = u[i] - y[i] <= tolerance * std::abs(u[i]);
-          const double di   = ((at_l || at_u) ? 0. : q[i]) - beta * d[i];
-          d[i]              = di;
-          lane[0].pp += di * di;
-          lane[0].gp += q[i] * di;
-          const double room =
-            di > 0. ? std::max(y[i] - l[i], 0.) : std::max(u[i] - y[i], 0.);
-          lane[0].ratio.offer(room, std::abs(di));
-        }
-      }
+          constexpr std::size_t lanes = std::decay_t<decltype(kind)>::lanes;
+          for (const Run &run : runs)
+          {
+            const double *y   = v + run.begin;
+            const double *q   = gv + run.begin;
+            double       *d   = pv + run.begin;
+            const auto    k   = kind.at(run.first);
+            const auto    one = [&](const std::size_t i, DirectionLane &L)
+            {
+              const auto   state = k.classify(i, y[i]);
+              const double di    = (state.active ? 0. : q[i]) - beta * d[i];
+              d[i]               = di;
+              L.pp += di * di;
+              L.gp += q[i] * di;
+              k.offer_step(state, i, y[i], di, L.ratio);
+            };
+            const std::size_t m = run.count - run.count % lanes;
+            for (std::size_t i = 0; i < m; i += lanes)
+              for (std::size_t j = 0; j < lanes; ++j)
+                one(i + j, lane[j]);
+            for (std::size_t i = m; i < run.count; ++i)
+              one(i, lane[0]);
+          }
+        });
       double alpha = infinity;
       for (const DirectionLane &L : lane)
         alpha = std::min(alpha, L.ratio.value());
@@ -1626,33 +1705,21 @@ namespace dualcontact
       for (const auto &range : free_ranges)
         for (std::size_t i = range.first; i < range.second; ++i)
           v[i] -= alpha * gv[i];
-      for (const Run &run : bound_runs)
-      {
-        double       *y = v + run.begin;
-        const double *q = gv + run.begin;
-        const double *l = bound_lower.data() + run.first;
-        for (std::size_t i = 0; i < run.count; ++i)
+      for_bound_and_box_runs(
+        [&](const std::vector<Run> &runs, const auto &kind)
         {
-          const bool active =
-            free_only && y[i] - l[i] <= tolerance * std::abs(l[i]);
-          y[i] = std::max(y[i] - alpha * (active ? 0. : q[i]), l[i]);
-        }
-      }
-      for (const Run &run : box_runs)
-      {
-        double       *y = v + run.begin;
-        const double *q = gv + run.begin;
-        const double *l = box_lower.data() + run.first;
-        const double *u = box_upper.data() + run.first;
-        for (std::size_t i = 0; i < run.count; ++i)
-        {
-          const bool active =
-            free_only && (y[i] - l[i] <= tolerance * std::abs(l[i]) ||
-                          u[i] - y[i] <= tolerance * std::abs(u[i]));
-          y[i] =
-            std::min(std::max(y[i] - alpha * (active ? 0. : q[i]), l[i]), u[i]);
-        }
-      }
+          for (const Run &run : runs)
+          {
+            double       *y = v + run.begin;
+            const double *q = gv + run.begin;
+            const auto    k = kind.at(run.first);
+            for (std::size_t i = 0; i < run.count; ++i)
+            {
+              const bool active = free_only && k.classify(i, y[i]).active;
+              y[i] = k.project(i, y[i] - alpha * (active ? 0. : q[i]));
+            }
+          }
+        });
       if (has_curved_blocks())
       {
         // the step along phi (free_only) or g on every curved block, then
