@@ -12,6 +12,7 @@
 #include <cmath>
 #include <iomanip>
 #include <limits>
+#include <numeric>
 #include <sstream>
 
 namespace dualcontact
@@ -307,6 +308,14 @@ namespace dualcontact
          n_processes > 1);
       if (!distributed_)
       {
+        // one process owns all rows, in order (recover() runs the loop of
+        // the distributed recovery over them)
+        owned_nodes_.resize(n_nodes);
+        std::iota(owned_nodes_.begin(), owned_nodes_.end(), 0u);
+        owned_frictional_.resize(frictional_nodes_.size());
+        std::iota(owned_frictional_.begin(), owned_frictional_.end(), 0u);
+        owned_rows_.resize(m);
+        std::iota(owned_rows_.begin(), owned_rows_.end(), 0u);
         owned_multipliers_ = complete_index_set(m);
         nodes_per_process_.assign(1, n_nodes);
         multipliers_per_process_.assign(1, m);
@@ -1107,63 +1116,12 @@ namespace dualcontact
           owned.begin()[k] = lambda(owned_rows_[k]);
         return recover(owned, displacements, require_determined);
       }
-      bool           determined = true;
       Vector<double> u;
       apply_Bt(lambda, u);
-      u.sadd(-1., 1., load_);
-      apply_K_inverse(u);
-
-      if (!rigid_modes_.empty())
-      {
-        // Residual of the constraints without the rigid motion,
-        // r = B u - [c; -o_T] (= d - F lambda).
-        VectorType r(n_multipliers());
-        apply_B(u, r);
-        const Vector<double> c = contact_.normal_bound();
-        for (unsigned int i = 0; i < contact_.n_nodes(); ++i)
-          r(i) -= c(i);
-        for (unsigned int j = 0; j < frictional_nodes_.size(); ++j)
-          for (unsigned int k = 0; k + 1 < dim; ++k)
-            r(contact_.n_nodes() + (dim - 1) * j + k) +=
-              contact_.tangential_offset()((dim - 1) * frictional_nodes_[j] +
-                                           k);
-        // Rows that must hold with equality: normal rows with a positive
-        // multiplier, and the tangential rows of sticking nodes (multiplier
-        // strictly inside a nonzero friction set).  A Tresca bound acts
-        // whether or not the node is pressed, so a separated node can stick;
-        // a zero bound (Coulomb without normal force) constrains nothing.
-        const unsigned int n_nodes = contact_.n_nodes();
-        double             scale   = 0;
-        for (unsigned int i = 0; i < n_nodes; ++i)
-          scale = std::max(scale, std::abs(lambda(i)));
-        const double      tol = 1e-8 * scale;
-        std::vector<bool> active(n_multipliers(), false);
-        for (unsigned int i = 0; i < n_nodes; ++i)
-          active[i] = lambda(i) > tol;
-        for (unsigned int j = 0; j < frictional_nodes_.size(); ++j)
-        {
-          if (std::max(psi_first_[j], psi_second_[j]) > 0 &&
-              friction_utilization(lambda, j) < 1 - 1e-6)
-            for (unsigned int k = 0; k + 1 < dim; ++k)
-              active[n_nodes + (dim - 1) * j + k] = true;
-        }
-        // alpha = (G_A G_A')^{-1} G_A (-r_A): G_A' alpha = -r_A in the
-        // least-squares sense.
-        const unsigned int m = rigid_modes_.size();
-        FullMatrix<double> GGt(m, m);
-        Vector<double>     rhs(m);
-        for (unsigned int k = 0; k < m; ++k)
-          for (unsigned int r_ = 0; r_ < n_multipliers(); ++r_)
-            if (active[r_])
-            {
-              rhs(k) -= G_rows_[k](r_) * r(r_);
-              for (unsigned int l = 0; l < m; ++l)
-                GGt(k, l) += G_rows_[k](r_) * G_rows_[l](r_);
-            }
-        determined = add_rigid_motion(GGt, rhs, u, require_determined);
-      }
-      split_displacements(u, displacements);
-      return determined;
+      return finish_recovery(lambda.begin(),
+                             u,
+                             displacements,
+                             require_determined);
     }
 
 
@@ -1174,70 +1132,93 @@ namespace dualcontact
                               const bool require_determined) const
     {
       Assert(distributed_, ExcInternalError());
-      bool           determined = true;
       Vector<double> u;
       apply_Bt_distributed(lambda, u);
+      return finish_recovery(lambda.begin(),
+                             u,
+                             displacements,
+                             require_determined);
+    }
+
+
+    template <int dim>
+    bool
+    DualProblem<dim>::finish_recovery(
+      const double                *lambda,
+      Vector<double>              &u,
+      std::vector<Vector<double>> &displacements,
+      const bool                   require_determined) const
+    {
       u.sadd(-1., 1., load_);
       apply_K_inverse(u);
-
-      if (!rigid_modes_.empty())
+      if (rigid_modes_.empty())
       {
-        // as in the replicated recover(), over the owned rows: the owned
-        // normal multipliers come first in local order, then the owned
-        // tangential ones, node by node
-        const unsigned int n_nodes = contact_.n_nodes();
-        const unsigned int n_owned = owned_nodes_.size();
-        double             scale   = 0;
-        for (unsigned int q = 0; q < n_owned; ++q)
-          scale = std::max(scale, std::abs(lambda.begin()[q]));
-        scale                 = Utilities::MPI::max(scale, communicator_);
-        const double      tol = 1e-8 * scale;
-        std::vector<bool> active(owned_rows_.size(), false);
-        for (unsigned int q = 0; q < n_owned; ++q)
-          active[q] = lambda.begin()[q] > tol;
-        for (unsigned int p = 0; p < owned_frictional_.size(); ++p)
-        {
-          const unsigned int j     = owned_frictional_[p];
-          const unsigned int first = n_owned + (dim - 1) * p;
-          if (std::max(psi_first_[j], psi_second_[j]) > 0 &&
-              friction_utilization(j, lambda.begin() + first) < 1 - 1e-6)
-            for (unsigned int k = 0; k + 1 < dim; ++k)
-              active[first + k] = true;
-        }
-        const Vector<double> c = contact_.normal_bound();
-        const unsigned int   m = rigid_modes_.size();
-        // GGt and rhs in one buffer, summed over the processes
-        std::vector<double> sums(m * m + m, 0.), total(m * m + m);
-        for (unsigned int l = 0; l < owned_rows_.size(); ++l)
-        {
-          if (!active[l])
-            continue;
-          const unsigned int r        = owned_rows_[l];
-          double             residual = row_times(r, u);
-          if (r < n_nodes)
-            residual -= c(r);
-          else
-            residual += contact_.tangential_offset()(
-              (dim - 1) * frictional_nodes_[(r - n_nodes) / (dim - 1)] +
-              (r - n_nodes) % (dim - 1));
-          for (unsigned int k = 0; k < m; ++k)
-          {
-            sums[m * m + k] -= G_rows_[k](r) * residual;
-            for (unsigned int l2 = 0; l2 < m; ++l2)
-              sums[k * m + l2] += G_rows_[k](r) * G_rows_[l2](r);
-          }
-        }
-        Utilities::MPI::sum(sums, communicator_, total);
-        FullMatrix<double> GGt(m, m);
-        Vector<double>     rhs(m);
+        split_displacements(u, displacements);
+        return true;
+      }
+      // The owned multipliers (replicated: all) in local order: the owned
+      // normal multipliers first, then the owned tangential ones, node by
+      // node.  Rows that must hold with equality: normal rows with a
+      // positive multiplier, and the tangential rows of sticking nodes
+      // (multiplier strictly inside a nonzero friction set).  A Tresca
+      // bound acts whether or not the node is pressed, so a separated node
+      // can stick; a zero bound (Coulomb without normal force) constrains
+      // nothing.
+      const unsigned int n_nodes = contact_.n_nodes();
+      const unsigned int n_owned = owned_nodes_.size();
+      double             scale   = 0;
+      for (unsigned int q = 0; q < n_owned; ++q)
+        scale = std::max(scale, std::abs(lambda[q]));
+      scale                 = Utilities::MPI::max(scale, communicator_);
+      const double      tol = 1e-8 * scale;
+      std::vector<bool> active(owned_rows_.size(), false);
+      for (unsigned int q = 0; q < n_owned; ++q)
+        active[q] = lambda[q] > tol;
+      for (unsigned int p = 0; p < owned_frictional_.size(); ++p)
+      {
+        const unsigned int j     = owned_frictional_[p];
+        const unsigned int first = n_owned + (dim - 1) * p;
+        if (std::max(psi_first_[j], psi_second_[j]) > 0 &&
+            friction_utilization(j, lambda + first) < 1 - 1e-6)
+          for (unsigned int k = 0; k + 1 < dim; ++k)
+            active[first + k] = true;
+      }
+      // alpha = (G_A G_A')^{-1} G_A (-r_A): G_A' alpha = -r_A in the
+      // least-squares sense, r the residual of the constraints without
+      // the rigid motion, r = B u - [c; -o_T] (= d - F lambda)
+      const Vector<double> c = contact_.normal_bound();
+      const unsigned int   m = rigid_modes_.size();
+      // GGt and rhs in one buffer, summed over the processes
+      std::vector<double> sums(m * m + m, 0.), total(m * m + m);
+      for (unsigned int l = 0; l < owned_rows_.size(); ++l)
+      {
+        if (!active[l])
+          continue;
+        const unsigned int r        = owned_rows_[l];
+        double             residual = row_times(r, u);
+        if (r < n_nodes)
+          residual -= c(r);
+        else
+          residual += contact_.tangential_offset()(
+            (dim - 1) * frictional_nodes_[(r - n_nodes) / (dim - 1)] +
+            (r - n_nodes) % (dim - 1));
         for (unsigned int k = 0; k < m; ++k)
         {
-          rhs(k) = total[m * m + k];
+          sums[m * m + k] -= G_rows_[k](r) * residual;
           for (unsigned int l2 = 0; l2 < m; ++l2)
-            GGt(k, l2) = total[k * m + l2];
+            sums[k * m + l2] += G_rows_[k](r) * G_rows_[l2](r);
         }
-        determined = add_rigid_motion(GGt, rhs, u, require_determined);
       }
+      Utilities::MPI::sum(sums, communicator_, total);
+      FullMatrix<double> GGt(m, m);
+      Vector<double>     rhs(m);
+      for (unsigned int k = 0; k < m; ++k)
+      {
+        rhs(k) = total[m * m + k];
+        for (unsigned int l2 = 0; l2 < m; ++l2)
+          GGt(k, l2) = total[k * m + l2];
+      }
+      const bool determined = add_rigid_motion(GGt, rhs, u, require_determined);
       split_displacements(u, displacements);
       return determined;
     }

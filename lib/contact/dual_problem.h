@@ -328,6 +328,21 @@ namespace dualcontact
                            const double      *tangential) const;
 
       /**
+       * The two recover()s once u = B'lambda: u = K^#(f - u), plus the
+       * rigid-body motion R alpha fitted so that the active rows hold, then
+       * the bodies' parts.  @p lambda: the owned multipliers in the local
+       * order of owned_rows_ (replicated: all rows); the sums over the
+       * owned rows are reduced over communicator_ (one process when
+       * replicated).  Collective when distributed; @p require_determined
+       * and the return value as in recover().
+       */
+      bool
+      finish_recovery(const double                        *lambda,
+                      dealii::Vector<double>              &u,
+                      std::vector<dealii::Vector<double>> &displacements,
+                      const bool require_determined) const;
+
+      /**
        * u += R alpha with alpha solving (G_A G_A') alpha = rhs (the
        * rigid-body amplitudes of recover()); @p GGt is regularized.  A zero
        * G_A G_A' (no active constraint sees a rigid mode) throws with
