@@ -260,6 +260,43 @@ namespace dualcontact
 
 
     void
+    DelassusOperator::add_symmetric_columns(
+      dealii::Vector<double>         &dst,
+      const dealii::Vector<double>   &v,
+      const std::vector<std::size_t> &indices) const
+    {
+      Assert(dst.size() == n_ && v.size() == n_,
+             dealii::ExcDimensionMismatch(dst.size(), n_));
+      if (dense_)
+      {
+        // full column-major storage: column j is contiguous
+        const std::vector<double> &A =
+          dense_W_s_.empty() ? dense_W_ : dense_W_s_;
+        double *out = dst.data();
+        for (const std::size_t j : indices)
+        {
+          const double  vj     = v(j);
+          const double *column = A.data() + j * std::size_t(n_);
+          for (unsigned int i = 0; i < n_; ++i)
+            out[i] += column[i] * vj;
+        }
+      }
+      else
+      {
+        // W_s is symmetric: column j is row j
+        const dealii::SparseMatrix<double> &S =
+          W_s_.pattern ? W_s_.matrix : W_.matrix;
+        for (const std::size_t j : indices)
+        {
+          const double vj = v(j);
+          for (auto it = S.begin(j); it != S.end(j); ++it)
+            dst(it->column()) += it->value() * vj;
+        }
+      }
+    }
+
+
+    void
     DelassusOperator::antisymmetric_vmult(
       dealii::Vector<double>       &dst,
       const dealii::Vector<double> &src) const

@@ -74,6 +74,18 @@ namespace dualcontact
       symmetric_vmult(dealii::Vector<double>       &dst,
                       const dealii::Vector<double> &src) const;
 
+      /**
+       * dst += W_s v for a v that is zero outside @p indices: the columns
+       * of W_s for those indices only, at (number of indices) / n of a
+       * product's cost.  fclib::LocalSolver corrects the gradient a
+       * Coulomb QP starts from with it when the new slip bounds move a few
+       * contacts of the start (qp::Problem::hessian_add_sparse).
+       */
+      void
+      add_symmetric_columns(dealii::Vector<double>         &dst,
+                            const dealii::Vector<double>   &v,
+                            const std::vector<std::size_t> &indices) const;
+
       /** dst = W_a src = (W - W')/2 src, the part 1/2 r'W r does not see. */
       void
       antisymmetric_vmult(dealii::Vector<double>       &dst,

@@ -342,32 +342,65 @@ namespace dualcontact
       // (rigid-body problems) was measured without it, and with it mpgp
       // did not reach 1e-8 on spheres-in-a-box in 1000 proximal QPs
       const bool scaled = scale_.size() == r.size() && rho == 0;
-      auto set = std::make_shared<qp::SeparableSet<dealii::Vector<double>>>();
+      // The set's shape per contact (0: normal bound only, 1: tangential
+      // boxes [0, 0], 2: disc or 2D box of the slip bound, 3: cone) and the
+      // slip bounds; a QP of the same shape as the last one keeps its set
+      // and changes the radii only
+      std::vector<unsigned char> shape(problem_.n_contacts());
+      std::vector<double>        radius(problem_.n_contacts(), 0.);
       for (unsigned int i = 0; i < problem_.n_contacts(); ++i)
       {
-        const unsigned int first = dim * i;
-        const double       mu    = problem_.mu()[i];
-        // scaled unknowns r~ = r / s_i: the disc radius too
-        const double s = scaled ? scale_(first) : 1.;
+        const double mu = problem_.mu()[i];
         if (parameters_.model == Model::cone)
-        {
-          set->add_cone(first, mu);
-          continue;
-        }
-        set->add_bound(first, 0.);
+          shape[i] = 3;
         // psi == nullptr: bonded iterate, no bound on frictional contacts
-        if (mu > 0 && psi == nullptr)
-          continue;
-        const double bound = mu > 0 ? (*psi)[i] / s : 0.;
-        if (bound == 0.) // r_t = 0: boxes, which mprgp also takes
-          for (unsigned int k = 1; k < dim; ++k)
-            set->add_box(first + k, 0., 0.);
-        else if (dim == 3)
-          set->add_disc(first + 1, bound);
+        else if (mu > 0 && psi == nullptr)
+          shape[i] = 0;
         else
-          set->add_box(first + 1, -bound, bound);
+        {
+          // scaled unknowns r~ = r / s_i: the disc radius too
+          const double s = scaled ? scale_(dim * i) : 1.;
+          radius[i]      = mu > 0 ? (*psi)[i] / s : 0.;
+          shape[i]       = radius[i] == 0. ? 1 : 2; // r_t = 0: boxes
+        }
       }
-      set->finalize(r);
+      if (!set_ || shape != set_shape_)
+      {
+        set_ = std::make_shared<qp::SeparableSet<dealii::Vector<double>>>();
+        for (unsigned int i = 0; i < problem_.n_contacts(); ++i)
+        {
+          const unsigned int first = dim * i;
+          if (shape[i] == 3)
+          {
+            set_->add_cone(first, problem_.mu()[i]);
+            continue;
+          }
+          set_->add_bound(first, 0.);
+          if (shape[i] == 1) // boxes, which mprgp also takes
+            for (unsigned int k = 1; k < dim; ++k)
+              set_->add_box(first + k, 0., 0.);
+          else if (shape[i] == 2 && dim == 3)
+            set_->add_disc(first + 1, radius[i]);
+          else if (shape[i] == 2)
+            set_->add_box(first + 1, -radius[i], radius[i]);
+        }
+        set_->finalize(r);
+        set_shape_ = shape;
+      }
+      else
+      {
+        // the blocks in the order they were added above
+        unsigned int disc = 0, box = 0;
+        for (unsigned int i = 0; i < problem_.n_contacts(); ++i)
+          if (shape[i] == 1)
+            box += dim - 1;
+          else if (shape[i] == 2 && dim == 3)
+            set_->set_disc_radius(disc++, radius[i]);
+          else if (shape[i] == 2)
+            set_->set_box_bounds(box++, -radius[i], radius[i]);
+      }
+      const std::shared_ptr<qp::SeparableSet<dealii::Vector<double>>> &set =
+        set_;
 
       // proximal term rho/2 ||r - center||^2 around the start r; with the
       // contact scaling the same QP in r~ = S^-1 r: Hessian S W_s S, b~ =
@@ -421,25 +454,64 @@ namespace dualcontact
       prm.max_iterations = std::min(prm.max_iterations, max_iterations);
       if (b > q && q > 0)
         prm.tolerance *= q / b;
-      // one solver for the QPs of equal tolerance and limit (most of a
-      // loop's): creating it checks and parses the parameters, a tenth of
-      // the work of a short QP on a small problem (Hertz L3)
-      if (!solver_ || solver_tolerance_ != prm.tolerance ||
-          solver_max_iterations_ != prm.max_iterations)
-      {
-        solver_                = qp::create<dealii::Vector<double>>(prm);
-        solver_tolerance_      = prm.tolerance;
-        solver_max_iterations_ = prm.max_iterations;
-      }
+      // one solver for all QPs, its tolerance and limit set per QP:
+      // creating one checks and parses the parameters, a tenth of the work
+      // of a short QP on a small problem (Hertz L3)
+      if (!solver_)
+        solver_ = qp::create<dealii::Vector<double>>(prm);
+      else
+        solver_->set_tolerance(prm.tolerance, prm.max_iterations);
       qp::SolverBase<dealii::Vector<double>> *solver = solver_.get();
-      if (!scaled)
-        return solver->solve(qp, r);
+
+      // The plain QPs of a loop have the same Hessian and b; each starts
+      // from the last one's solution, whose gradient the solver ended with
+      // (Problem::start_gradient: one product fewer per QP, unless the new
+      // set cuts the start)
+      const bool             plain = rho == 0 && !asymmetric_;
       dealii::Vector<double> x(r);
-      for (unsigned int k = 0; k < x.size(); ++k)
-        x(k) /= scale_(k);
+      if (plain && end_gradient_ && end_scaled_ == scaled &&
+          end_r_.size() == r.size() && end_r_ == r)
+      {
+        x                 = end_x_; // exactly, not r / s rounded
+        qp.start_gradient = end_gradient_;
+        // for the contacts the new bounds move: S W_s S d by columns
+        qp.hessian_add_sparse =
+          [this, scaled](dealii::Vector<double>         &dst,
+                         const dealii::Vector<double>   &d,
+                         const std::vector<std::size_t> &indices)
+        {
+          if (!scaled)
+          {
+            problem_.delassus().add_symmetric_columns(dst, d, indices);
+            return;
+          }
+          dealii::Vector<double> sd(d.size()), column_sum(d.size());
+          for (const std::size_t j : indices)
+            sd(j) = scale_(j) * d(j);
+          problem_.delassus().add_symmetric_columns(column_sum, sd, indices);
+          for (unsigned int i = 0; i < dst.size(); ++i)
+            dst(i) += scale_(i) * column_sum(i);
+        };
+      }
+      else if (scaled)
+        for (unsigned int k = 0; k < x.size(); ++k)
+          x(k) /= scale_(k);
       const qp::SolverStatistics statistics = solver->solve(qp, x);
       r.equ(1., x);
-      r.scale(scale_);
+      if (scaled)
+        r.scale(scale_);
+      const dealii::Vector<double> *gradient = solver->final_gradient();
+      if (plain && gradient)
+      {
+        end_r_ = r;
+        end_x_ = x;
+        if (!end_gradient_ || end_gradient_.use_count() > 1)
+          end_gradient_ = std::make_shared<dealii::Vector<double>>();
+        *end_gradient_ = *gradient;
+        end_scaled_    = scaled;
+      }
+      else
+        end_gradient_.reset();
       return statistics;
     }
 

@@ -280,10 +280,24 @@ namespace dualcontact
       mutable double qp_lambda_max_ = 0;
       /** Contact scaling s per unknown (empty: none; plain loop only). */
       dealii::Vector<double> scale_;
-      /** The last QP solver and the tolerance and limit it was made for. */
+      /** The QP solver (its tolerance and limit set per QP). */
       mutable std::unique_ptr<qp::SolverBase<dealii::Vector<double>>> solver_;
-      mutable double       solver_tolerance_      = 0;
-      mutable unsigned int solver_max_iterations_ = 0;
+      /**
+       * The last QP's set and its shape per contact (see solve_qp()): the
+       * next QP of the same shape changes the radii only.
+       */
+      mutable std::shared_ptr<qp::SeparableSet<dealii::Vector<double>>> set_;
+      mutable std::vector<unsigned char> set_shape_;
+      /**
+       * The end of the last plain QP (no proximal or lagged term, so the
+       * next has the same Hessian and b): the solution r as returned, the
+       * solver's unknowns x (scaled if end_scaled_) and A x - b there;
+       * empty gradient when the last QP was not plain or did not end with
+       * an exact gradient.
+       */
+      mutable dealii::Vector<double>                  end_r_, end_x_;
+      mutable std::shared_ptr<dealii::Vector<double>> end_gradient_;
+      mutable bool                                    end_scaled_ = false;
     };
   } // namespace fclib
 } // namespace dualcontact

@@ -121,6 +121,18 @@ namespace dualcontact
                            "mpgp, mpgp-bb or mwpgp for discs, ellipses and "
                            "cones"));
 
+      // the caller's A x0 - b (Problem::start_gradient) replaces the first
+      // product if the projection onto the set leaves x0 unchanged or
+      // moves few unknowns (Problem::hessian_add_sparse)
+      const bool gradient_given =
+        problem.start_gradient && problem.start_gradient->size() == x.size();
+      VectorType x_given;
+      if (gradient_given)
+      {
+        x_given.reinit(x, true);
+        x_given.equ(1., x);
+      }
+
       SolverStatistics stats = this->start(problem, x);
 
       // Without constraints everything below still works with an empty set.
@@ -389,7 +401,37 @@ namespace dualcontact
       typename SeparableSet<VectorType>::Direction direction;
       bool                                         direction_valid = false;
 
-      recompute_gradient();
+      // the start gradient: given, given and corrected for the few
+      // unknowns the projection moved (columns of A), or a product
+      bool                     use_given = false;
+      std::vector<std::size_t> moved;
+      if (gradient_given)
+      {
+        double           *dv = x_given.begin();
+        const double     *xv = x.begin();
+        const std::size_t n  = x.locally_owned_size();
+        for (std::size_t i = 0; i < n; ++i)
+        {
+          dv[i] = xv[i] - dv[i]; // x_given := the move d
+          if (dv[i] != 0.)
+            moved.push_back(i);
+        }
+        // a quarter of a product at most (the columns are not blocked)
+        const double n_moved = internal::sum(double(moved.size()), x);
+        use_given =
+          n_moved == 0. || (problem.hessian_add_sparse &&
+                            4. * n_moved <= static_cast<double>(x.size()));
+      }
+      if (use_given)
+      {
+        g.equ(1., *problem.start_gradient);
+        if (!moved.empty())
+          problem.hessian_add_sparse(g, x_given, moved);
+        f              = cost_at(x, g);
+        exact_gradient = true;
+      }
+      else
+        recompute_gradient();
       bool stop = this->check_stop(stats, refresh(p), f); // p = phi
 
       double value = 0.;
@@ -659,6 +701,9 @@ namespace dualcontact
       {
         stats.wall_time = this->elapsed();
         stats.kkt       = kkt_from_gradient(problem, x, g);
+        // for the next QP of a loop (Problem::start_gradient)
+        this->last_gradient.swap(g);
+        this->last_gradient_valid = true;
       }
       else
         this->finish(problem, x, stats);

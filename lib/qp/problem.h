@@ -11,6 +11,7 @@
 
 #include <functional>
 #include <memory>
+#include <vector>
 
 namespace dualcontact
 {
@@ -78,6 +79,30 @@ namespace dualcontact
       /// hint: A may be singular (SPS).  Informational: MPRGP runs the
       /// solvability test of MPRGPS (thesis 2.4.5) in any case.
       bool semidefinite = false;
+      /**
+       * Optional: A x0 - b at the start x0 that is passed to solve().
+       * Loops that solve QPs with the same A and b one after another, each
+       * from the last one's solution, where only the set changes (the
+       * Coulomb fixed point over Tresca QPs), pass the gradient the previous
+       * solve ended with (SolverBase::final_gradient()): the active-set
+       * solvers then skip their first product when the start is feasible
+       * for the new set (the projection leaves it unchanged), which on a
+       * small contact problem is a tenth of the loop's products.  The
+       * caller vouches that it is A x0 - b; the other solvers ignore it.
+       */
+      std::shared_ptr<const VectorType> start_gradient;
+      /**
+       * Optional, with start_gradient: dst += A d for a d that is zero
+       * outside the given local indices, at a cost proportional to their
+       * number (e.g. the columns of a dense A).  When the projection onto
+       * the new set moves a few unknowns of the start (a few contacts of a
+       * Coulomb loop change between sticking and sliding), the active-set
+       * solvers correct start_gradient with it instead of a product.
+       */
+      std::function<void(VectorType                     &dst,
+                         const VectorType               &d,
+                         const std::vector<std::size_t> &indices)>
+        hessian_add_sparse;
     };
   } // namespace qp
 } // namespace dualcontact

@@ -437,6 +437,74 @@ namespace dualcontact
 
 
     template <typename VectorType>
+    void
+    SeparableSet<VectorType>::set_disc_radius(const size_type k,
+                                              const double    radius)
+    {
+      Assert(finalized, dealii::ExcMessage("call finalize() first"));
+      AssertThrow(k < added_discs.size(),
+                  dealii::ExcMessage("set_disc_radius: disc " +
+                                     std::to_string(k) + " of " +
+                                     std::to_string(added_discs.size())));
+      AssertThrow(radius >= 0. && std::isfinite(radius),
+                  dealii::ExcMessage("disc radius must be >= 0 and finite, "
+                                     "not " +
+                                     std::to_string(radius)));
+      added_discs[k].radius  = radius;
+      const size_type global = added_discs[k].global;
+      if (!owned.is_element(global))
+        return;
+      const size_type local = owned.index_within_set(global);
+      // discs are sorted by their local offset (finalize())
+      const auto it = std::lower_bound(discs.begin(),
+                                       discs.end(),
+                                       local,
+                                       [](const Disc &d, const size_type l)
+                                       { return d.global < l; });
+      Assert(it != discs.end() && it->global == local,
+             dealii::ExcInternalError());
+      it->radius = radius;
+    }
+
+
+    template <typename VectorType>
+    void
+    SeparableSet<VectorType>::set_box_bounds(const size_type k,
+                                             const double    lower,
+                                             const double    upper)
+    {
+      Assert(finalized, dealii::ExcMessage("call finalize() first"));
+      AssertThrow(k < added_boxes.size(),
+                  dealii::ExcMessage("set_box_bounds: box " +
+                                     std::to_string(k) + " of " +
+                                     std::to_string(added_boxes.size())));
+      AssertThrow(lower <= upper,
+                  dealii::ExcMessage("box bounds need lower <= upper, not " +
+                                     std::to_string(lower) + " > " +
+                                     std::to_string(upper)));
+      added_boxes[k].lower   = lower;
+      added_boxes[k].upper   = upper;
+      const size_type global = added_boxes[k].global;
+      if (!owned.is_element(global))
+        return;
+      const size_type local = owned.index_within_set(global);
+      const auto      it    = std::lower_bound(boxes.begin(),
+                                       boxes.end(),
+                                       local,
+                                       [](const Box &b, const size_type l)
+                                       { return b.global < l; });
+      Assert(it != boxes.end() && it->global == local,
+             dealii::ExcInternalError());
+      it->lower = lower;
+      it->upper = upper;
+      // the SoA copies the box loops read
+      const std::size_t position = it - boxes.begin();
+      box_lower[position]        = lower;
+      box_upper[position]        = upper;
+    }
+
+
+    template <typename VectorType>
     bool
     SeparableSet<VectorType>::is_finalized() const
     {

@@ -133,6 +133,22 @@ namespace dualcontact
       bool
       is_finalized() const;
 
+      /**
+       * After finalize(): the radius of disc block @p k (in the order the
+       * discs were added) becomes @p radius (>= 0).  A Coulomb fixed point
+       * changes only the slip bounds from one Tresca QP to the next; this
+       * spares it a new set with its set-up (placement checks, sorting,
+       * runs), which on a small contact problem costs as much as a QP
+       * iteration.  A disc owned by another rank is ignored.
+       */
+      void
+      set_disc_radius(size_type k, double radius);
+
+      /// After finalize(): the bounds of box block @p k (in the order the
+      /// boxes were added), lower <= upper; see set_disc_radius().
+      void
+      set_box_bounds(size_type k, double lower, double upper);
+
       double
       active_tolerance() const;
 

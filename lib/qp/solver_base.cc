@@ -53,11 +53,40 @@ namespace dualcontact
 
 
     template <typename VectorType>
+    void
+    SolverBase<VectorType>::set_tolerance(const double       tolerance,
+                                          const unsigned int max_iterations)
+    {
+      SolverParameters changed = prm;
+      changed.tolerance        = tolerance;
+      changed.max_iterations   = max_iterations;
+      AssertThrow(tolerance > 0. && std::isfinite(tolerance),
+                  dealii::ExcMessage(solver_name +
+                                     ": the tolerance must be positive and "
+                                     "finite, not " +
+                                     std::to_string(tolerance)));
+      AssertThrow(max_iterations > 0,
+                  dealii::ExcMessage(solver_name +
+                                     ": the iteration limit must be positive"));
+      prm = changed;
+    }
+
+
+    template <typename VectorType>
+    const VectorType *
+    SolverBase<VectorType>::final_gradient() const
+    {
+      return last_gradient_valid ? &last_gradient : nullptr;
+    }
+
+
+    template <typename VectorType>
     SolverStatistics
     SolverBase<VectorType>::start(const Problem<VectorType> &problem,
                                   VectorType                &x)
     {
       timer.restart();
+      last_gradient_valid = false;
       AssertThrow(static_cast<bool>(problem.hessian),
                   dealii::ExcMessage(solver_name +
                                      ": the problem has no Hessian operator"));

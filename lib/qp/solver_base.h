@@ -56,6 +56,24 @@ namespace dualcontact
       const SolverParameters &
       parameters() const;
 
+      /**
+       * Change the relative tolerance and the iteration limit of the next
+       * solves (checked like the parameters), so that a loop whose
+       * tolerance follows its progress (the inexact Coulomb fixed point)
+       * keeps one solver instead of creating and checking one per QP.
+       */
+      void
+      set_tolerance(double tolerance, unsigned int max_iterations);
+
+      /**
+       * A x - b at the x the last solve() returned, if the solver ended
+       * with it from a product at that very x (the active-set solvers do
+       * after convergence), else nullptr.  For Problem::start_gradient of
+       * a next QP with the same A and b.
+       */
+      const VectorType *
+      final_gradient() const;
+
     protected:
       /// Initialise the statistics (name, tolerance, ||b||), check the
       /// problem's consistency, project @p x onto Omega, start the timer.
@@ -122,8 +140,11 @@ namespace dualcontact
              const VectorType          &x,
              SolverStatistics          &stats);
 
-      const std::string      solver_name;
-      const SolverParameters prm;
+      const std::string solver_name;
+      SolverParameters  prm;
+      /// see final_gradient(); start() clears the flag
+      VectorType last_gradient;
+      bool       last_gradient_valid = false;
 
     private:
       dealii::Timer timer;

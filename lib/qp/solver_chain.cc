@@ -57,7 +57,12 @@ namespace dualcontact
       const std::vector<std::string> names = chain(problem);
       const VectorType               initial_guess(x);
       std::vector<SolverStatistics>  attempts;
-      last_equality_residual = 0.;
+      last_equality_residual    = 0.;
+      this->last_gradient_valid = false;
+      // Problem::start_gradient belongs to the caller's start: a later
+      // attempt starts elsewhere (warm from the failed iterate)
+      Problem<VectorType>        cleared;
+      const Problem<VectorType> *attempt_problem = &problem;
 
       for (unsigned int k = 0; k < names.size(); ++k)
       {
@@ -70,18 +75,33 @@ namespace dualcontact
           if (!this->prm.auto_warm_start || !finite)
             x = initial_guess;
         }
+        if (k == 1 && problem.start_gradient)
+        {
+          cleared = problem;
+          cleared.start_gradient.reset();
+          attempt_problem = &cleared;
+        }
         SolverParameters parameters = this->prm;
         parameters.solver           = names[k];
         if (problem.equality)
         {
           SMALSEM<VectorType> smalse(parameters, smalse_prm);
-          attempts.push_back(smalse.solve(problem, x));
-          last_equality_residual = smalse.equality_residual();
+          attempts.push_back(smalse.solve(*attempt_problem, x));
+          last_equality_residual    = smalse.equality_residual();
+          this->last_gradient_valid = false;
         }
         else
         {
           auto solver = create<VectorType>(names[k], parameters);
-          attempts.push_back(solver->solve(problem, x));
+          attempts.push_back(solver->solve(*attempt_problem, x));
+          // the returned iterate's gradient, if its solver ended with it
+          const VectorType *gradient = solver->final_gradient();
+          this->last_gradient_valid  = gradient != nullptr;
+          if (gradient)
+          {
+            this->last_gradient.reinit(*gradient, true);
+            this->last_gradient.equ(1., *gradient);
+          }
         }
         if (attempts.back().converged())
           break;
