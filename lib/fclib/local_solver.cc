@@ -159,6 +159,14 @@ namespace dualcontact
                         "shape): the diagonal of the Hessian becomes 1 on the "
                         "normals, which evens out contacts of different "
                         "compliance (e.g. nodes of different tributary area).");
+      prm.declare_entry("Lanczos tolerance",
+                        "1e-2",
+                        dealii::Patterns::Double(0., 1.),
+                        "The Lanczos estimate of lambda_max of the QPs' "
+                        "Hessian stops when it changes by less than this "
+                        "(relative) from one step to the next; the QP "
+                        "solver's `Power iteration safety factor' multiplies "
+                        "it. Unit: none.");
       prm.declare_entry("Plain QP iterations in auto",
                         "2000",
                         dealii::Patterns::Integer(1),
@@ -193,6 +201,7 @@ namespace dualcontact
       rho_increase_above      = prm.get_integer("Rho increase above");
       extrapolation           = prm.get_bool("Proximal extrapolation");
       contact_scaling         = prm.get_bool("Contact scaling");
+      lanczos_tolerance       = prm.get_double("Lanczos tolerance");
       proximal_max_iterations = prm.get_integer("Proximal maximum iterations");
       auto_plain_qp_max_iterations =
         prm.get_integer("Plain QP iterations in auto");
@@ -249,6 +258,8 @@ namespace dualcontact
       AssertThrow(rho_increase_above >= rho_decrease_below,
                   dealii::ExcMessage("Rho increase above must be >= Rho "
                                      "decrease below"));
+      AssertThrow(lanczos_tolerance > 0 && lanczos_tolerance < 1,
+                  dealii::ExcMessage("Lanczos tolerance must be in (0, 1)"));
       AssertThrow(proximal_max_iterations >= 1,
                   dealii::ExcMessage("Proximal maximum iterations must be "
                                      ">= 1"));
@@ -327,6 +338,25 @@ namespace dualcontact
       AssertThrow(parameters.model != Model::cone || problem.spacedim() == 3,
                   dealii::ExcMessage("the cone model needs a 3D problem (the "
                                      "cone block has 3 unknowns)"));
+    }
+
+
+    double
+    LocalSolver::estimate_lambda_max(
+      const std::function<void(dealii::Vector<double> &,
+                               const dealii::Vector<double> &)> &hessian,
+      Result                                                    &result) const
+    {
+      const qp::PowerIterationResult power =
+        qp::lanczos_lambda_max<dealii::Vector<double>>(
+          hessian,
+          problem_.q(),
+          qp_parameters_.power_max_iterations,
+          parameters_.lanczos_tolerance,
+          qp_parameters_.power_safety_factor);
+      result.hessian_products += power.n_products;
+      result.power_products += power.n_products;
+      return power.lambda_max;
     }
 
 
@@ -535,7 +565,7 @@ namespace dualcontact
         // tolerance, which matters for the short loops of small problems);
         // with the contact scaling, of S W_s S
         dealii::Vector<double> work;
-        const auto power = qp::lanczos_lambda_max<dealii::Vector<double>>(
+        qp_lambda_max_ = estimate_lambda_max(
           [this, &work](dealii::Vector<double>       &dst,
                         const dealii::Vector<double> &src)
           {
@@ -549,13 +579,7 @@ namespace dualcontact
             problem_.delassus().symmetric_vmult(dst, work);
             dst.scale(scale_);
           },
-          problem_.q(),
-          qp_parameters_.power_max_iterations,
-          qp_parameters_.power_tolerance,
-          qp_parameters_.power_safety_factor);
-        result.hessian_products += power.n_products;
-        result.power_products += power.n_products;
-        qp_lambda_max_ = power.lambda_max;
+          result);
         if (scale_.size() == 0)
           lambda_max_ = qp_lambda_max_;
       }
@@ -602,16 +626,10 @@ namespace dualcontact
       // lambda_max(S W_s S) is known so far
       if (proximal && lambda_max_ == 0)
       {
-        const auto power = qp::lanczos_lambda_max<dealii::Vector<double>>(
+        lambda_max_ = estimate_lambda_max(
           [this](dealii::Vector<double> &dst, const dealii::Vector<double> &src)
           { problem_.delassus().symmetric_vmult(dst, src); },
-          problem_.q(),
-          qp_parameters_.power_max_iterations,
-          qp_parameters_.power_tolerance,
-          qp_parameters_.power_safety_factor);
-        result.hessian_products += power.n_products;
-        result.power_products += power.n_products;
-        lambda_max_ = power.lambda_max;
+          result);
       }
       const unsigned int dim        = problem_.spacedim();
       const double       lambda_max = lambda_max_;

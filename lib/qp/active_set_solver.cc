@@ -126,7 +126,7 @@ namespace dualcontact
       // moves few unknowns (Problem::hessian_add_sparse)
       const bool gradient_given =
         problem.start_gradient && problem.start_gradient->size() == x.size();
-      VectorType x_given;
+      VectorType &x_given = this->x_given;
       if (gradient_given)
       {
         x_given.reinit(x, true);
@@ -150,7 +150,11 @@ namespace dualcontact
       const double alpha_bar  = stats.alpha_bar;
       const bool   weak = variant.test == ActiveSetVariant::Test::weak_reduced;
 
-      VectorType g(x), p(x), Ap(x), phi(x), work(x);
+      // the work vectors (members, see there) in x's layout
+      VectorType &g = this->g, &p = this->p, &Ap = this->Ap, &phi = this->phi,
+                 &work = this->work;
+      for (VectorType *v : {&g, &p, &Ap, &phi, &work})
+        v->reinit(x, true);
       VectorType x_prev, g_prev; // MPGP-BB only
       VectorType x_best, g_best;
       if (variant.barzilai_borwein)

@@ -76,6 +76,14 @@ namespace dualcontact
 
     private:
       const ActiveSetVariant variant;
+      /**
+       * Work vectors, kept between solves: a loop of short QPs on a small
+       * problem (the Coulomb fixed point of an FCLIB problem: 5-25 QPs of a
+       * few iterations on a few hundred unknowns) would otherwise spend a
+       * tenth of its time allocating them.  Their contents do not carry
+       * over: each solve() writes them before reading.
+       */
+      VectorType g, p, Ap, phi, work, x_given;
     };
   } // namespace qp
 } // namespace dualcontact
