@@ -5,6 +5,7 @@
 #include <deal.II/base/exceptions.h>
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/utilities.h>
+#include <util/blas_kernels.h>
 
 #include <driver/scene_parameters.h>
 #include <driver/simulation.h>
@@ -62,6 +63,8 @@ namespace
 int
 main(int argc, char *argv[])
 {
+  // OpenBLAS' fast kernels on CPUs it does not recognise (re-executes)
+  dualcontact::util::use_fast_blas_kernels(argv);
   using namespace dualcontact;
   try
   {

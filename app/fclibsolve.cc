@@ -1,6 +1,7 @@
 // fclibsolve: solve an FCLIB frictional contact problem with dualcontact's
 // QP solvers (issue 7).  Thin: everything is in fclib::FclibSolveDriver.
 #include <fclib/fclibsolve_driver.h>
+#include <util/blas_kernels.h>
 
 #include <iostream>
 #include <string>
@@ -9,6 +10,8 @@
 int
 main(int argc, char **argv)
 {
+  // OpenBLAS' fast kernels on CPUs it does not recognise (re-executes)
+  dualcontact::util::use_fast_blas_kernels(argv);
   try
   {
     const std::vector<std::string> arguments(argv + 1, argv + argc);

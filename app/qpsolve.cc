@@ -1,6 +1,7 @@
 // qpsolve: solve a QP given as PROBLEM.json (see lib/qp/README.md and
 // issue 3).  Thin: everything is in qp::QPSolveDriver.
 #include <qp/qpsolve_driver.h>
+#include <util/blas_kernels.h>
 
 #include <deal.II/base/mpi.h>
 
@@ -11,6 +12,8 @@
 int
 main(int argc, char **argv)
 {
+  // OpenBLAS' fast kernels on CPUs it does not recognise (re-executes)
+  dualcontact::util::use_fast_blas_kernels(argv);
   // MPI (one process): Trilinos' AMG of --preconditioner amg needs it
   dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
   try

@@ -32,6 +32,7 @@
 #include <deal.II/dofs/dof_tools.h>
 #include <deal.II/grid/grid_generator.h>
 #include <deal.II/lac/lapack_full_matrix.h>
+#include <util/blas_kernels.h>
 
 #include <fem/elastic_body.h>
 #include <qp/solver_factory.h>
@@ -48,6 +49,8 @@ using namespace dualcontact;
 int
 main(int argc, char **argv)
 {
+  // OpenBLAS' fast kernels on CPUs it does not recognise (re-executes)
+  dualcontact::util::use_fast_blas_kernels(argv);
   if (argc < 3)
   {
     std::cerr << "usage: bench_contact_cylinder_primal E SOLVER [TOLERANCE] "

@@ -31,6 +31,7 @@
 // disturbed by other jobs on a shared machine), wall time (wall_s; a
 // time-limited run: the limit) and the final FCLIB error.
 #include <deal.II/base/timer.h>
+#include <util/blas_kernels.h>
 
 #include <fclib/accuracy.h>
 #include <fclib/fclib_file.h>
@@ -314,6 +315,8 @@ namespace
 int
 main(int argc, char **argv)
 {
+  // OpenBLAS' fast kernels on CPUs it does not recognise (re-executes)
+  dualcontact::util::use_fast_blas_kernels(argv);
   std::vector<double>      tolerances;
   std::vector<std::string> files;
   std::string              out_file = "fclib_siconos.csv";

@@ -12,6 +12,7 @@
 
 #include <deal.II/base/timer.h>
 #include <deal.II/grid/grid_generator.h>
+#include <util/blas_kernels.h>
 
 #include <fem/cholmod_solver.h>
 #include <fem/elastic_body.h>
@@ -89,6 +90,8 @@ run(const unsigned int n, const unsigned int degree, const std::string &name)
 int
 main(int argc, char **argv)
 {
+  // OpenBLAS' fast kernels on CPUs it does not recognise (re-executes)
+  dualcontact::util::use_fast_blas_kernels(argv);
   if (argc < 3)
   {
     std::cerr << "usage: bench_fem_elasticity_solve DIM N [DEGREE] [SOLVER]\n";
