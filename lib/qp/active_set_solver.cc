@@ -414,11 +414,17 @@ namespace dualcontact
         double           *dv = x_given.begin();
         const double     *xv = x.begin();
         const std::size_t n  = x.locally_owned_size();
+        // a move by rounding (the projection of a point on a curved
+        // boundary rescales it by radius / norm again) is no move: the
+        // given gradient is then as exact as a product's
+        const double rounding = 8. * std::numeric_limits<double>::epsilon();
         for (std::size_t i = 0; i < n; ++i)
         {
           dv[i] = xv[i] - dv[i]; // x_given := the move d
-          if (dv[i] != 0.)
+          if (std::abs(dv[i]) > rounding * std::abs(xv[i]))
             moved.push_back(i);
+          else
+            dv[i] = 0.;
         }
         // a quarter of a product at most (the columns are not blocked)
         const double n_moved = internal::sum(double(moved.size()), x);
