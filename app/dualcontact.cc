@@ -63,8 +63,8 @@ namespace
 int
 main(int argc, char *argv[])
 {
-  // OpenBLAS' fast kernels on CPUs it does not recognise (re-executes)
-  dualcontact::util::use_fast_blas_kernels(argv);
+  // OpenBLAS' fast kernels on CPUs it does not recognise
+  (void)dualcontact::util::blas_kernel_choice();
   using namespace dualcontact;
   try
   {

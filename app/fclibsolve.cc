@@ -10,8 +10,8 @@
 int
 main(int argc, char **argv)
 {
-  // OpenBLAS' fast kernels on CPUs it does not recognise (re-executes)
-  dualcontact::util::use_fast_blas_kernels(argv);
+  // OpenBLAS' fast kernels on CPUs it does not recognise
+  (void)dualcontact::util::blas_kernel_choice();
   try
   {
     const std::vector<std::string> arguments(argv + 1, argv + argc);

@@ -12,8 +12,8 @@
 int
 main(int argc, char **argv)
 {
-  // OpenBLAS' fast kernels on CPUs it does not recognise (re-executes)
-  dualcontact::util::use_fast_blas_kernels(argv);
+  // OpenBLAS' fast kernels on CPUs it does not recognise
+  (void)dualcontact::util::blas_kernel_choice();
   // MPI (one process): Trilinos' AMG of --preconditioner amg needs it
   dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
   try

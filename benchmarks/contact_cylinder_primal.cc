@@ -49,8 +49,8 @@ using namespace dualcontact;
 int
 main(int argc, char **argv)
 {
-  // OpenBLAS' fast kernels on CPUs it does not recognise (re-executes)
-  dualcontact::util::use_fast_blas_kernels(argv);
+  // OpenBLAS' fast kernels on CPUs it does not recognise
+  (void)dualcontact::util::blas_kernel_choice();
   if (argc < 3)
   {
     std::cerr << "usage: bench_contact_cylinder_primal E SOLVER [TOLERANCE] "

@@ -315,8 +315,8 @@ namespace
 int
 main(int argc, char **argv)
 {
-  // OpenBLAS' fast kernels on CPUs it does not recognise (re-executes)
-  dualcontact::util::use_fast_blas_kernels(argv);
+  // OpenBLAS' fast kernels on CPUs it does not recognise
+  (void)dualcontact::util::blas_kernel_choice();
   std::vector<double>      tolerances;
   std::vector<std::string> files;
   std::string              out_file = "fclib_siconos.csv";

@@ -90,8 +90,8 @@ run(const unsigned int n, const unsigned int degree, const std::string &name)
 int
 main(int argc, char **argv)
 {
-  // OpenBLAS' fast kernels on CPUs it does not recognise (re-executes)
-  dualcontact::util::use_fast_blas_kernels(argv);
+  // OpenBLAS' fast kernels on CPUs it does not recognise
+  (void)dualcontact::util::blas_kernel_choice();
   if (argc < 3)
   {
     std::cerr << "usage: bench_fem_elasticity_solve DIM N [DEGREE] [SOLVER]\n";

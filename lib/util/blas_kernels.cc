@@ -1,7 +1,6 @@
 #include <util/blas_kernels.h>
 
 #include <dlfcn.h>
-#include <unistd.h>
 
 #include <cstdlib>
 
@@ -24,22 +23,39 @@ namespace dualcontact
     }
 
 
-    void
-    use_fast_blas_kernels(char **argv)
+    std::string
+    blas_kernel_choice()
     {
       if (std::getenv("OPENBLAS_CORETYPE") != nullptr)
-        return; // the user's choice (and the re-executed program)
-      const std::string core = blas_core_name();
-      if (core != "Prescott" && core != "prescott")
-        return;
+        return "";
+      const std::string before = blas_core_name();
+      if (before != "Prescott" && before != "prescott")
+        return "";
       __builtin_cpu_init();
-      if (!__builtin_cpu_supports("avx2") || !__builtin_cpu_supports("fma"))
-        return;
-      if (setenv("OPENBLAS_CORETYPE", "Haswell", 1) != 0)
-        return;
-      execv("/proc/self/exe", argv);
-      // the exec failed: go on with the kernels loaded
-      unsetenv("OPENBLAS_CORETYPE");
+      const char *core = nullptr;
+      if (__builtin_cpu_supports("avx512f") &&
+          __builtin_cpu_supports("avx512cd") &&
+          __builtin_cpu_supports("avx512bw") &&
+          __builtin_cpu_supports("avx512dq") &&
+          __builtin_cpu_supports("avx512vl"))
+        core = "SkylakeX";
+      else if (__builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma"))
+        core = "Haswell";
+      if (core == nullptr)
+        return "";
+      using Function  = void (*)();
+      const auto quit = reinterpret_cast<Function>(
+        dlsym(RTLD_DEFAULT, "gotoblas_dynamic_quit"));
+      const auto init = reinterpret_cast<Function>(
+        dlsym(RTLD_DEFAULT, "gotoblas_dynamic_init"));
+      if (quit == nullptr || init == nullptr ||
+          setenv("OPENBLAS_CORETYPE", core, 1) != 0)
+        return "";
+      // OpenBLAS reads the variable when it chooses its kernels
+      quit();
+      init();
+      return std::string("OPENBLAS_CORETYPE=") + core + " (OpenBLAS chose " +
+             before + ", now " + blas_core_name() + ")";
     }
   } // namespace util
 } // namespace dualcontact

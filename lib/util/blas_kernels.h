@@ -1,6 +1,6 @@
 /**
  * @file blas_kernels.h
- * Which kernels OpenBLAS runs, and the switch to the fast ones on CPUs it
+ * Which kernels OpenBLAS runs, and the choice of the fast ones on CPUs it
  * does not recognise.
  */
 #ifndef dualcontact_util_blas_kernels_h
@@ -13,9 +13,8 @@ namespace dualcontact
   namespace util
   {
     /**
-     * The name of the kernel set OpenBLAS chose when it was loaded
-     * ("Haswell", "SkylakeX", "Prescott", ...), or "" if the BLAS in use is
-     * not OpenBLAS.
+     * The name of the kernel set OpenBLAS runs ("Haswell", "SkylakeX",
+     * "Prescott", ...), or "" if the BLAS in use is not OpenBLAS.
      */
     std::string
     blas_core_name();
@@ -23,22 +22,30 @@ namespace dualcontact
     /**
      * OpenBLAS picks its kernels from the CPU model when it is loaded.  On
      * a model it does not know (the generic "Intel(R) Xeon(R) Processor" of
-     * virtual machines) it falls back to the Prescott (SSE3) kernels, even
-     * when the CPU has AVX2 and FMA: on this project's machines a dsymv of
-     * order 207 then takes 13.6 us instead of 3.9 us with the Haswell
-     * kernels, and the sparse factorizations (CHOLMOD, UMFPACK) and the
-     * dense Delassus products of the FCLIB solver are slowed alike.
+     * virtual machines) it falls back to its Prescott (SSE3) kernels, even
+     * when the CPU has AVX2 or AVX-512: on this project's machines a dsymv
+     * of order 207 (the Delassus product of the Hertz L3 export) then takes
+     * 13.6 us instead of 3.9 us, and a dgemm of order 600 (the supernodes
+     * of the sparse Cholesky factorization) runs at 5.6 GFlop/s instead of
+     * 14.4 (Haswell kernels) or 24.5 (SkylakeX kernels).
      *
-     * If OpenBLAS runs the Prescott kernels, the CPU has AVX2 and FMA, and
-     * OPENBLAS_CORETYPE is not set, this sets OPENBLAS_CORETYPE=Haswell and
-     * executes the program again with the same arguments (OpenBLAS reads
-     * the variable only when it is loaded); otherwise, or if the exec
-     * fails, it returns and nothing changes.  Setting OPENBLAS_CORETYPE
-     * (to any value, e.g. Prescott) keeps the user's choice.  Call it
-     * first in main(), before MPI, threads or output start.
+     * This function mends that: if OpenBLAS runs the Prescott kernels and
+     * OPENBLAS_CORETYPE is not set, it sets OPENBLAS_CORETYPE to SkylakeX
+     * on a CPU with AVX-512 F, CD, BW, DQ and VL, else to Haswell on a CPU
+     * with AVX2 and FMA, and has OpenBLAS choose its kernels again
+     * (gotoblas_dynamic_quit / gotoblas_dynamic_init, looked up at run
+     * time).  A CPU that OpenBLAS recognises keeps OpenBLAS' choice; a user
+     * who sets OPENBLAS_CORETYPE (to any value, e.g. Prescott) keeps that.
+     * (Setting the variable before main() does not work: glibc's own
+     * initialisation resets the environment after an executable's
+     * pre-initialisation, and OpenBLAS reads it in its constructor.)
+     *
+     * Call it first in main(), before any BLAS call, thread or MPI start.
+     * Returns what it did: "" if nothing, else e.g.
+     * "OPENBLAS_CORETYPE=SkylakeX (OpenBLAS chose Prescott)".
      */
-    void
-    use_fast_blas_kernels(char **argv);
+    std::string
+    blas_kernel_choice();
   } // namespace util
 } // namespace dualcontact
 
