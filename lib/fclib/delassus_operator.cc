@@ -259,6 +259,54 @@ namespace dualcontact
     }
 
 
+    std::vector<double>
+    DelassusOperator::scaled_dense_symmetric(
+      const dealii::Vector<double> &s) const
+    {
+      AssertThrow(s.size() == n_, dealii::ExcDimensionMismatch(s.size(), n_));
+      if (!dense_)
+        return {};
+      std::vector<double> A = dense_W_s_.empty() ? dense_W_ : dense_W_s_;
+      for (unsigned int j = 0; j < n_; ++j)
+        for (unsigned int i = 0; i < n_; ++i)
+          A[i + std::size_t(j) * n_] *= s(i) * s(j);
+      return A;
+    }
+
+
+    void
+    DelassusOperator::dense_vmult(const std::vector<double>    &A,
+                                  dealii::Vector<double>       &dst,
+                                  const dealii::Vector<double> &src)
+    {
+      const unsigned int n = src.size();
+      Assert(A.size() == std::size_t(n) * n,
+             dealii::ExcDimensionMismatch(A.size(), std::size_t(n) * n));
+      dst.reinit(n, true);
+      if (n > 0)
+        symv(A, n, src, dst);
+    }
+
+
+    void
+    DelassusOperator::dense_add_columns(const std::vector<double>      &A,
+                                        dealii::Vector<double>         &dst,
+                                        const dealii::Vector<double>   &v,
+                                        const std::vector<std::size_t> &indices)
+    {
+      const std::size_t n = dst.size();
+      Assert(A.size() == n * n, dealii::ExcDimensionMismatch(A.size(), n * n));
+      double *out = dst.data();
+      for (const std::size_t j : indices)
+      {
+        const double  vj     = v(j);
+        const double *column = A.data() + j * n;
+        for (std::size_t i = 0; i < n; ++i)
+          out[i] += column[i] * vj;
+      }
+    }
+
+
     void
     DelassusOperator::add_symmetric_columns(
       dealii::Vector<double>         &dst,

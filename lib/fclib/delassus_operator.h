@@ -86,6 +86,31 @@ namespace dualcontact
                             const dealii::Vector<double>   &v,
                             const std::vector<std::size_t> &indices) const;
 
+      /**
+       * S W_s S for S = diag(@p s), dense column-major with both triangles,
+       * when W is stored dense (else empty): the Hessian of the
+       * contact-scaled QPs of fclib::LocalSolver, formed once so that each
+       * of their products is one dsymv (dense_vmult()) instead of a dsymv,
+       * a copy and two scalings, which on the small Hertz exports cost a
+       * tenth of a product's time.
+       */
+      std::vector<double>
+      scaled_dense_symmetric(const dealii::Vector<double> &s) const;
+
+      /// dst = A src for a symmetric A from scaled_dense_symmetric()
+      static void
+      dense_vmult(const std::vector<double>    &A,
+                  dealii::Vector<double>       &dst,
+                  const dealii::Vector<double> &src);
+
+      /// dst += A v for such an A and a v that is zero outside @p indices
+      /// (the columns of those indices; see add_symmetric_columns())
+      static void
+      dense_add_columns(const std::vector<double>      &A,
+                        dealii::Vector<double>         &dst,
+                        const dealii::Vector<double>   &v,
+                        const std::vector<std::size_t> &indices);
+
       /** dst = W_a src = (W - W')/2 src, the part 1/2 r'W r does not see. */
       void
       antisymmetric_vmult(dealii::Vector<double>       &dst,

@@ -334,10 +334,30 @@ namespace dualcontact
         }
         if (uniform) // a global factor changes nothing
           scale_.reinit(0);
+        else if (problem.size() <= 2000)
+          // the copy and scalings it saves cost about 3/n of a product:
+          // beyond a few thousand unknowns not worth a second dense matrix
+          scaled_W_ = problem.delassus().scaled_dense_symmetric(scale_);
       }
       AssertThrow(parameters.model != Model::cone || problem.spacedim() == 3,
                   dealii::ExcMessage("the cone model needs a 3D problem (the "
                                      "cone block has 3 unknowns)"));
+    }
+
+
+    void
+    LocalSolver::scaled_vmult(dealii::Vector<double>       &dst,
+                              const dealii::Vector<double> &src) const
+    {
+      if (!scaled_W_.empty())
+      {
+        DelassusOperator::dense_vmult(scaled_W_, dst, src);
+        return;
+      }
+      scale_work_ = src;
+      scale_work_.scale(scale_);
+      problem_.delassus().symmetric_vmult(dst, scale_work_);
+      dst.scale(scale_);
     }
 
 
@@ -437,17 +457,9 @@ namespace dualcontact
       // S b, so that its solution is the unscaled one
       qp::Problem<dealii::Vector<double>> qp;
       if (scaled)
-      {
-        auto work  = std::make_shared<dealii::Vector<double>>(r.size());
-        qp.hessian = [this, work](dealii::Vector<double>       &dst,
-                                  const dealii::Vector<double> &src)
-        {
-          work->equ(1., src);
-          work->scale(scale_);
-          problem_.delassus().symmetric_vmult(dst, *work);
-          dst.scale(scale_);
-        };
-      }
+        qp.hessian =
+          [this](dealii::Vector<double> &dst, const dealii::Vector<double> &src)
+        { scaled_vmult(dst, src); };
       else
         qp.hessian = [this, rho](dealii::Vector<double>       &dst,
                                  const dealii::Vector<double> &src)
@@ -515,6 +527,11 @@ namespace dualcontact
             problem_.delassus().add_symmetric_columns(dst, d, indices);
             return;
           }
+          if (!scaled_W_.empty())
+          {
+            DelassusOperator::dense_add_columns(scaled_W_, dst, d, indices);
+            return;
+          }
           dealii::Vector<double> sd(d.size()), column_sum(d.size());
           for (const std::size_t j : indices)
             sd(j) = scale_(j) * d(j);
@@ -564,20 +581,13 @@ namespace dualcontact
         // (Lanczos: fewer products than the power iteration for the same
         // tolerance, which matters for the short loops of small problems);
         // with the contact scaling, of S W_s S
-        dealii::Vector<double> work;
         qp_lambda_max_ = estimate_lambda_max(
-          [this, &work](dealii::Vector<double>       &dst,
-                        const dealii::Vector<double> &src)
+          [this](dealii::Vector<double> &dst, const dealii::Vector<double> &src)
           {
-            if (scale_.size() != src.size())
-            {
+            if (scale_.size() == src.size())
+              scaled_vmult(dst, src);
+            else
               problem_.delassus().symmetric_vmult(dst, src);
-              return;
-            }
-            work = src;
-            work.scale(scale_);
-            problem_.delassus().symmetric_vmult(dst, work);
-            dst.scale(scale_);
           },
           result);
         if (scale_.size() == 0)

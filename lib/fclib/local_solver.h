@@ -283,6 +283,11 @@ namespace dualcontact
                                  const dealii::Vector<double> &)> &hessian,
         Result &result) const;
 
+      /** dst = S W_s S src (the contact-scaled QPs' Hessian). */
+      void
+      scaled_vmult(dealii::Vector<double>       &dst,
+                   const dealii::Vector<double> &src) const;
+
       qp::SolverStatistics
       solve_qp(dealii::Vector<double>    &r,
                const std::vector<double> *psi,
@@ -303,6 +308,10 @@ namespace dualcontact
       mutable double qp_lambda_max_ = 0;
       /** Contact scaling s per unknown (empty: none; plain loop only). */
       dealii::Vector<double> scale_;
+      /** S W_s S formed once when W is dense and small (else empty). */
+      std::vector<double> scaled_W_;
+      /** S src for scaled_vmult() without scaled_W_. */
+      mutable dealii::Vector<double> scale_work_;
       /** The QP solver (its tolerance and limit set per QP). */
       mutable std::unique_ptr<qp::SolverBase<dealii::Vector<double>>> solver_;
       /**
