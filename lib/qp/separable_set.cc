@@ -436,6 +436,34 @@ namespace dualcontact
     }
 
 
+    namespace
+    {
+      /**
+       * Position in @p blocks (sorted by local offset in finalize()) of the
+       * block added at global index @p global; blocks.size() if another
+       * rank owns it.
+       */
+      template <typename Block>
+      std::size_t
+      placed_position(const std::vector<Block>             &blocks,
+                      const dealii::IndexSet               &owned,
+                      const dealii::types::global_dof_index global)
+      {
+        if (!owned.is_element(global))
+          return blocks.size();
+        const auto local = owned.index_within_set(global);
+        const auto it    = std::lower_bound(blocks.begin(),
+                                         blocks.end(),
+                                         local,
+                                         [](const Block &b, const auto l)
+                                         { return b.global < l; });
+        Assert(it != blocks.end() && it->global == local,
+               dealii::ExcInternalError());
+        return it - blocks.begin();
+      }
+    } // namespace
+
+
     template <typename VectorType>
     void
     SeparableSet<VectorType>::set_disc_radius(const size_type k,
@@ -450,20 +478,11 @@ namespace dualcontact
                   dealii::ExcMessage("disc radius must be >= 0 and finite, "
                                      "not " +
                                      std::to_string(radius)));
-      added_discs[k].radius  = radius;
-      const size_type global = added_discs[k].global;
-      if (!owned.is_element(global))
-        return;
-      const size_type local = owned.index_within_set(global);
-      // discs are sorted by their local offset (finalize())
-      const auto it = std::lower_bound(discs.begin(),
-                                       discs.end(),
-                                       local,
-                                       [](const Disc &d, const size_type l)
-                                       { return d.global < l; });
-      Assert(it != discs.end() && it->global == local,
-             dealii::ExcInternalError());
-      it->radius = radius;
+      added_discs[k].radius = radius;
+      const std::size_t position =
+        placed_position(discs, owned, added_discs[k].global);
+      if (position < discs.size())
+        discs[position].radius = radius;
     }
 
 
@@ -482,25 +501,17 @@ namespace dualcontact
                   dealii::ExcMessage("box bounds need lower <= upper, not " +
                                      std::to_string(lower) + " > " +
                                      std::to_string(upper)));
-      added_boxes[k].lower   = lower;
-      added_boxes[k].upper   = upper;
-      const size_type global = added_boxes[k].global;
-      if (!owned.is_element(global))
+      added_boxes[k].lower = lower;
+      added_boxes[k].upper = upper;
+      const std::size_t position =
+        placed_position(boxes, owned, added_boxes[k].global);
+      if (position == boxes.size())
         return;
-      const size_type local = owned.index_within_set(global);
-      const auto      it    = std::lower_bound(boxes.begin(),
-                                       boxes.end(),
-                                       local,
-                                       [](const Box &b, const size_type l)
-                                       { return b.global < l; });
-      Assert(it != boxes.end() && it->global == local,
-             dealii::ExcInternalError());
-      it->lower = lower;
-      it->upper = upper;
+      boxes[position].lower = lower;
+      boxes[position].upper = upper;
       // the SoA copies the box loops read
-      const std::size_t position = it - boxes.begin();
-      box_lower[position]        = lower;
-      box_upper[position]        = upper;
+      box_lower[position] = lower;
+      box_upper[position] = upper;
     }
 
 
