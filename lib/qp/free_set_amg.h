@@ -10,6 +10,17 @@
  * is not (A_FF)^{-1}; the restricted matrix gives PCG on A_FF exactly the
  * multigrid quality that makes the iteration count independent of the
  * mesh (Dostal 2009, sec. 5.10).
+ *
+ * Why the in-place recompute: MPRGP meets a new active set after every
+ * half-step and every proportioning step, and a full ML setup (the
+ * aggregation above all) costs several times a whole PCG phase (84% to
+ * 95% of the wall time on the membrane).  Consecutive active sets differ
+ * at the rim of the contact zone only, so the matrix keeps one Trilinos
+ * copy of A's full sparsity pattern whose active rows/columns are
+ * overwritten in place, and ML recomputes its hierarchy on the aggregates
+ * of the last full setup (ML's ReComputePreconditioner through
+ * PreconditionAMG::reinit(): new smoothed prolongators, coarse operators
+ * and smoothers, no new aggregation).
  */
 #ifndef dualcontact_qp_free_set_amg_h
 #define dualcontact_qp_free_set_amg_h
@@ -17,7 +28,12 @@
 #include <qp/problem.h>
 
 #include <deal.II/lac/sparse_matrix.h>
+#include <deal.II/lac/trilinos_precondition.h>
+#include <deal.II/lac/trilinos_sparse_matrix.h>
 #include <deal.II/lac/vector.h>
+
+#include <memory>
+#include <vector>
 
 namespace dualcontact
 {
@@ -26,8 +42,9 @@ namespace dualcontact
     /**
      * Factory of AMG preconditioners of A_FF for the free sets MPRGP meets
      * (`Preconditioner = amg`).  Holds a reference to A (which must outlive
-     * it and every operator it returned) and one work matrix of A's
-     * sparsity.  Serial (dealii::Vector<double>), like qpsolve.
+     * it and every operator it returned), one Trilinos copy of A with A's
+     * full sparsity pattern, and one ML hierarchy.  Serial
+     * (dealii::Vector<double>), like qpsolve.
      */
     class FreeSetAMG
     {
@@ -45,6 +62,30 @@ namespace dualcontact
         unsigned int smoother_sweeps = 2;
         /// V-cycles per application (deal.II default 1)
         unsigned int n_cycles = 1;
+        /**
+         * true: ML aggregates A itself (every unknown free) once, at the
+         * first build() after construction or reset(), and every active
+         * set gets an in-place recompute of the hierarchy on those
+         * aggregates (PreconditionAMG::reinit(): smoothed prolongators,
+         * coarse operators, smoothers).  false: a full ML setup (new
+         * aggregation) on the restricted matrix of every active set.  Why
+         * A's aggregates: aggregates of a restricted matrix leave its
+         * active unknowns out, and when those unknowns are freed later the
+         * coarse spaces miss them (on the membrane at h = 200, aggregates
+         * kept from an intermediate active set cost 32 CG steps against
+         * 19 with A's; doc/benchmarks/membrane.md).
+         */
+        bool reuse_aggregates = true;
+        /**
+         * A new active set that differs from the one the hierarchy was
+         * last computed for in at most this fraction of the unknowns
+         * (dimensionless, in [0, 1]) keeps that hierarchy unchanged: no
+         * setup or recompute; M_F^{-1} is then the old operator restricted
+         * to the new free set by the solver, still symmetric positive
+         * definite on it, only a less exact inverse of A_FF.  0: a
+         * setup or recompute for every new set.
+         */
+        double keep_fraction = 0.;
       };
 
       /// with the default Parameters
@@ -53,9 +94,11 @@ namespace dualcontact
                  const Parameters                   &parameters);
 
       /**
-       * Build the AMG of A_FF for the free set given by @p active_mask
-       * (1 on active unknowns) and return it as M_F^{-1}.  The operator
-       * keeps its AMG alive; the solver drops it at the next rebuild.
+       * The AMG of A_FF for the free set given by @p active_mask (1 on
+       * active unknowns) as M_F^{-1}: a full ML setup, an in-place
+       * recompute or the current hierarchy (Parameters).  There is one
+       * hierarchy: the operator returned is valid until the next build() (MPRGP
+       * drops it there) and as long as this object lives.
        */
       typename Problem<Vec>::FreeSetPreconditioner
       build(const Vec &active_mask);
@@ -65,14 +108,66 @@ namespace dualcontact
       std::function<typename Problem<Vec>::FreeSetPreconditioner(const Vec &)>
       factory();
 
+      /// forget the hierarchy: the next build() is a full setup (call it
+      /// between independent solves, e.g. qpsolve --repeat, so that each
+      /// pays for its aggregation)
+      void
+      reset();
+
+      /// full ML setups (with aggregation) since construction
+      unsigned int
+      n_full_setups() const
+      {
+        return full_setups;
+      }
+
+      /// build() calls that kept the current hierarchy
+      /// (Parameters::keep_fraction) since construction
+      unsigned int
+      n_kept() const
+      {
+        return kept;
+      }
+
+      /// in-place recomputes (ML ReComputePreconditioner) since
+      /// construction
+      unsigned int
+      n_recomputes() const
+      {
+        return recomputes;
+      }
+
     private:
       const dealii::SparseMatrix<double> &matrix;
       const Parameters                    parameters;
-      /// A with the active rows and columns replaced by identity rows
-      dealii::SparseMatrix<double> restricted;
+      /// A with the active rows and columns replaced by identity rows, in
+      /// Trilinos format with A's whole sparsity pattern (so that every
+      /// active set has the same pattern and ML can recompute in place)
+      dealii::TrilinosWrappers::SparseMatrix restricted;
+      /// A's entries and their global columns, in the storage order of
+      /// @p restricted (row by row)
+      std::vector<double>       original;
+      std::vector<unsigned int> column;
+      /// the one ML hierarchy (shared with the operators returned)
+      std::shared_ptr<dealii::TrilinosWrappers::PreconditionAMG> amg;
+      /// the active mask the hierarchy was last computed for (empty: no
+      /// hierarchy yet)
+      std::vector<bool> computed_mask;
       /// the value of those identity rows: the mean of diag(A), so that
       /// they do not change the scale ML sees
-      double unit = 1.;
+      double       unit        = 1.;
+      unsigned int full_setups = 0;
+      unsigned int recomputes  = 0;
+      unsigned int kept        = 0;
+
+      /// ML's AdditionalData from the parameters
+      dealii::TrilinosWrappers::PreconditionAMG::AdditionalData
+      additional_data() const;
+      /// overwrite @p restricted's entries: A's, with identity rows and
+      /// zero couplings for the unknowns where @p active_mask is nonzero
+      /// (no mask: A itself)
+      void
+      set_entries(const Vec *active_mask);
     };
   } // namespace qp
 } // namespace dualcontact

@@ -48,7 +48,9 @@ namespace dualcontact
         long        repeat            = 1;
         std::string expansion;
         std::string preconditioner;
-        long        projected_cg_trials = -1;
+        long        projected_cg_trials  = -1;
+        double      amg_keep_fraction    = -1.;
+        int         amg_reuse_aggregates = -1;
         std::string x_out;
         std::string json_out;
       };
@@ -190,6 +192,32 @@ namespace dualcontact
               throw UsageError("--preconditioner: unknown preconditioner '" +
                                o.preconditioner + "' (valid: none|jacobi|amg)");
           }
+          else if (a == "--amg-keep-fraction")
+          {
+            const std::string v = value();
+            try
+            {
+              std::size_t used    = 0;
+              o.amg_keep_fraction = std::stod(v, &used);
+              if (used != v.size())
+                throw std::invalid_argument(v);
+            }
+            catch (const std::exception &)
+            {
+              throw UsageError("--amg-keep-fraction: '" + v +
+                               "' is not a number");
+            }
+            if (!(o.amg_keep_fraction >= 0. && o.amg_keep_fraction <= 1.))
+              throw UsageError("--amg-keep-fraction must be in [0, 1]");
+          }
+          else if (a == "--amg-reuse-aggregates")
+          {
+            const std::string v = value();
+            if (v != "0" && v != "1")
+              throw UsageError("--amg-reuse-aggregates: '" + v +
+                               "' is not 0 or 1");
+            o.amg_reuse_aggregates = v == "1";
+          }
           else if (a == "--x-out")
             o.x_out = value();
           else if (a == "--json-out")
@@ -235,12 +263,17 @@ namespace dualcontact
              "[--stagnation-window N] [--gamma G] "
              "[--expansion alpha-bar|projected-cg] "
              "[--projected-cg-trials N] [--preconditioner none|jacobi|amg] "
+             "[--amg-reuse-aggregates 0|1] [--amg-keep-fraction F] "
              "[--repeat N] "
              "[--x-out FILE] [--json-out FILE]\n"
              "--preconditioner: MPRGP with preconditioning in face (jacobi: "
              "diag(A) on the free set; amg: Trilinos ML on A with the active "
              "rows and columns replaced by identity rows, rebuilt whenever "
-             "the active set changes).\n"
+             "the active set changes: with --amg-reuse-aggregates 1, the "
+             "default, ML aggregates A once and recomputes its hierarchy in "
+             "place for each active set; 0: a full setup each time; "
+             "--amg-keep-fraction F (default 0) keeps the hierarchy while "
+             "at most F * n unknowns changed state).\n"
              "--repeat N solves N times from the same start and reports the "
              "least wall time (timing on a busy machine).\n"
              "Exit code 0: converged, 2: not converged, 1: bad input.";
@@ -370,7 +403,12 @@ namespace dualcontact
         problem.diagonal = diagonal;
         if (prm.preconditioner == "amg")
         {
-          amg = std::make_unique<FreeSetAMG>(d.hessian);
+          FreeSetAMG::Parameters amg_parameters;
+          if (options.amg_keep_fraction >= 0.)
+            amg_parameters.keep_fraction = options.amg_keep_fraction;
+          if (options.amg_reuse_aggregates >= 0)
+            amg_parameters.reuse_aggregates = options.amg_reuse_aggregates;
+          amg = std::make_unique<FreeSetAMG>(d.hessian, amg_parameters);
           problem.free_set_preconditioner = amg->factory();
         }
 
@@ -447,12 +485,22 @@ namespace dualcontact
       // processor time of this process (std::clock): on a machine shared
       // with other jobs it excludes the time the solve waited for a core
       double least_cpu_time = std::numeric_limits<double>::infinity();
+      // FreeSetAMG's counters before the last run
+      unsigned int amg_full_setups = 0, amg_recomputes = 0, amg_kept = 0;
       for (long run = 0; run < options.repeat; ++run)
       {
         try
         {
           const std::clock_t cpu_start = std::clock();
-          x                            = 0.;
+          if (amg)
+          {
+            // every run from scratch: no aggregates of the previous run
+            amg->reset();
+            amg_full_setups = amg->n_full_setups();
+            amg_recomputes  = amg->n_recomputes();
+            amg_kept        = amg->n_kept();
+          }
+          x = 0.;
           if (data->x0.size() > 0)
             x = data->x0;
           if (options.solver == "cgc")
@@ -553,7 +601,14 @@ namespace dualcontact
       j["preconditioner_setup_time"] = number(stats.preconditioner_setup_time);
       j["preconditioner_applications"] = stats.n_preconditioner_applications;
       j["preconditioner_apply_time"] = number(stats.preconditioner_apply_time);
-      j["kkt"]                       = j["statistics"]["kkt"];
+      if (amg)
+      {
+        // of the last run: full ML setups and in-place recomputes
+        j["amg_full_setups"] = amg->n_full_setups() - amg_full_setups;
+        j["amg_recomputes"]  = amg->n_recomputes() - amg_recomputes;
+        j["amg_kept"]        = amg->n_kept() - amg_kept;
+      }
+      j["kkt"] = j["statistics"]["kkt"];
       if (equality_residual >= 0.)
       {
         j["equality_residual"] = number(equality_residual);

@@ -13,6 +13,11 @@
 //     iterations of none, amg at most a fifth on D L D and a third on the
 //     unscaled Laplacian L (measured 239 / 37 / 669 and 22 / 178):
 //     bounds that fail if the preconditioner is not applied.
+//     amg-full (a full ML setup per active set) the same bounds; the
+//     counters of FreeSetAMG (one aggregation, then recomputes).
+//  2b. FreeSetAMG's in-place recompute (ML ReComputePreconditioner on
+//     A's aggregates) gives the operator of a direct build for that set,
+//     not the previous set's; keep_fraction and reset().
 //  3. Same solution as unpreconditioned MPRGP on that problem; bad
 //     input: amg without a factory, jacobi without a diagonal; a
 //     negative definite M_F (the safeguard falls back to phi).
@@ -291,7 +296,7 @@ main(int argc, char **argv)
   }
   std::cout << "\nplanted sparse QP, 5-point Laplacian " << m << " x " << m
             << ", tolerance 1e-10" << std::endl;
-  std::cout << std::setw(8) << "A" << std::setw(8) << "M" << std::setw(7)
+  std::cout << std::setw(8) << "A" << std::setw(10) << "M" << std::setw(7)
             << "iter" << std::setw(6) << "cg" << std::setw(6) << "half"
             << std::setw(6) << "prop" << std::setw(8) << "setups"
             << std::setw(11) << "|x-x*|" << std::endl;
@@ -301,13 +306,16 @@ main(int argc, char **argv)
     SparsePlanted P;
     make_sparse_planted(m, matrix == "DLD" ? scale : unit, P);
     Vec x_plain;
-    for (const std::string M : {"none", "jacobi", "amg", "amg-T8"})
+    for (const std::string M : {"none", "jacobi", "amg", "amg-full", "amg-T8"})
     {
       Problem<Vec>                problem = sparse_problem(P);
       std::unique_ptr<FreeSetAMG> amg;
       if (M != "none" && M != "jacobi")
       {
-        amg                             = std::make_unique<FreeSetAMG>(P.A);
+        // amg-full: a full ML setup (new aggregates) for every active set
+        FreeSetAMG::Parameters amg_prm;
+        amg_prm.reuse_aggregates = M != "amg-full";
+        amg                      = std::make_unique<FreeSetAMG>(P.A, amg_prm);
         problem.free_set_preconditioner = amg->factory();
       }
       SolverParameters prm;
@@ -330,7 +338,7 @@ main(int argc, char **argv)
       Vec        diff(x);
       diff -= P.x_star;
       const double err = diff.l2_norm();
-      std::cout << std::setw(8) << matrix << std::setw(8) << M << std::setw(7)
+      std::cout << std::setw(8) << matrix << std::setw(10) << M << std::setw(7)
                 << stats.iterations << std::setw(6) << stats.n_cg
                 << std::setw(6) << stats.n_half_steps << std::setw(6)
                 << stats.n_proportioning << std::setw(8)
@@ -352,6 +360,22 @@ main(int argc, char **argv)
         check.check(diff.l2_norm() <= 1e-8 * (1. + x_plain.l2_norm()),
                     tag + "same solution as unpreconditioned MPRGP (" +
                       sci(diff.l2_norm()) + ")");
+      }
+      if (M != "none" && M != "jacobi")
+      {
+        // every factory call is a setup, a recompute, or (keep_fraction,
+        // 0 here) a kept hierarchy; with reused aggregates exactly one
+        // aggregation (of A itself, the first build at x0 = 0 where every
+        // unknown is free: no recompute there)
+        check.check(
+          amg->n_kept() == 0 &&
+            (M == "amg-full" ?
+               amg->n_full_setups() == stats.n_preconditioner_setups &&
+                 amg->n_recomputes() == 0 :
+               amg->n_full_setups() == 1 &&
+                 amg->n_recomputes() + 1 == stats.n_preconditioner_setups),
+          tag + std::to_string(amg->n_full_setups()) + " full ML setups, " +
+            std::to_string(amg->n_recomputes()) + " recomputes");
       }
       if (M != "none" && M != "jacobi")
         check.check(stats.n_preconditioner_setups >= 1 &&
@@ -381,6 +405,62 @@ main(int argc, char **argv)
               "L: amg " + std::to_string(iterations["L/amg"]) +
                 " iterations, at most a third of none's " +
                 std::to_string(iterations["L/none"]));
+  check.check(iterations["DLD/amg-full"] * 5 <= iterations["DLD/none"] &&
+                iterations["L/amg-full"] * 3 <= iterations["L/none"],
+              "amg with a full setup per active set: " +
+                std::to_string(iterations["DLD/amg-full"]) + " (D L D) and " +
+                std::to_string(iterations["L/amg-full"]) +
+                " (L) iterations, at most a fifth / a third of none's");
+
+  // ---- 2b. FreeSetAMG's in-place recompute sees the new entries: a
+  // hierarchy recomputed for set B after set A applies the same operator
+  // as one built for B directly (both on A's aggregates), and another one
+  // than for set A (a stale copy of the matrix inside ML would give A's)
+  {
+    SparsePlanted P;
+    make_sparse_planted(30, std::vector<double>(900, 1.), P);
+    Vec mask_a(900), mask_b(900), r(900), y_ab(900), y_b(900), y_a(900);
+    std::mt19937 rng(3);
+    for (unsigned int i = 0; i < 900; ++i)
+    {
+      const unsigned int row = i / 30, col = i % 30;
+      mask_a[i] = col < 10 && row >= 6 && row < 24;
+      mask_b[i] = col < 12 && row >= 4 && row < 26;
+      r[i]      = uniform(rng, -1., 1.);
+    }
+    FreeSetAMG first(P.A), second(P.A);
+    first.build(mask_a)(y_a, r);
+    first.build(mask_b)(y_ab, r);
+    second.build(mask_b)(y_b, r);
+    Vec diff(y_ab);
+    diff -= y_b;
+    check.check(diff.l2_norm() <= 1e-12 * y_b.l2_norm(),
+                "recompute for set B after set A = built for B: " +
+                  sci(diff.l2_norm() / y_b.l2_norm()));
+    diff = y_ab;
+    diff -= y_a;
+    check.check(diff.l2_norm() >= 1e-3 * y_b.l2_norm(),
+                "the recomputed operator differs from set A's: " +
+                  sci(diff.l2_norm() / y_b.l2_norm()));
+    check.check(first.n_full_setups() == 1 && first.n_recomputes() == 2 &&
+                  second.n_full_setups() == 1 && second.n_recomputes() == 1,
+                "one aggregation each, the rest recomputes");
+    // keep_fraction: a set that differs in at most that fraction keeps
+    // the hierarchy (mask B differs from A in 84 of 900 unknowns)
+    FreeSetAMG::Parameters keep;
+    keep.keep_fraction = 0.2;
+    FreeSetAMG third(P.A, keep);
+    third.build(mask_a);
+    third.build(mask_b)(y_b, r);
+    diff = y_b;
+    diff -= y_a;
+    check.check(third.n_kept() == 1 && diff.l2_norm() <= 1e-14 * y_a.l2_norm(),
+                "keep fraction 0.2: set B keeps set A's hierarchy");
+    third.reset();
+    third.build(mask_b);
+    check.check(third.n_full_setups() == 2 && third.n_kept() == 1,
+                "after reset() a full setup");
+  }
 
   // ---- 3. bad input
   {
