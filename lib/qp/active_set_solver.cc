@@ -312,8 +312,11 @@ namespace dualcontact
                       dealii::ExcMessage(
                         name + ": Preconditioner = " + prm.preconditioner +
                         " needs a free-set preconditioner factory "
-                        "(Problem::free_set_preconditioner; qpsolve builds "
-                        "Trilinos ML from the matrix)"));
+                        "(Problem::free_set_preconditioner): FreeSetAMG is "
+                        "one for a serial dealii::SparseMatrix and "
+                        "dealii::Vector<double> (qpsolve builds it); there "
+                        "is none for distributed vectors, supply your own "
+                        "or use jacobi"));
         }
       }
       using Clock        = std::chrono::steady_clock;
