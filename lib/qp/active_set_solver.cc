@@ -291,9 +291,14 @@ namespace dualcontact
       const bool preconditioned =
         prm.preconditioner != "none" &&
         variant.step == ActiveSetVariant::Step::proportioning && !weak;
+      // the preconditioned release step (Proportioning step =
+      // preconditioned; SolverParameters::check() requires a
+      // preconditioner for it)
+      const bool release_preconditioned =
+        preconditioned && prm.proportioning_step == "preconditioned";
       typename Problem<VectorType>::FreeSetPreconditioner free_set_inverse;
-      VectorType                                          mask, built_mask, z;
-      bool have_preconditioner = false;
+      VectorType mask, built_mask, z, Az;
+      bool       have_preconditioner = false;
       if (preconditioned)
       {
         mask.reinit(x);
@@ -322,10 +327,10 @@ namespace dualcontact
       using Clock        = std::chrono::steady_clock;
       const auto seconds = [](const Clock::time_point start)
       { return std::chrono::duration<double>(Clock::now() - start).count(); };
-      // M_F for the active set at x (rebuilt only if that set changed)
-      const auto update_preconditioner = [&]()
+      // M_F for the free set where `mask` is 0 (rebuilt only if that set
+      // changed)
+      const auto build_preconditioner = [&]()
       {
-        set.active_mask(x, mask);
         if (have_preconditioner)
         {
           const double     *mv = mask.begin(), *bv = built_mask.begin();
@@ -381,6 +386,12 @@ namespace dualcontact
         built_mask.swap(mask);
         have_preconditioner = true;
         stats.preconditioner_setup_time += seconds(start);
+      };
+      // M_F for the active set at x
+      const auto update_preconditioner = [&]()
+      {
+        set.active_mask(x, mask);
+        build_preconditioner();
       };
       // out := M_F^{-1} in restricted to the free set at x (in, out may
       // not alias)
@@ -678,10 +689,96 @@ namespace dualcontact
             break;
           }
           const double alpha = std::min(alpha_sd, alpha_f);
-          set.feasible_step(x, p, alpha);
-          g.add(-alpha, Ap);
-          exact_gradient = false;
-          f += -alpha * gb + 0.5 * alpha * alpha * bAb;
+          // Preconditioned release (Proportioning step = preconditioned):
+          // the chopped gradient beta names the released set R; the step
+          // is the projected PCG step on F u R from x, z = M_{F u R}^{-1}
+          // (phi + beta), t0 = g'z / z'Az and t0 2^-k (k < Projected-CG
+          // trials), the least cost kept if below the cost after MPRGP's
+          // own proportioning step (else that step is taken: MPRGP's
+          // convergence argument holds either way).  M_{F u R} is what
+          // the next restart needs when the step frees exactly R, so it
+          // is no extra setup then.
+          bool released = false;
+          if (release_preconditioned)
+          {
+            const double f_prop = f - alpha * gb + 0.5 * alpha * alpha * bAb;
+            // mask: the active set minus R
+            set.active_mask(x, mask);
+            {
+              double           *mv = mask.begin();
+              const double     *bv = p.begin();
+              const std::size_t n  = mask.locally_owned_size();
+              for (std::size_t i = 0; i < n; ++i)
+                if (bv[i] != 0.)
+                  mv[i] = 0.;
+            }
+            build_preconditioner();
+            // phi := phi + beta (the gradient on F u R), z := M^{-1} of it
+            // on F u R
+            set.free_gradient(x, g, phi);
+            phi += p;
+            const Clock::time_point start = Clock::now();
+            free_set_inverse(z, phi);
+            {
+              double           *zv = z.begin();
+              const double     *mv = built_mask.begin();
+              const std::size_t n  = z.locally_owned_size();
+              for (std::size_t i = 0; i < n; ++i)
+                if (mv[i] != 0.)
+                  zv[i] = 0.;
+            }
+            if (!(internal::dot(phi, z) > 0.))
+              z.equ(1., phi);
+            ++stats.n_preconditioner_applications;
+            stats.preconditioner_apply_time += seconds(start);
+            if (Az.size() != x.size())
+              Az.reinit(x);
+            this->apply_hessian(problem, Az, z, stats);
+            const double gz = internal::dot(g, z), zAz = internal::dot(z, Az);
+            if (gz > 0. &&
+                zAz > curvature_threshold * lambda_max * internal::dot(z, z))
+            {
+              const double t0     = gz / zAz;
+              double       f_best = f_prop;
+              for (unsigned int k = 0; k < prm.projected_cg_trials; ++k)
+              {
+                work.equ(1., x);
+                set.projected_step(work, z, std::ldexp(t0, -int(k)), false);
+                if (problem.constraints)
+                  ++stats.n_projections;
+                this->apply_hessian(problem, phi, work, stats);
+                phi -= problem.b;
+                const double f_t = cost_at(work, phi);
+                if (f_t < f_best)
+                {
+                  if (x_best.size() != x.size())
+                  {
+                    x_best.reinit(x);
+                    g_best.reinit(x);
+                  }
+                  x_best.swap(work);
+                  g_best.swap(phi);
+                  f_best   = f_t;
+                  released = true;
+                }
+              }
+              if (released)
+              {
+                x.swap(x_best);
+                g.swap(g_best); // A x - b: exact
+                exact_gradient = true;
+                f              = f_best;
+                ++stats.n_preconditioned_releases;
+              }
+            }
+          }
+          if (!released)
+          {
+            set.feasible_step(x, p, alpha);
+            g.add(-alpha, Ap);
+            exact_gradient = false;
+            f += -alpha * gb + 0.5 * alpha * alpha * bAb;
+          }
           ++stats.n_proportioning;
           value           = refresh(p);
           restart_pending = true;

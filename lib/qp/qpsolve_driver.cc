@@ -48,8 +48,9 @@ namespace dualcontact
         long        repeat            = 1;
         std::string expansion;
         std::string preconditioner;
-        long        projected_cg_trials  = -1;
-        double      amg_keep_fraction    = -1.;
+        long        projected_cg_trials = -1;
+        double      amg_keep_fraction   = -1.;
+        std::string proportioning;
         int         amg_reuse_aggregates = -1;
         std::string x_out;
         std::string json_out;
@@ -192,6 +193,15 @@ namespace dualcontact
               throw UsageError("--preconditioner: unknown preconditioner '" +
                                o.preconditioner + "' (valid: none|jacobi|amg)");
           }
+          else if (a == "--proportioning")
+          {
+            o.proportioning = value();
+            if (o.proportioning != "chopped-gradient" &&
+                o.proportioning != "preconditioned")
+              throw UsageError("--proportioning: unknown step '" +
+                               o.proportioning +
+                               "' (valid: chopped-gradient|preconditioned)");
+          }
           else if (a == "--amg-keep-fraction")
           {
             const std::string v = value();
@@ -263,6 +273,7 @@ namespace dualcontact
              "[--stagnation-window N] [--gamma G] "
              "[--expansion alpha-bar|projected-cg] "
              "[--projected-cg-trials N] [--preconditioner none|jacobi|amg] "
+             "[--proportioning chopped-gradient|preconditioned] "
              "[--amg-reuse-aggregates 0|1] [--amg-keep-fraction F] "
              "[--repeat N] "
              "[--x-out FILE] [--json-out FILE]\n"
@@ -274,6 +285,9 @@ namespace dualcontact
              "place for each active set; 0: a full setup each time; "
              "--amg-keep-fraction F (default 0) keeps the hierarchy while "
              "at most F * n unknowns changed state).\n"
+             "--proportioning preconditioned: MPRGP's proportioning step "
+             "as a projected PCG step on the free set plus the released "
+             "unknowns (needs --preconditioner).\n"
              "--repeat N solves N times from the same start and reports the "
              "least wall time (timing on a busy machine).\n"
              "Exit code 0: converged, 2: not converged, 1: bad input.";
@@ -386,6 +400,8 @@ namespace dualcontact
           prm.projected_cg_trials = options.projected_cg_trials;
         if (!options.preconditioner.empty())
           prm.preconditioner = options.preconditioner;
+        if (!options.proportioning.empty())
+          prm.proportioning_step = options.proportioning;
         if (prm.preconditioner != "none")
           AssertThrow(options.solver == "mprgp",
                       dealii::ExcMessage(

@@ -263,6 +263,7 @@ namespace dualcontact
           stats.n_proportioning += s.n_proportioning;
           stats.n_bb += s.n_bb;
           stats.n_fall_back += s.n_fall_back;
+          stats.n_preconditioned_releases += s.n_preconditioned_releases;
           stats.n_projections += s.n_projections;
           stats.n_preconditioner_setups += s.n_preconditioner_setups;
           stats.preconditioner_setup_time += s.preconditioner_setup_time;

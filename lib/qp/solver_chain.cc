@@ -113,6 +113,7 @@ namespace dualcontact
       stats.iterations = stats.n_cg = stats.n_half_steps = stats.n_expansions =
         stats.n_proportioning = stats.n_bb = stats.n_fall_back = stats.n_outer =
           0;
+      stats.n_preconditioned_releases = 0;
       stats.n_hessian_products = stats.n_projections = 0;
       stats.n_preconditioner_setups                  = 0;
       stats.n_preconditioner_applications            = 0;
@@ -147,6 +148,7 @@ namespace dualcontact
         stats.n_proportioning += a.n_proportioning;
         stats.n_bb += a.n_bb;
         stats.n_fall_back += a.n_fall_back;
+        stats.n_preconditioned_releases += a.n_preconditioned_releases;
         stats.n_outer += a.n_outer;
         stats.n_hessian_products += a.n_hessian_products;
         stats.n_projections += a.n_projections;

@@ -159,6 +159,17 @@ namespace dualcontact
                         "free-set preconditioner the problem supplies "
                         "(qpsolve: Trilinos ML AMG on A with the active rows "
                         "and columns replaced by identity rows). Unit: none.");
+      prm.declare_entry(
+        "Proportioning step",
+        d.proportioning_step,
+        Selection("chopped-gradient|preconditioned"),
+        "MPRGP's proportioning step. chopped-gradient: thesis, steepest "
+        "descent along the chopped gradient beta, cut at the bounds; "
+        "preconditioned (needs Preconditioner jacobi or amg): the projected "
+        "PCG step on the free set plus the unknowns beta releases, "
+        "z = M^{-1}(phi + beta), lengths t0 = g'z/z'Az times 2^-k for "
+        "k < Projected-CG trials, the least cost kept if below the cost "
+        "after the chopped-gradient step, else that step. Unit: none.");
       prm.declare_entry("MPGP-BB memory",
                         "10",
                         Integer(0),
@@ -237,6 +248,7 @@ namespace dualcontact
       gamma               = prm.get_double("Gamma");
       expansion           = prm.get("Expansion");
       preconditioner      = prm.get("Preconditioner");
+      proportioning_step  = prm.get("Proportioning step");
       projected_cg_trials = prm.get_integer("Projected-CG trials");
       mwpgp_delta         = prm.get_double("MwPGP delta");
       mpgp_bb_memory      = prm.get_integer("MPGP-BB memory");
@@ -284,6 +296,14 @@ namespace dualcontact
           preconditioner != "amg")
         fail("Preconditioner",
              "must be none, jacobi or amg (got '" + preconditioner + "').");
+      if (proportioning_step != "chopped-gradient" &&
+          proportioning_step != "preconditioned")
+        fail("Proportioning step",
+             "must be chopped-gradient or preconditioned (got '" +
+               proportioning_step + "').");
+      if (proportioning_step == "preconditioned" && preconditioner == "none")
+        fail("Proportioning step",
+             "preconditioned needs Preconditioner = jacobi or amg.");
       if (!(mwpgp_delta > 0. && mwpgp_delta < 0.5))
         fail("MwPGP delta", "must lie in (0, 1/2).");
       if (pbbf_k < 1)

@@ -101,6 +101,8 @@ namespace dualcontact
                                  {"proportioning", n_proportioning},
                                  {"bb", n_bb},
                                  {"fall_back", n_fall_back},
+                                 {"preconditioned_release",
+                                  n_preconditioned_releases},
                                  {"outer", n_outer}};
       j["hessian_products"]   = n_hessian_products;
       j["projections"]        = n_projections;

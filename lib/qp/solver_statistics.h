@@ -87,6 +87,10 @@ namespace dualcontact
       unsigned int n_proportioning = 0;
       unsigned int n_bb            = 0;
       unsigned int n_fall_back     = 0;
+      /// MPRGP with Proportioning step = preconditioned: proportioning
+      /// steps done as the preconditioned release (the rest of
+      /// n_proportioning are MPRGP's own)
+      unsigned int n_preconditioned_releases = 0;
       /// outer iterations of an outer loop (SMALSE-M), 0 otherwise
       unsigned int  n_outer            = 0;
       unsigned long n_hessian_products = 0;

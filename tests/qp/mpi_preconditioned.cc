@@ -11,6 +11,7 @@
 // (so the counts on 1 and 2 ranks agree); jacobi needs at most half the
 // iterations of none; the factory (the same operator) the same iterations
 // as jacobi, rebuilt only when the global active set changes.
+// jacobi-rel (Proportioning step = preconditioned) the same checks.
 // Preconditioner = amg on distributed vectors without a factory (there is
 // no distributed FreeSetAMG) is refused on every rank with a message
 // naming the missing factory.
@@ -185,12 +186,17 @@ main(int argc, char **argv)
   const double                        norm_x_star = norm(x_star);
   std::map<std::string, unsigned int> iterations;
   PVec                                x_jacobi;
-  for (const std::string M : {"none", "jacobi", "factory"})
+  for (const std::string M : {"none", "jacobi", "factory", "jacobi-rel"})
   {
     SolverParameters prm;
     prm.tolerance      = 1e-10;
     prm.max_iterations = 5000;
-    prm.preconditioner = M == "factory" ? "amg" : M;
+    prm.preconditioner = M == "factory"    ? "amg" :
+                         M == "jacobi-rel" ? "jacobi" :
+                                             M;
+    // jacobi-rel: the preconditioned release as the proportioning step
+    if (M == "jacobi-rel")
+      prm.proportioning_step = "preconditioned";
     // the projected-CG expansion (how the preconditioned path is used:
     // doc/benchmarks/membrane.md)
     prm.expansion = "projected-cg";
