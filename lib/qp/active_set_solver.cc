@@ -10,6 +10,7 @@
 #include <cmath>
 #include <deque>
 #include <limits>
+#include <vector>
 
 namespace dualcontact
 {
@@ -604,12 +605,22 @@ namespace dualcontact
               // preconditioner in face the whole step overshoots far into
               // the obstacle, and the first trial below the half-step's
               // cost activates too much, which proportioning must undo.)
-              double f_best = f_half;
+              double     f_best       = f_half;
+              const auto trial_length = [&](const unsigned int k)
+              {
+                return k == 0 ? alpha_cg :
+                                alpha_f + (alpha_cg - alpha_f) *
+                                            std::ldexp(1., -int(k));
+              };
+              // Projected-CG gradient factor: the cost and ||g^P||^2 of
+              // every trial, and which one is of least cost
+              const bool gradient_choice =
+                prm.projected_cg_gradient_factor > 0.;
+              std::vector<double> trial_cost, trial_gradient;
+              unsigned int        best_trial = 0;
               for (unsigned int k = 0; k < prm.projected_cg_trials; ++k)
               {
-                const double t = k == 0 ? alpha_cg :
-                                          alpha_f + (alpha_cg - alpha_f) *
-                                                      std::ldexp(1., -int(k));
+                const double t = trial_length(k);
                 work.equ(1., x);
                 set.projected_step(work, p, t, false);
                 if (problem.constraints)
@@ -617,8 +628,17 @@ namespace dualcontact
                 this->apply_hessian(problem, phi, work, stats);
                 phi -= problem.b;
                 const double f_cg = cost_at(work, phi);
+                if (gradient_choice)
+                {
+                  const GradientNorms trial_norms =
+                    set.gradient_norms(work, phi);
+                  trial_cost.push_back(f_cg);
+                  trial_gradient.push_back(trial_norms.free_sq +
+                                           trial_norms.chopped_sq);
+                }
                 if (f_cg <= f_best)
                 {
+                  best_trial = k;
                   if (x_best.size() != x.size())
                   {
                     x_best.reinit(x);
@@ -628,6 +648,43 @@ namespace dualcontact
                   g_best.swap(phi);
                   f_best   = f_cg;
                   expanded = true;
+                }
+              }
+              if (gradient_choice && expanded)
+              {
+                // the least cost among the trials below the half-step's
+                // cost whose ||g^P|| is within the factor of the least
+                // ||g^P|| among them: the least-cost trial of a
+                // preconditioned direction activates a band beyond the
+                // contact zone, which proportioning releases one grid
+                // line per step (doc/benchmarks/membrane.md)
+                double least_gradient = infinity;
+                for (unsigned int k = 0; k < trial_cost.size(); ++k)
+                  if (trial_cost[k] <= f_half)
+                    least_gradient =
+                      std::min(least_gradient, trial_gradient[k]);
+                const double bound = prm.projected_cg_gradient_factor *
+                                     prm.projected_cg_gradient_factor *
+                                     least_gradient;
+                unsigned int chosen      = best_trial;
+                double       chosen_cost = infinity;
+                for (unsigned int k = 0; k < trial_cost.size(); ++k)
+                  if (trial_cost[k] <= f_half && trial_gradient[k] <= bound &&
+                      trial_cost[k] < chosen_cost)
+                  {
+                    chosen      = k;
+                    chosen_cost = trial_cost[k];
+                  }
+                if (chosen != best_trial)
+                {
+                  // redo the chosen trial (one more product)
+                  x_best.equ(1., x);
+                  set.projected_step(x_best, p, trial_length(chosen), false);
+                  if (problem.constraints)
+                    ++stats.n_projections;
+                  this->apply_hessian(problem, g_best, x_best, stats);
+                  g_best -= problem.b;
+                  f_best = cost_at(x_best, g_best);
                 }
               }
               if (expanded)

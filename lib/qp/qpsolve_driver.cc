@@ -51,7 +51,8 @@ namespace dualcontact
         long        projected_cg_trials = -1;
         double      amg_keep_fraction   = -1.;
         std::string proportioning;
-        int         amg_reuse_aggregates = -1;
+        double      projected_cg_gradient_factor = -1.;
+        int         amg_reuse_aggregates         = -1;
         std::string x_out;
         std::string json_out;
       };
@@ -193,6 +194,26 @@ namespace dualcontact
               throw UsageError("--preconditioner: unknown preconditioner '" +
                                o.preconditioner + "' (valid: none|jacobi|amg)");
           }
+          else if (a == "--projected-cg-gradient-factor")
+          {
+            const std::string v = value();
+            try
+            {
+              std::size_t used               = 0;
+              o.projected_cg_gradient_factor = std::stod(v, &used);
+              if (used != v.size())
+                throw std::invalid_argument(v);
+            }
+            catch (const std::exception &)
+            {
+              throw UsageError("--projected-cg-gradient-factor: '" + v +
+                               "' is not a number");
+            }
+            if (!(o.projected_cg_gradient_factor == 0. ||
+                  o.projected_cg_gradient_factor >= 1.))
+              throw UsageError(
+                "--projected-cg-gradient-factor must be 0 (off) or >= 1");
+          }
           else if (a == "--proportioning")
           {
             o.proportioning = value();
@@ -273,6 +294,7 @@ namespace dualcontact
              "[--stagnation-window N] [--gamma G] "
              "[--expansion alpha-bar|projected-cg] "
              "[--projected-cg-trials N] [--preconditioner none|jacobi|amg] "
+             "[--projected-cg-gradient-factor R] "
              "[--proportioning chopped-gradient|preconditioned] "
              "[--amg-reuse-aggregates 0|1] [--amg-keep-fraction F] "
              "[--repeat N] "
@@ -285,6 +307,9 @@ namespace dualcontact
              "place for each active set; 0: a full setup each time; "
              "--amg-keep-fraction F (default 0) keeps the hierarchy while "
              "at most F * n unknowns changed state).\n"
+             "--projected-cg-gradient-factor R (>= 1; 0 = off): keep the "
+             "least-cost projected-CG trial among those whose ||g^P|| is "
+             "within R of the least.\n"
              "--proportioning preconditioned: MPRGP's proportioning step "
              "as a projected PCG step on the free set plus the released "
              "unknowns (needs --preconditioner).\n"
@@ -400,6 +425,9 @@ namespace dualcontact
           prm.projected_cg_trials = options.projected_cg_trials;
         if (!options.preconditioner.empty())
           prm.preconditioner = options.preconditioner;
+        if (options.projected_cg_gradient_factor >= 0.)
+          prm.projected_cg_gradient_factor =
+            options.projected_cg_gradient_factor;
         if (!options.proportioning.empty())
           prm.proportioning_step = options.proportioning;
         if (prm.preconditioner != "none")

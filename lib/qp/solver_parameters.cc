@@ -147,6 +147,16 @@ namespace dualcontact
                         "product each; the one of least cost is kept if that "
                         "is below the half-step's. 1: the whole CG step only "
                         "(PERMON's projcg). Unit: none.");
+      prm.declare_entry(
+        "Projected-CG gradient factor",
+        "0",
+        Double(0.),
+        "Expansion = projected-cg with Projected-CG trials > 1: 0 keeps the "
+        "trial of least cost; rho >= 1 keeps the least-cost trial among "
+        "those below the half-step's cost whose projected gradient norm is "
+        "at most rho times the least one among them (with a preconditioner "
+        "in face the least-cost trial over-activates; benchmark B4: 1.25). "
+        "Unit: none.");
       prm.declare_entry("Preconditioner",
                         d.preconditioner,
                         Selection("none|jacobi|amg"),
@@ -250,6 +260,8 @@ namespace dualcontact
       preconditioner      = prm.get("Preconditioner");
       proportioning_step  = prm.get("Proportioning step");
       projected_cg_trials = prm.get_integer("Projected-CG trials");
+      projected_cg_gradient_factor =
+        prm.get_double("Projected-CG gradient factor");
       mwpgp_delta         = prm.get_double("MwPGP delta");
       mpgp_bb_memory      = prm.get_integer("MPGP-BB memory");
       pbbf_k              = prm.get_integer("PBBf K");
@@ -292,6 +304,9 @@ namespace dualcontact
              "must be alpha-bar or projected-cg (got '" + expansion + "').");
       if (projected_cg_trials < 1)
         fail("Projected-CG trials", "must be at least 1.");
+      if (!(projected_cg_gradient_factor == 0. ||
+            projected_cg_gradient_factor >= 1.))
+        fail("Projected-CG gradient factor", "must be 0 (off) or at least 1.");
       if (preconditioner != "none" && preconditioner != "jacobi" &&
           preconditioner != "amg")
         fail("Preconditioner",
