@@ -25,9 +25,10 @@ namespace dualcontact
      * virtual machines) it falls back to its Prescott (SSE3) kernels, even
      * when the CPU has AVX2 or AVX-512: on this project's machines a dsymv
      * of order 207 (the Delassus product of the Hertz L3 export) then takes
-     * 13.6 us instead of 3.9 us, and a dgemm of order 600 (the supernodes
-     * of the sparse Cholesky factorization) runs at 5.6 GFlop/s instead of
-     * 14.4 (Haswell kernels) or 24.5 (SkylakeX kernels).
+     * 7.2 us instead of 4.1-4.6 us, and a dgemm of order 600 (the
+     * supernodal sparse Cholesky factorization) runs at 16 GFlop/s instead
+     * of 40 (Haswell kernels) or 71-74 (SkylakeX kernels); see
+     * scripts/bench_blas_kernels and lib/util/README.md.
      *
      * This function mends that: if OpenBLAS runs the Prescott kernels and
      * OPENBLAS_CORETYPE is not set, it sets OPENBLAS_CORETYPE to SkylakeX
