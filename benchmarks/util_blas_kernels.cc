@@ -11,6 +11,7 @@
 // 5 batches of about 0.2 s each, one thread).  scripts/bench_blas_kernels
 // runs it under each kernel set the CPU supports.
 
+#include <util/blas.h>
 #include <util/blas_kernels.h>
 
 #include <algorithm>
@@ -20,34 +21,6 @@
 #include <random>
 #include <vector>
 
-extern "C"
-{
-  void
-  dsymv_(const char   *uplo,
-         const int    *n,
-         const double *alpha,
-         const double *a,
-         const int    *lda,
-         const double *x,
-         const int    *incx,
-         const double *beta,
-         double       *y,
-         const int    *incy);
-  void
-  dgemm_(const char   *transa,
-         const char   *transb,
-         const int    *m,
-         const int    *n,
-         const int    *k,
-         const double *alpha,
-         const double *a,
-         const int    *lda,
-         const double *b,
-         const int    *ldb,
-         const double *beta,
-         double       *c,
-         const int    *ldc);
-}
 
 namespace
 {

@@ -1,47 +1,11 @@
 #include <deal.II/base/exceptions.h>
 
 #include <fclib/delassus_operator.h>
+#include <util/blas.h>
 
 #include <algorithm>
 #include <cmath>
 
-// Reference BLAS (Fortran interface; deal.II links libblas, OpenBLAS here)
-extern "C"
-{
-  void
-  dgemv_(const char   *trans,
-         const int    *m,
-         const int    *n,
-         const double *alpha,
-         const double *a,
-         const int    *lda,
-         const double *x,
-         const int    *incx,
-         const double *beta,
-         double       *y,
-         const int    *incy);
-  void
-  dsymv_(const char   *uplo,
-         const int    *n,
-         const double *alpha,
-         const double *a,
-         const int    *lda,
-         const double *x,
-         const int    *incx,
-         const double *beta,
-         double       *y,
-         const int    *incy);
-  void
-  dpstrf_(const char   *uplo,
-          const int    *n,
-          double       *a,
-          const int    *lda,
-          int          *piv,
-          int          *rank,
-          const double *tol,
-          double       *work,
-          int          *info);
-}
 
 namespace dualcontact
 {
@@ -316,19 +280,10 @@ namespace dualcontact
       Assert(dst.size() == n_ && v.size() == n_,
              dealii::ExcDimensionMismatch(dst.size(), n_));
       if (dense_)
-      {
-        // full column-major storage: column j is contiguous
-        const std::vector<double> &A =
-          dense_W_s_.empty() ? dense_W_ : dense_W_s_;
-        double *out = dst.data();
-        for (const std::size_t j : indices)
-        {
-          const double  vj     = v(j);
-          const double *column = A.data() + j * std::size_t(n_);
-          for (unsigned int i = 0; i < n_; ++i)
-            out[i] += column[i] * vj;
-        }
-      }
+        dense_add_columns(dense_W_s_.empty() ? dense_W_ : dense_W_s_,
+                          dst,
+                          v,
+                          indices);
       else
       {
         // W_s is symmetric: column j is row j
