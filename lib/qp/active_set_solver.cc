@@ -420,6 +420,40 @@ namespace dualcontact
       typename SeparableSet<VectorType>::Direction direction;
       bool                                         direction_valid = false;
 
+      // The projected trials of the projected-CG expansion and of the
+      // preconditioned release: y := P(x - t d), gy := A y - b (a
+      // projection and a product); returns the cost at y
+      const auto projected_trial =
+        [&](VectorType &y, VectorType &gy, const VectorType &d, const double t)
+      {
+        y.equ(1., x);
+        set.projected_step(y, d, t, false);
+        if (problem.constraints)
+          ++stats.n_projections;
+        this->apply_hessian(problem, gy, y, stats);
+        gy -= problem.b;
+        return cost_at(y, gy);
+      };
+      // the trial in work, phi becomes the best one so far (x_best, g_best)
+      const auto keep_trial = [&]()
+      {
+        if (x_best.size() != x.size())
+        {
+          x_best.reinit(x);
+          g_best.reinit(x);
+        }
+        x_best.swap(work);
+        g_best.swap(phi);
+      };
+      // x, g := the kept trial, whose gradient is exact, f := its cost
+      const auto take_kept_trial = [&](const double cost)
+      {
+        x.swap(x_best);
+        g.swap(g_best);
+        exact_gradient = true;
+        f              = cost;
+      };
+
       // the start gradient: given, given and corrected for the few
       // unknowns the projection moved (columns of A), or a product
       bool                     use_given = false;
@@ -620,14 +654,8 @@ namespace dualcontact
               unsigned int        best_trial = 0;
               for (unsigned int k = 0; k < prm.projected_cg_trials; ++k)
               {
-                const double t = trial_length(k);
-                work.equ(1., x);
-                set.projected_step(work, p, t, false);
-                if (problem.constraints)
-                  ++stats.n_projections;
-                this->apply_hessian(problem, phi, work, stats);
-                phi -= problem.b;
-                const double f_cg = cost_at(work, phi);
+                const double f_cg =
+                  projected_trial(work, phi, p, trial_length(k));
                 if (gradient_choice)
                 {
                   const GradientNorms trial_norms =
@@ -639,13 +667,7 @@ namespace dualcontact
                 if (f_cg <= f_best)
                 {
                   best_trial = k;
-                  if (x_best.size() != x.size())
-                  {
-                    x_best.reinit(x);
-                    g_best.reinit(x);
-                  }
-                  x_best.swap(work);
-                  g_best.swap(phi);
+                  keep_trial();
                   f_best   = f_cg;
                   expanded = true;
                 }
@@ -678,21 +700,13 @@ namespace dualcontact
                 if (chosen != best_trial)
                 {
                   // redo the chosen trial (one more product)
-                  x_best.equ(1., x);
-                  set.projected_step(x_best, p, trial_length(chosen), false);
-                  if (problem.constraints)
-                    ++stats.n_projections;
-                  this->apply_hessian(problem, g_best, x_best, stats);
-                  g_best -= problem.b;
-                  f_best = cost_at(x_best, g_best);
+                  f_best =
+                    projected_trial(x_best, g_best, p, trial_length(chosen));
                 }
               }
               if (expanded)
               {
-                x.swap(x_best);
-                g.swap(g_best); // A x - b: exact
-                exact_gradient = true;
-                f              = f_best;
+                take_kept_trial(f_best);
                 ++stats.n_expansions;
               }
               if (!expanded)
@@ -799,32 +813,18 @@ namespace dualcontact
               double       f_best = f_prop;
               for (unsigned int k = 0; k < prm.projected_cg_trials; ++k)
               {
-                work.equ(1., x);
-                set.projected_step(work, z, std::ldexp(t0, -int(k)), false);
-                if (problem.constraints)
-                  ++stats.n_projections;
-                this->apply_hessian(problem, phi, work, stats);
-                phi -= problem.b;
-                const double f_t = cost_at(work, phi);
+                const double f_t =
+                  projected_trial(work, phi, z, std::ldexp(t0, -int(k)));
                 if (f_t < f_best)
                 {
-                  if (x_best.size() != x.size())
-                  {
-                    x_best.reinit(x);
-                    g_best.reinit(x);
-                  }
-                  x_best.swap(work);
-                  g_best.swap(phi);
+                  keep_trial();
                   f_best   = f_t;
                   released = true;
                 }
               }
               if (released)
               {
-                x.swap(x_best);
-                g.swap(g_best); // A x - b: exact
-                exact_gradient = true;
-                f              = f_best;
+                take_kept_trial(f_best);
                 ++stats.n_preconditioned_releases;
               }
             }
