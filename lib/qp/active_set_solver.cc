@@ -1,4 +1,5 @@
 #include <qp/active_set_solver.h>
+#include <qp/vector_kernels.h>
 #include <qp/kkt_residuals.h>
 #include <qp/vector_helpers.h>
 
@@ -30,15 +31,10 @@ namespace dualcontact
       std::array<double, 3>
       fused_dots(const VectorType &p, const VectorType &Ap, const VectorType &g)
       {
-        const double     *pv = p.begin(), *av = Ap.begin(), *gv = g.begin();
-        const std::size_t n        = p.locally_owned_size();
-        double            local[3] = {0., 0., 0.};
-        for (std::size_t i = 0; i < n; ++i)
-        {
-          local[0] += pv[i] * av[i];
-          local[1] += pv[i] * pv[i];
-          local[2] += gv[i] * pv[i];
-        }
+        VectorKernels::Lanes pAp, pp, gp;
+        VectorKernels::dots(
+          p.locally_owned_size(), p.begin(), Ap.begin(), g.begin(), pAp, pp, gp);
+        const double local[3] = {pAp.total(), pp.total(), gp.total()};
         std::array<double, 3> global;
         dealii::Utilities::MPI::sum(dealii::ArrayView<const double>(local, 3),
                                     internal::communicator(p),
@@ -539,13 +535,17 @@ namespace dualcontact
           restart_pending = false;
           this->apply_hessian(problem, Ap, p, stats);
           // p'Ap, p'p, g'p (= phi'p, p lives on the free set) in one
-          // pass, summed in index order like every dot product, so that
-          // the iterates do not depend on how the set is stored; the
-          // largest feasible step from conjugate_direction() when p came
-          // from there
-          const std::array<double, 3> d   = fused_dots(p, Ap, g);
-          const double                pAp = d[0], pp = d[1], gp = d[2];
-          const double                alpha_f =
+          // pass over the local entries, summed in four lanes by index
+          // (VectorKernels); when p came from conjugate_direction(), p'p,
+          // g'p and the largest feasible step from there (summed run by
+          // run, in the set's lanes) and only p'Ap here
+          std::array<double, 3> d;
+          if (direction_valid)
+            d = {{internal::dot(p, Ap), direction.pp, direction.gp}};
+          else
+            d = fused_dots(p, Ap, g);
+          const double pAp = d[0], pp = d[1], gp = d[2];
+          const double alpha_f =
             direction_valid ? direction.max_step : set.max_feasible_step(x, p);
           direction_valid = false;
           if (!std::isfinite(pAp + pp + gp))

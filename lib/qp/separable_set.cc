@@ -1,3 +1,4 @@
+#include <qp/vector_kernels.h>
 #include <qp/separable_set.h>
 #include <qp/vector_helpers.h>
 
@@ -1459,40 +1460,22 @@ namespace dualcontact
           num             = take ? room : num;
           den             = take ? q : den;
         }
-        double
-        value() const
-        {
-          return den > 0. ? num / den : infinity;
-        }
-      };
-
-      // accumulators of one lane of conjugate_direction()
-      struct DirectionLane
-      {
-        MinRatio ratio;
-        double   pp = 0., gp = 0.;
       };
 
       /**
-       * What the fused passes need to know of a bound block x_i >= l_i,
-       * so that cg_step(), conjugate_direction() and projected_step() have
-       * one loop body for bounds and boxes (BoxKind below has the same
-       * members): at(first) views the run of blocks starting at the
-       * type's block `first`; classify() tests unknown i of the run at
-       * the value y; chopped() is its component of beta for the gradient
-       * component g; project() is P_i; offer_step() hands the largest
-       * step along -p (p the direction component) to a MinRatio.  The
-       * expressions are those of the loops they replaced, so the results
-       * are the same to the bit.
+       * What projected_step() needs to know of a bound block x_i >= l_i,
+       * so that it has one loop body for bounds and boxes (BoxKind below
+       * has the same members and more, for the box runs of cg_step() and
+       * conjugate_direction(); their bound runs go to VectorKernels):
+       * at(first) views the run of blocks starting at the type's block
+       * `first`; classify() tests unknown i of the run at the value y;
+       * project() is P_i.  The expressions are those of the loops they
+       * replaced, so the results are the same to the bit.
        */
       struct BoundKind
       {
         const double *lower;
         double        tol;
-        /// conjugate_direction() spreads a run of bounds over four lanes
-        /// (the contact problem's normal multipliers: the hot loop)
-        static constexpr std::size_t lanes = 4;
-
         struct State
         {
           double room; // y - l
@@ -1511,34 +1494,22 @@ namespace dualcontact
           return {room, room <= tol * std::abs(lower[i])};
         }
         inline double
-        chopped(const State &state, const double g) const
-        {
-          return state.active ? std::min(g, 0.) : 0.;
-        }
-        inline double
         project(const std::size_t i, const double y) const
         {
           return std::max(y, lower[i]);
         }
-        inline void
-        offer_step(const State &state,
-                   const std::size_t,
-                   const double,
-                   const double p,
-                   MinRatio    &ratio) const
-        {
-          ratio.offer(std::max(state.room, 0.), p);
-        }
       };
 
-      /// A box block l_i <= x_i <= u_i for the fused passes (see BoundKind)
+      /**
+       * A box block l_i <= x_i <= u_i for the fused passes (see
+       * BoundKind): also chopped(), its component of beta for the
+       * gradient component g, and offer_step(), which hands the largest
+       * step along -p (p the direction component) to a MinRatio.
+       */
       struct BoxKind
       {
         const double *lower, *upper;
         double        tol;
-        /// one lane: a box run's sums are accumulated in entry order
-        static constexpr std::size_t lanes = 1;
-
         struct State
         {
           bool at_lower, at_upper, active;
@@ -1609,7 +1580,10 @@ namespace dualcontact
       double       *gv  = g.begin();
       const double *pv  = p.begin();
       const double *av  = Ap.begin();
-      double        fsq = 0., bsq = 0., pa = 0.;
+      // four lanes (VectorKernels): the runs of bounds in the vectorized
+      // kernel, everything else in lane 0
+      VectorKernels::Lanes fs, bs, pa_lanes;
+      double &fsq = fs.v[0], &bsq = bs.v[0], &pa = pa_lanes.v[0];
       for (const auto &range : free_ranges)
         for (std::size_t i = range.first; i < range.second; ++i)
         {
@@ -1618,31 +1592,37 @@ namespace dualcontact
           fsq += gv[i] * gv[i];
           pa += gv[i] * av[i];
         }
-      for_bound_and_box_runs(
-        [&](const std::vector<Run> &runs, const auto &kind)
+      for (const Run &run : bound_runs)
+        VectorKernels::cg_step(run.count,
+                              v + run.begin,
+                              gv + run.begin,
+                              pv + run.begin,
+                              av + run.begin,
+                              bound_lower.data() + run.first,
+                              tolerance,
+                              alpha,
+                              fs,
+                              bs,
+                              pa_lanes);
+      const BoxKind boxes{box_lower.data(), box_upper.data(), tolerance};
+      for (const Run &run : box_runs)
+      {
+        double       *y = v + run.begin;
+        double       *q = gv + run.begin;
+        const double *d = pv + run.begin;
+        const double *a = av + run.begin;
+        const auto    k = boxes.at(run.first);
+        for (std::size_t i = 0; i < run.count; ++i)
         {
-          for (const Run &run : runs)
-          {
-            double       *y  = v + run.begin;
-            double       *q  = gv + run.begin;
-            const double *d  = pv + run.begin;
-            const double *a  = av + run.begin;
-            const auto    k  = kind.at(run.first);
-            double        fs = 0., bs = 0.;
-            for (std::size_t i = 0; i < run.count; ++i)
-            {
-              y[i] -= alpha * d[i];
-              q[i] -= alpha * a[i];
-              const auto   state = k.classify(i, y[i]);
-              const double c     = k.chopped(state, q[i]);
-              fs += state.active ? 0. : q[i] * q[i];
-              bs += c * c;
-              pa += state.active ? 0. : q[i] * a[i];
-            }
-            fsq += fs;
-            bsq += bs;
-          }
-        });
+          y[i] -= alpha * d[i];
+          q[i] -= alpha * a[i];
+          const auto   state = k.classify(i, y[i]);
+          const double c     = k.chopped(state, q[i]);
+          fsq += state.active ? 0. : q[i] * q[i];
+          bsq += c * c;
+          pa += state.active ? 0. : q[i] * a[i];
+        }
+      }
       if (has_curved_blocks())
       {
         const auto step = [&](const size_type off, const unsigned int w)
@@ -1674,7 +1654,7 @@ namespace dualcontact
         };
         sweep(x, g, 1., false, sink, true);
       }
-      double local[3] = {fsq, bsq, pa}, global[3];
+      double local[3] = {fs.total(), bs.total(), pa_lanes.total()}, global[3];
       dealii::Utilities::MPI::sum(dealii::ArrayView<const double>(local, 3),
                                   internal::communicator(x),
                                   dealii::ArrayView<double>(global, 3));
@@ -1697,48 +1677,54 @@ namespace dualcontact
       const double *v  = x.begin();
       const double *gv = g.begin();
       double       *pv = p.begin();
-      // four independent lanes so that the comparisons and sums of one
-      // entry do not wait for those of the previous one
-      DirectionLane lane[4];
+      // four lanes (VectorKernels): the runs of bounds in the vectorized
+      // kernel, everything else in lane 0
+      VectorKernels::Lanes      pp_lanes, gp_lanes;
+      VectorKernels::RatioLanes ratio;
+      double                  &pp0 = pp_lanes.v[0], &gp0 = gp_lanes.v[0];
       for (const auto &range : free_ranges)
         for (std::size_t i = range.first; i < range.second; ++i)
         {
           pv[i] = gv[i] - beta * pv[i];
-          lane[0].pp += pv[i] * pv[i];
-          lane[0].gp += gv[i] * pv[i];
+          pp0 += pv[i] * pv[i];
+          gp0 += gv[i] * pv[i];
         }
-      for_bound_and_box_runs(
-        [&](const std::vector<Run> &runs, const auto &kind)
+      for (const Run &run : bound_runs)
+        VectorKernels::conjugate_direction(run.count,
+                                          v + run.begin,
+                                          gv + run.begin,
+                                          bound_lower.data() + run.first,
+                                          tolerance,
+                                          beta,
+                                          pv + run.begin,
+                                          pp_lanes,
+                                          gp_lanes,
+                                          ratio);
+      {
+        MinRatio      box_ratio{ratio.num[0], ratio.den[0]};
+        const BoxKind boxes{box_lower.data(), box_upper.data(), tolerance};
+        for (const Run &run : box_runs)
         {
-          constexpr std::size_t lanes = std::decay_t<decltype(kind)>::lanes;
-          for (const Run &run : runs)
+          const double *y = v + run.begin;
+          const double *q = gv + run.begin;
+          double       *d = pv + run.begin;
+          const auto    k = boxes.at(run.first);
+          for (std::size_t i = 0; i < run.count; ++i)
           {
-            const double *y   = v + run.begin;
-            const double *q   = gv + run.begin;
-            double       *d   = pv + run.begin;
-            const auto    k   = kind.at(run.first);
-            const auto    one = [&](const std::size_t i, DirectionLane &L)
-            {
-              const auto   state = k.classify(i, y[i]);
-              const double di    = (state.active ? 0. : q[i]) - beta * d[i];
-              d[i]               = di;
-              L.pp += di * di;
-              L.gp += q[i] * di;
-              k.offer_step(state, i, y[i], di, L.ratio);
-            };
-            const std::size_t m = run.count - run.count % lanes;
-            for (std::size_t i = 0; i < m; i += lanes)
-              for (std::size_t j = 0; j < lanes; ++j)
-                one(i + j, lane[j]);
-            for (std::size_t i = m; i < run.count; ++i)
-              one(i, lane[0]);
+            const auto   state = k.classify(i, y[i]);
+            const double di    = (state.active ? 0. : q[i]) - beta * d[i];
+            d[i]               = di;
+            pp0 += di * di;
+            gp0 += q[i] * di;
+            k.offer_step(state, i, y[i], di, box_ratio);
           }
-        });
-      double alpha = infinity;
-      for (const DirectionLane &L : lane)
-        alpha = std::min(alpha, L.ratio.value());
-      double pp = lane[0].pp + lane[1].pp + lane[2].pp + lane[3].pp;
-      double gp = lane[0].gp + lane[1].gp + lane[2].gp + lane[3].gp;
+        }
+        ratio.num[0] = box_ratio.num;
+        ratio.den[0] = box_ratio.den;
+      }
+      double alpha = VectorKernels::min_ratio(ratio);
+      double pp    = pp_lanes.total();
+      double gp    = gp_lanes.total();
       if (has_curved_blocks())
       {
         auto sink = [&](const size_type off,

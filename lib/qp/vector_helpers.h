@@ -8,6 +8,8 @@
 #ifndef dualcontact_qp_vector_helpers_h
 #define dualcontact_qp_vector_helpers_h
 
+#include <qp/vector_kernels.h>
+
 #include <deal.II/base/mpi.h>
 #include <deal.II/lac/trilinos_vector.h>
 #include <deal.II/lac/vector.h>
@@ -65,12 +67,11 @@ namespace dualcontact
       inline double
       dot(const VectorType &a, const VectorType &b)
       {
-        const double     *av = a.begin(), *bv = b.begin();
-        const std::size_t n = a.locally_owned_size();
-        double            s = 0.;
-        for (std::size_t i = 0; i < n; ++i)
-          s += av[i] * bv[i];
-        return sum(s, a);
+        // in four lanes (VectorKernels): a dependent sum per entry would
+        // make the dot product latency-bound
+        VectorKernels::Lanes s;
+        VectorKernels::dot(a.locally_owned_size(), a.begin(), b.begin(), s);
+        return sum(s.total(), a);
       }
 
       /// ||a|| without finiteness assertions (see dot()).

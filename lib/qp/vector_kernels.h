@@ -1,0 +1,131 @@
+#ifndef dualcontact_qp_vector_kernels_h
+#define dualcontact_qp_vector_kernels_h
+
+#include <cstddef>
+
+namespace dualcontact
+{
+  namespace qp
+  {
+    /**
+     * The innermost loops of the QP solvers, on raw arrays of one process'
+     * entries: the active-set solvers' CG iteration on runs of lower bounds
+     * x_i >= l_i (the membrane's unknowns, the contact problem's normal
+     * multipliers), the dot products after the product, and every dot
+     * product of the library (internal::dot()).
+     *
+     * Why a class of its own: these loops are the solver's whole overhead
+     * beside the Hessian product (doc/benchmarks/membrane.md, goals 2 and
+     * 3 of the QP issue), and the build targets the x86-64 baseline (SSE2)
+     * so that the binary runs anywhere.  Written with four-wide vectors and
+     * compiled once per instruction set (baseline, x86-64-v3 = AVX2, v4 =
+     * AVX-512; the loader picks the clone for the machine, as OpenBLAS does
+     * for its kernels), the comparisons, blends and sums of four entries
+     * run as one instruction each, where the scalar loops made a branch or
+     * a dependent sum per entry.
+     *
+     * The result does not depend on the clone: every sum is kept in four
+     * lanes, lane j taking the entries i = j (mod 4) of a run and the
+     * remainder entries of a run going to lane 0, and no clone contracts a
+     * multiply-add into an FMA (ISO C++ mode has -ffp-contract=off), so the
+     * same operations in the same order run on every machine.  Callers add
+     * the lanes as lane 0 + lane 1 + lane 2 + lane 3.
+     */
+    class VectorKernels
+    {
+    public:
+      /// Sums in four lanes, as the kernels keep them.
+      struct Lanes
+      {
+        double v[4] = {0., 0., 0., 0.};
+
+        /// lane 0 + lane 1 + lane 2 + lane 3, in this order
+        double
+        total() const
+        {
+          return ((v[0] + v[1]) + v[2]) + v[3];
+        }
+      };
+
+      /**
+       * The smallest ratio room/q over q > 0, in four lanes, as a fraction
+       * (num, den) compared by cross-multiplication: no division per entry
+       * and the same choice in every lane order (see SeparableSet's
+       * largest feasible step).
+       */
+      struct RatioLanes
+      {
+        double num[4] = {1., 1., 1., 1.};
+        double den[4] = {0., 0., 0., 0.};
+      };
+
+      /**
+       * p'Ap, p'p and g'p over n entries, added to the lanes (one pass
+       * over p, Ap, g: the CG step's first pass after the product).
+       */
+      static void
+      dots(std::size_t   n,
+           const double *p,
+           const double *Ap,
+           const double *g,
+           Lanes        &pAp,
+           Lanes        &pp,
+           Lanes        &gp);
+
+      /// a'b over n entries, added to the lanes (internal::dot()).
+      static void
+      dot(std::size_t n, const double *a, const double *b, Lanes &ab);
+
+      /**
+       * The CG step on a run of n lower bounds l: x -= alpha p, g -= alpha
+       * Ap, then at the new point, with unknown i active when x_i - l_i <=
+       * tol |l_i|: the free gradient's squares (inactive g_i^2), the
+       * chopped gradient's (active min(g_i, 0)^2) and phi'Ap (inactive g_i
+       * Ap_i) added to the lanes.
+       */
+      static void
+      cg_step(std::size_t   n,
+              double       *x,
+              double       *g,
+              const double *p,
+              const double *Ap,
+              const double *l,
+              double        tol,
+              double        alpha,
+              Lanes        &free_sq,
+              Lanes        &chopped_sq,
+              Lanes        &phi_Ap);
+
+      /**
+       * The next conjugate direction on a run of n lower bounds l: p :=
+       * phi - beta p (phi_i = g_i for inactive i, 0 for active), with p'p
+       * and g'p added to the lanes and the largest feasible step along -p,
+       * max(x_i - l_i, 0) / p_i over p_i > 0, offered to the ratio lanes.
+       */
+      static void
+      conjugate_direction(std::size_t   n,
+                          const double *x,
+                          const double *g,
+                          const double *l,
+                          double        tol,
+                          double        beta,
+                          double       *p,
+                          Lanes        &pp,
+                          Lanes        &gp,
+                          RatioLanes   &ratio);
+
+      /// The least ratio of the lanes (infinity when none was offered).
+      static double
+      min_ratio(const RatioLanes &ratio);
+
+      /**
+       * Which instruction set the loader chose for the kernels:
+       * "x86-64-v4", "x86-64-v3" or "baseline" (for reports).
+       */
+      static const char *
+      instruction_set();
+    };
+  } // namespace qp
+} // namespace dualcontact
+
+#endif
