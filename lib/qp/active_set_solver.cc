@@ -535,7 +535,7 @@ namespace dualcontact
           restart_pending = false;
           this->apply_hessian(problem, Ap, p, stats);
           // p'Ap, p'p, g'p (= phi'p, p lives on the free set) in one
-          // pass over the local entries, summed in four lanes by index
+          // pass over the local entries, summed in eight lanes by index
           // (VectorKernels); when p came from conjugate_direction(), p'p,
           // g'p and the largest feasible step from there (summed run by
           // run, in the set's lanes) and only p'Ap here

@@ -1580,7 +1580,7 @@ namespace dualcontact
       double       *gv  = g.begin();
       const double *pv  = p.begin();
       const double *av  = Ap.begin();
-      // four lanes (VectorKernels): the runs of bounds in the vectorized
+      // eight lanes (VectorKernels): the runs of bounds in the vectorized
       // kernel, everything else in lane 0
       VectorKernels::Lanes fs, bs, pa_lanes;
       double &fsq = fs.v[0], &bsq = bs.v[0], &pa = pa_lanes.v[0];
@@ -1677,7 +1677,7 @@ namespace dualcontact
       const double *v  = x.begin();
       const double *gv = g.begin();
       double       *pv = p.begin();
-      // four lanes (VectorKernels): the runs of bounds in the vectorized
+      // eight lanes (VectorKernels): the runs of bounds in the vectorized
       // kernel, everything else in lane 0
       VectorKernels::Lanes      pp_lanes, gp_lanes;
       VectorKernels::RatioLanes ratio;

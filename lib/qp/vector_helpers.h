@@ -67,7 +67,7 @@ namespace dualcontact
       inline double
       dot(const VectorType &a, const VectorType &b)
       {
-        // in four lanes (VectorKernels): a dependent sum per entry would
+        // in eight lanes (VectorKernels): a dependent sum per entry would
         // make the dot product latency-bound
         VectorKernels::Lanes s;
         VectorKernels::dot(a.locally_owned_size(), a.begin(), b.begin(), s);

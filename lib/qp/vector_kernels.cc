@@ -23,63 +23,115 @@ namespace dualcontact
   {
     namespace vector_kernels_impl
     {
-      // four doubles, one lane each; comparisons give a mask of longs
-      typedef double v4d __attribute__((vector_size(32)));
+      // W doubles, one lane each; comparisons give a mask of longs.  Four
+      // (one AVX2 register; GCC lowers it to two SSE2 registers in the
+      // baseline clone): vectors of eight (one AVX-512 register) ran
+      // slower on the development machine.
+      template <int W>
+      struct V;
+      template <>
+      struct V<4>
+      {
+        typedef double d __attribute__((vector_size(32)));
+        typedef long   m __attribute__((vector_size(32)));
+      };
+      template <>
+      struct V<8>
+      {
+        typedef double d __attribute__((vector_size(64)));
+        typedef long   m __attribute__((vector_size(64)));
+      };
 
-      DUALCONTACT_INLINE v4d
+      template <typename D>
+      DUALCONTACT_INLINE D
       load(const double *a)
       {
-        v4d r;
+        D r;
         std::memcpy(&r, a, sizeof(r));
         return r;
       }
 
+      template <typename D>
       DUALCONTACT_INLINE void
-      store(double *a, const v4d v)
+      store(double *a, const D v)
       {
         std::memcpy(a, &v, sizeof(v));
       }
 
-      DUALCONTACT_INLINE v4d
-      load_lanes(const double (&a)[4])
+      // mask ? v : 0 and mask ? 0 : v as bitwise and / and-not (one
+      // instruction where a blend takes two); the same bits as the
+      // conditional (+0. where dropped)
+      template <typename D, typename M>
+      DUALCONTACT_INLINE D
+      keep(const M mask, const D v)
       {
-        return load(a);
+        return (D)((M)v & mask);
       }
 
+      template <typename D, typename M>
+      DUALCONTACT_INLINE D
+      drop(const M mask, const D v)
+      {
+        return (D)((M)v & ~mask);
+      }
+
+      // Eight lanes: lane j takes the entries i = j (mod 8) of a run, in
+      // two vectors of four; a remainder of four to seven entries gives
+      // its first four to lanes 0-3, and the last one to three entries go
+      // to lane 0.  The loop bodies' expressions are those of the scalar
+      // remainder loops (and of
+      // SeparableSet's loops for boxes): std::abs(l) as l < 0 ? -l : l,
+      // std::min(g, 0.) as 0. < g ? 0. : g, std::max(r, 0.) as r < 0. ?
+      // 0. : r.
+      using D4 = V<4>::d;
+      using D8 = V<8>::d;
+
+      template <typename D>
       DUALCONTACT_INLINE void
-      store_lanes(double (&a)[4], const v4d v)
+      dots_body(const std::size_t i,
+                const double     *p,
+                const double     *Ap,
+                const double     *g,
+                D                &s0,
+                D                &s1,
+                D                &s2)
       {
-        store(a, v);
+        const D pv = load<D>(p + i), av = load<D>(Ap + i), gv = load<D>(g + i);
+        s0 += pv * av;
+        s1 += pv * pv;
+        s2 += gv * pv;
       }
-
-      // The expressions below are those of the scalar loops (and of the
-      // remainder loops here), written for four lanes: std::abs(l) as
-      // l < 0 ? -l : l, std::min(g, 0.) as 0. < g ? 0. : g, std::max(r,
-      // 0.) as r < 0. ? 0. : r.
 
       DUALCONTACT_KERNEL_CLONES void
       dots(const std::size_t n,
            const double     *p,
            const double     *Ap,
            const double     *g,
-           double (&pAp)[4],
-           double (&pp)[4],
-           double (&gp)[4])
+           double (&pAp)[8],
+           double (&pp)[8],
+           double (&gp)[8])
       {
-        v4d               s0 = load_lanes(pAp), s1 = load_lanes(pp),
-            s2               = load_lanes(gp);
-        const std::size_t m  = n - n % 4;
-        for (std::size_t i = 0; i < m; i += 4)
+        // lanes 0-3 in a*, 4-7 in b*
+        D4 a0 = load<D4>(pAp), a1 = load<D4>(pp), a2 = load<D4>(gp);
+        D4 b0 = load<D4>(pAp + 4), b1 = load<D4>(pp + 4), b2 = load<D4>(gp + 4);
+        std::size_t i = 0;
+        for (; i + 8 <= n; i += 8)
         {
-          const v4d pv = load(p + i), av = load(Ap + i), gv = load(g + i);
-          s0 += pv * av;
-          s1 += pv * pv;
-          s2 += gv * pv;
+          dots_body(i, p, Ap, g, a0, a1, a2);
+          dots_body(i + 4, p, Ap, g, b0, b1, b2);
         }
-        store_lanes(pAp, s0);
-        store_lanes(pp, s1);
-        store_lanes(gp, s2);
-        for (std::size_t i = m; i < n; ++i)
+        if (i + 4 <= n)
+        {
+          dots_body(i, p, Ap, g, a0, a1, a2);
+          i += 4;
+        }
+        store(pAp, a0);
+        store(pp, a1);
+        store(gp, a2);
+        store(pAp + 4, b0);
+        store(pp + 4, b1);
+        store(gp + 4, b2);
+        for (; i < n; ++i)
         {
           pAp[0] += p[i] * Ap[i];
           pp[0] += p[i] * p[i];
@@ -91,15 +143,50 @@ namespace dualcontact
       dot(const std::size_t n,
           const double     *a,
           const double     *b,
-          double (&ab)[4])
+          double (&ab)[8])
       {
-        v4d               s0 = load_lanes(ab);
-        const std::size_t m  = n - n % 4;
-        for (std::size_t i = 0; i < m; i += 4)
-          s0 += load(a + i) * load(b + i);
-        store_lanes(ab, s0);
-        for (std::size_t i = m; i < n; ++i)
+        D4          s0 = load<D4>(ab), s1 = load<D4>(ab + 4);
+        std::size_t i  = 0;
+        for (; i + 8 <= n; i += 8)
+        {
+          s0 += load<D4>(a + i) * load<D4>(b + i);
+          s1 += load<D4>(a + i + 4) * load<D4>(b + i + 4);
+        }
+        if (i + 4 <= n)
+        {
+          s0 += load<D4>(a + i) * load<D4>(b + i);
+          i += 4;
+        }
+        store(ab, s0);
+        store(ab + 4, s1);
+        for (; i < n; ++i)
           ab[0] += a[i] * b[i];
+      }
+
+      template <typename D>
+      DUALCONTACT_INLINE void
+      cg_step_body(const std::size_t i,
+                   double           *x,
+                   double           *g,
+                   const double     *p,
+                   const double     *Ap,
+                   const double     *l,
+                   const double      tol,
+                   const double      alpha,
+                   D                &fs,
+                   D                &bs,
+                   D                &pa)
+      {
+        const D av = load<D>(Ap + i), lv = load<D>(l + i);
+        const D xv = load<D>(x + i) - alpha * load<D>(p + i);
+        const D gv = load<D>(g + i) - alpha * av;
+        store(x + i, xv);
+        store(g + i, gv);
+        const auto active = (xv - lv) <= tol * (lv < 0. ? -lv : lv);
+        const D    gm     = drop(0. < gv, gv);
+        fs += drop(active, gv * gv);
+        bs += keep(active, gm * gm);
+        pa += drop(active, gv * av);
       }
 
       DUALCONTACT_KERNEL_CLONES void
@@ -111,31 +198,31 @@ namespace dualcontact
               const double     *l,
               const double      tol,
               const double      alpha,
-              double (&free_sq)[4],
-              double (&chopped_sq)[4],
-              double (&phi_Ap)[4])
+              double (&free_sq)[8],
+              double (&chopped_sq)[8],
+              double (&phi_Ap)[8])
       {
-        v4d fs = load_lanes(free_sq), bs = load_lanes(chopped_sq),
-            pa                = load_lanes(phi_Ap);
-        const v4d         zero = {0., 0., 0., 0.};
-        const std::size_t m    = n - n % 4;
-        for (std::size_t i = 0; i < m; i += 4)
+        std::size_t i = 0;
         {
-          const v4d av = load(Ap + i), lv = load(l + i);
-          const v4d xv = load(x + i) - alpha * load(p + i);
-          const v4d gv = load(g + i) - alpha * av;
-          store(x + i, xv);
-          store(g + i, gv);
-          const auto active = (xv - lv) <= tol * (lv < 0. ? -lv : lv);
-          const v4d  gm     = 0. < gv ? zero : gv;
-          fs += active ? zero : gv * gv;
-          bs += active ? gm * gm : zero;
-          pa += active ? zero : gv * av;
+          D8 a0 = load<D8>(free_sq), a1 = load<D8>(chopped_sq),
+             a2 = load<D8>(phi_Ap);
+          for (; i + 8 <= n; i += 8)
+            cg_step_body(i, x, g, p, Ap, l, tol, alpha, a0, a1, a2);
+          store(free_sq, a0);
+          store(chopped_sq, a1);
+          store(phi_Ap, a2);
         }
-        store_lanes(free_sq, fs);
-        store_lanes(chopped_sq, bs);
-        store_lanes(phi_Ap, pa);
-        for (std::size_t i = m; i < n; ++i)
+        if (i + 4 <= n)
+        {
+          D4 a0 = load<D4>(free_sq), a1 = load<D4>(chopped_sq),
+             a2 = load<D4>(phi_Ap);
+          cg_step_body(i, x, g, p, Ap, l, tol, alpha, a0, a1, a2);
+          store(free_sq, a0);
+          store(chopped_sq, a1);
+          store(phi_Ap, a2);
+          i += 4;
+        }
+        for (; i < n; ++i)
         {
           x[i] -= alpha * p[i];
           g[i] -= alpha * Ap[i];
@@ -148,6 +235,47 @@ namespace dualcontact
         }
       }
 
+      // The smaller of two fractions num/den and other_num/other_den per
+      // lane, the first on a tie: SeparableSet's MinRatio::offer() rule
+      // "take if other_den > 0 and other_num den < num other_den" without
+      // its first test, which the second implies here: num and other_num
+      // are >= 0 (max(room, 0), or 1 at the start), den >= 0, so for
+      // other_den <= 0 the right side is <= 0 <= the left one (or a NaN),
+      // and nothing is taken, as with the test.  (Kept, the test makes GCC
+      // 12 unroll the AVX-512 clone into scalar compares.)
+      template <typename D>
+      DUALCONTACT_INLINE void
+      take_smaller(D &num, D &den, const D other_num, const D other_den)
+      {
+        const auto take = other_num * den < num * other_den;
+        num             = take ? other_num : num;
+        den             = take ? other_den : den;
+      }
+
+      template <typename D>
+      DUALCONTACT_INLINE void
+      direction_body(const std::size_t i,
+                     const double     *x,
+                     const double     *g,
+                     const double     *l,
+                     const double      tol,
+                     const double      beta,
+                     double           *p,
+                     D                &pp,
+                     D                &gp,
+                     D                &num,
+                     D                &den)
+      {
+        const D    xv = load<D>(x + i), gv = load<D>(g + i), lv = load<D>(l + i);
+        const D    room   = xv - lv;
+        const auto active = room <= tol * (lv < 0. ? -lv : lv);
+        const D    dv     = drop(active, gv) - beta * load<D>(p + i);
+        store(p + i, dv);
+        pp += dv * dv;
+        gp += gv * dv;
+        take_smaller(num, den, drop(room < 0., room), dv);
+      }
+
       DUALCONTACT_KERNEL_CLONES void
       conjugate_direction(const std::size_t n,
                           const double     *x,
@@ -156,34 +284,44 @@ namespace dualcontact
                           const double      tol,
                           const double      beta,
                           double           *p,
-                          double (&pp)[4],
-                          double (&gp)[4],
-                          double (&num)[4],
-                          double (&den)[4])
+                          double (&pp)[8],
+                          double (&gp)[8],
+                          double (&num)[8],
+                          double (&den)[8])
       {
-        v4d s0 = load_lanes(pp), s1 = load_lanes(gp), nu = load_lanes(num),
-            de                = load_lanes(den);
-        const v4d         zero = {0., 0., 0., 0.};
-        const std::size_t m    = n - n % 4;
-        for (std::size_t i = 0; i < m; i += 4)
+        std::size_t i = 0;
         {
-          const v4d  xv = load(x + i), gv = load(g + i), lv = load(l + i);
-          const v4d  room   = xv - lv;
-          const auto active = room <= tol * (lv < 0. ? -lv : lv);
-          const v4d  dv     = (active ? zero : gv) - beta * load(p + i);
-          store(p + i, dv);
-          s0 += dv * dv;
-          s1 += gv * dv;
-          const v4d  r    = room < 0. ? zero : room;
-          const auto take = (dv > 0.) & (r * de < nu * dv);
-          nu              = take ? r : nu;
-          de              = take ? dv : de;
+          D8 a0 = load<D8>(pp), a1 = load<D8>(gp), a2 = load<D8>(num),
+             a3 = load<D8>(den);
+          D8 c2 = a2 - a2 + 1., c3 = a3 - a3;
+          for (; i + 16 <= n; i += 16)
+          {
+            direction_body(i, x, g, l, tol, beta, p, a0, a1, a2, a3);
+            direction_body(i + 8, x, g, l, tol, beta, p, a0, a1, c2, c3);
+          }
+          if (i + 8 <= n)
+          {
+            direction_body(i, x, g, l, tol, beta, p, a0, a1, a2, a3);
+            i += 8;
+          }
+          take_smaller(a2, a3, c2, c3);
+          store(pp, a0);
+          store(gp, a1);
+          store(num, a2);
+          store(den, a3);
         }
-        store_lanes(pp, s0);
-        store_lanes(gp, s1);
-        store_lanes(num, nu);
-        store_lanes(den, de);
-        for (std::size_t i = m; i < n; ++i)
+        if (i + 4 <= n)
+        {
+          D4 a0 = load<D4>(pp), a1 = load<D4>(gp), a2 = load<D4>(num),
+             a3 = load<D4>(den);
+          direction_body(i, x, g, l, tol, beta, p, a0, a1, a2, a3);
+          store(pp, a0);
+          store(gp, a1);
+          store(num, a2);
+          store(den, a3);
+          i += 4;
+        }
+        for (; i < n; ++i)
         {
           const double room   = x[i] - l[i];
           const bool   active = room <= tol * (l[i] < 0. ? -l[i] : l[i]);
@@ -192,7 +330,7 @@ namespace dualcontact
           pp[0] += di * di;
           gp[0] += g[i] * di;
           const double r    = room < 0. ? 0. : room;
-          const bool   take = di > 0. && r * den[0] < num[0] * di;
+          const bool   take = r * den[0] < num[0] * di; // see take_smaller
           num[0]            = take ? r : num[0];
           den[0]            = take ? di : den[0];
         }
@@ -262,7 +400,7 @@ namespace dualcontact
     VectorKernels::min_ratio(const RatioLanes &ratio)
     {
       double value = std::numeric_limits<double>::infinity();
-      for (unsigned int j = 0; j < 4; ++j)
+      for (unsigned int j = 0; j < VectorKernels::lanes; ++j)
         if (ratio.den[j] > 0.)
         {
           const double r = ratio.num[j] / ratio.den[j];

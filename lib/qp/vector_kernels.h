@@ -24,39 +24,45 @@ namespace dualcontact
      * run as one instruction each, where the scalar loops made a branch or
      * a dependent sum per entry.
      *
-     * The result does not depend on the clone: every sum is kept in four
-     * lanes, lane j taking the entries i = j (mod 4) of a run and the
-     * remainder entries of a run going to lane 0, and no clone contracts a
-     * multiply-add into an FMA (ISO C++ mode has -ffp-contract=off), so the
-     * same operations in the same order run on every machine.  Callers add
-     * the lanes as lane 0 + lane 1 + lane 2 + lane 3.
+     * The result does not depend on the clone: every sum is kept in eight
+     * lanes, lane j taking the entries i = j (mod 8) of a run (a
+     * remainder of four to seven entries: lanes 0-3 take the first four,
+     * the rest goes to lane 0), and this file is compiled with
+     * -ffp-contract=off, so that no clone fuses a multiply-add into an FMA
+     * (GCC does by default for C++): the same operations in the same order
+     * run on every machine.  Callers add the lanes with Lanes::total().
      */
     class VectorKernels
     {
     public:
-      /// Sums in four lanes, as the kernels keep them.
+      /// How many partial sums the kernels keep.
+      static constexpr unsigned int lanes = 8;
+
+      /// Sums in eight lanes, as the kernels keep them.
       struct Lanes
       {
-        double v[4] = {0., 0., 0., 0.};
+        double v[lanes] = {0., 0., 0., 0., 0., 0., 0., 0.};
 
-        /// lane 0 + lane 1 + lane 2 + lane 3, in this order
+        /// lane 0 + lane 1 + ... + lane 7, in this order
         double
         total() const
         {
-          return ((v[0] + v[1]) + v[2]) + v[3];
+          double s = v[0];
+          for (unsigned int j = 1; j < lanes; ++j)
+            s += v[j];
+          return s;
         }
       };
 
       /**
-       * The smallest ratio room/q over q > 0, in four lanes, as a fraction
-       * (num, den) compared by cross-multiplication: no division per entry
-       * and the same choice in every lane order (see SeparableSet's
-       * largest feasible step).
+       * The smallest ratio room/q over q > 0, in eight lanes, as a
+       * fraction (num, den) compared by cross-multiplication: no division
+       * per entry (see SeparableSet's largest feasible step).
        */
       struct RatioLanes
       {
-        double num[4] = {1., 1., 1., 1.};
-        double den[4] = {0., 0., 0., 0.};
+        double num[lanes] = {1., 1., 1., 1., 1., 1., 1., 1.};
+        double den[lanes] = {0., 0., 0., 0., 0., 0., 0., 0.};
       };
 
       /**
