@@ -789,10 +789,15 @@ namespace dualcontact
       double        alpha = infinity;
       // bounds and boxes: branch-free, and without a division per entry:
       // the smallest ratio room/q over q > 0 is tracked as a fraction
-      // (num, den) compared by cross-multiplication, in four independent
-      // lanes (registers) so the comparisons do not wait for each other.
-      double     n0 = 1., n1 = 1., n2 = 1., n3 = 1.;
-      double     d0 = 0., d1 = 0., d2 = 0., d3 = 0.;
+      // (num, den) compared by cross-multiplication, in the lanes of
+      // VectorKernels (boxes in lane 0)
+      VectorKernels::RatioLanes ratio;
+      for (const Run &run : bound_runs)
+        VectorKernels::max_step(run.count,
+                                v + run.begin,
+                                d + run.begin,
+                                bound_lower.data() + run.first,
+                                ratio);
       const auto offer =
         [](double &num, double &den, const double room, const double q)
       {
@@ -800,22 +805,6 @@ namespace dualcontact
         num             = take ? room : num;
         den             = take ? q : den;
       };
-      for (const Run &run : bound_runs)
-      {
-        const double     *y = v + run.begin;
-        const double     *q = d + run.begin;
-        const double     *l = bound_lower.data() + run.first;
-        const std::size_t m = run.count & ~std::size_t(3);
-        for (std::size_t i = 0; i < m; i += 4)
-        {
-          offer(n0, d0, std::max(y[i] - l[i], 0.), q[i]);
-          offer(n1, d1, std::max(y[i + 1] - l[i + 1], 0.), q[i + 1]);
-          offer(n2, d2, std::max(y[i + 2] - l[i + 2], 0.), q[i + 2]);
-          offer(n3, d3, std::max(y[i + 3] - l[i + 3], 0.), q[i + 3]);
-        }
-        for (std::size_t i = m; i < run.count; ++i)
-          offer(n0, d0, std::max(y[i] - l[i], 0.), q[i]);
-      }
       for (const Run &run : box_runs)
       {
         const double *y = v + run.begin;
@@ -826,15 +815,10 @@ namespace dualcontact
         {
           const double room =
             q[i] > 0. ? std::max(y[i] - l[i], 0.) : std::max(u[i] - y[i], 0.);
-          offer(n0, d0, room, std::abs(q[i]));
+          offer(ratio.num[0], ratio.den[0], room, std::abs(q[i]));
         }
       }
-      for (const auto &[num, den] : {std::pair<double, double>{n0, d0},
-                                     std::pair<double, double>{n1, d1},
-                                     std::pair<double, double>{n2, d2},
-                                     std::pair<double, double>{n3, d3}})
-        if (den > 0.)
-          alpha = std::min(alpha, num / den);
+      alpha = VectorKernels::min_ratio(ratio);
       alpha = std::min(alpha, curved_max_step(v, d));
       return internal::min(alpha, x);
     }
@@ -943,18 +927,11 @@ namespace dualcontact
         for (std::size_t i = range.first; i < range.second; ++i)
           v[i] -= alpha * d[i];
       for (const Run &run : bound_runs)
-      {
-        double       *y = v + run.begin;
-        const double *q = d + run.begin;
-        const double *l = bound_lower.data() + run.first;
-        for (std::size_t i = 0; i < run.count; ++i)
-        {
-          const double yi = y[i] - alpha * q[i];
-          const double scale =
-            std::abs(yi) + std::abs(alpha * q[i]) + std::abs(l[i]);
-          y[i] = (yi < l[i] || snap(yi, l[i], scale)) ? l[i] : yi;
-        }
-      }
+        VectorKernels::feasible_step(run.count,
+                                     v + run.begin,
+                                     d + run.begin,
+                                     bound_lower.data() + run.first,
+                                     alpha);
       for (const Run &run : box_runs)
       {
         double       *y = v + run.begin;
@@ -1377,24 +1354,18 @@ namespace dualcontact
           o[i] = gv[i];
           fsq += gv[i] * gv[i];
         }
+      VectorKernels::Lanes fs_lanes, bs_lanes;
       for (const Run &run : bound_runs)
-      {
-        const double *y  = v + run.begin;
-        const double *q  = gv + run.begin;
-        double       *f  = o + run.begin;
-        const double *l  = bound_lower.data() + run.first;
-        double        fs = 0., bs = 0.;
-        for (std::size_t i = 0; i < run.count; ++i)
-        {
-          const bool   active = y[i] - l[i] <= tolerance * std::abs(l[i]);
-          const double gm     = std::min(q[i], 0.);
-          f[i]                = active ? 0. : q[i];
-          fs += active ? 0. : q[i] * q[i];
-          bs += active ? gm * gm : 0.;
-        }
-        fsq += fs;
-        bsq += bs;
-      }
+        VectorKernels::gradient_norms(run.count,
+                                      v + run.begin,
+                                      gv + run.begin,
+                                      bound_lower.data() + run.first,
+                                      tolerance,
+                                      o + run.begin,
+                                      fs_lanes,
+                                      bs_lanes);
+      fsq += fs_lanes.total();
+      bsq += bs_lanes.total();
       for (const Run &run : box_runs)
       {
         const double *y  = v + run.begin;
@@ -1463,48 +1434,13 @@ namespace dualcontact
       };
 
       /**
-       * What projected_step() needs to know of a bound block x_i >= l_i,
-       * so that it has one loop body for bounds and boxes (BoxKind below
-       * has the same members and more, for the box runs of cg_step() and
-       * conjugate_direction(); their bound runs go to VectorKernels):
-       * at(first) views the run of blocks starting at the type's block
-       * `first`; classify() tests unknown i of the run at the value y;
-       * project() is P_i.  The expressions are those of the loops they
-       * replaced, so the results are the same to the bit.
-       */
-      struct BoundKind
-      {
-        const double *lower;
-        double        tol;
-        struct State
-        {
-          double room; // y - l
-          bool   active;
-        };
-
-        inline BoundKind
-        at(const std::size_t first) const
-        {
-          return {lower + first, tol};
-        }
-        inline State
-        classify(const std::size_t i, const double y) const
-        {
-          const double room = y - lower[i];
-          return {room, room <= tol * std::abs(lower[i])};
-        }
-        inline double
-        project(const std::size_t i, const double y) const
-        {
-          return std::max(y, lower[i]);
-        }
-      };
-
-      /**
-       * A box block l_i <= x_i <= u_i for the fused passes (see
-       * BoundKind): also chopped(), its component of beta for the
-       * gradient component g, and offer_step(), which hands the largest
-       * step along -p (p the direction component) to a MinRatio.
+       * A box block l_i <= x_i <= u_i in the passes of cg_step(),
+       * conjugate_direction() and projected_step(), whose runs of bounds
+       * go to VectorKernels: at(first) views the run of blocks starting at
+       * the type's block `first`; classify() tests unknown i of the run at
+       * the value y; chopped() is its component of beta for the gradient
+       * component g; project() is P_i; offer_step() hands the largest step
+       * along -p (p the direction component) to a MinRatio.
        */
       struct BoxKind
       {
@@ -1554,16 +1490,6 @@ namespace dualcontact
         }
       };
     } // namespace
-
-
-    template <typename VectorType>
-    template <typename Function>
-    void
-    SeparableSet<VectorType>::for_bound_and_box_runs(const Function &f) const
-    {
-      f(bound_runs, BoundKind{bound_lower.data(), tolerance});
-      f(box_runs, BoxKind{box_lower.data(), box_upper.data(), tolerance});
-    }
 
 
     template <typename VectorType>
@@ -1770,21 +1696,26 @@ namespace dualcontact
       for (const auto &range : free_ranges)
         for (std::size_t i = range.first; i < range.second; ++i)
           v[i] -= alpha * gv[i];
-      for_bound_and_box_runs(
-        [&](const std::vector<Run> &runs, const auto &kind)
+      for (const Run &run : bound_runs)
+        VectorKernels::projected_step(run.count,
+                                      v + run.begin,
+                                      gv + run.begin,
+                                      bound_lower.data() + run.first,
+                                      tolerance,
+                                      alpha,
+                                      free_only);
+      const BoxKind boxes{box_lower.data(), box_upper.data(), tolerance};
+      for (const Run &run : box_runs)
+      {
+        double       *y = v + run.begin;
+        const double *q = gv + run.begin;
+        const auto    k = boxes.at(run.first);
+        for (std::size_t i = 0; i < run.count; ++i)
         {
-          for (const Run &run : runs)
-          {
-            double       *y = v + run.begin;
-            const double *q = gv + run.begin;
-            const auto    k = kind.at(run.first);
-            for (std::size_t i = 0; i < run.count; ++i)
-            {
-              const bool active = free_only && k.classify(i, y[i]).active;
-              y[i] = k.project(i, y[i] - alpha * (active ? 0. : q[i]));
-            }
-          }
-        });
+          const bool active = free_only && k.classify(i, y[i]).active;
+          y[i] = k.project(i, y[i] - alpha * (active ? 0. : q[i]));
+        }
+      }
       if (has_curved_blocks())
       {
         // the step along phi (free_only) or g on every curved block, then
@@ -1833,22 +1764,18 @@ namespace dualcontact
       if (!reduced)
       {
         // bounds and boxes in branch-free streaming loops
+        VectorKernels::Lanes fs_lanes, bs_lanes;
         for (const Run &run : bound_runs)
-        {
-          const double *y = v + run.begin;
-          const double *q = gv + run.begin;
-          const double *l = bound_lower.data() + run.first;
-          double        f = 0., b = 0.;
-          for (std::size_t i = 0; i < run.count; ++i)
-          {
-            const bool   active = y[i] - l[i] <= tolerance * std::abs(l[i]);
-            const double gm     = std::min(q[i], 0.);
-            f += active ? 0. : q[i] * q[i];
-            b += active ? gm * gm : 0.;
-          }
-          fsq += f;
-          bsq += b;
-        }
+          VectorKernels::gradient_norms(run.count,
+                                        v + run.begin,
+                                        gv + run.begin,
+                                        bound_lower.data() + run.first,
+                                        tolerance,
+                                        nullptr,
+                                        fs_lanes,
+                                        bs_lanes);
+        fsq += fs_lanes.total();
+        bsq += bs_lanes.total();
         for (const Run &run : box_runs)
         {
           const double *y = v + run.begin;

@@ -344,15 +344,6 @@ namespace dualcontact
             Sink             &sink,
             bool              curved_only = false) const;
 
-      /// f(runs, kind) for the bound runs and then the box runs, where
-      /// kind says what a block of the type is to the fused passes (active
-      /// test, chopped component, projection, feasible step; BoundKind and
-      /// BoxKind in the .cc): cg_step(), conjugate_direction() and
-      /// projected_step() each have one loop body for both types.
-      template <typename Function>
-      void
-      for_bound_and_box_runs(const Function &f) const;
-
       /// max_feasible_step() over the disc, ellipse and cone blocks only,
       /// local (no reduction); v, d: local entries of x and p
       double

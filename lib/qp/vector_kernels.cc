@@ -1,5 +1,6 @@
 #include <qp/vector_kernels.h>
 
+#include <cmath>
 #include <cstring>
 #include <limits>
 
@@ -335,6 +336,209 @@ namespace dualcontact
           den[0]            = take ? di : den[0];
         }
       }
+
+      template <typename D>
+      DUALCONTACT_INLINE void
+      gradient_norms_body(const std::size_t i,
+                          const double     *x,
+                          const double     *g,
+                          const double     *l,
+                          const double      tol,
+                          double           *phi,
+                          D                &fs,
+                          D                &bs)
+      {
+        const D    xv = load<D>(x + i), gv = load<D>(g + i), lv = load<D>(l + i);
+        const auto active = (xv - lv) <= tol * (lv < 0. ? -lv : lv);
+        const D    gm     = drop(0. < gv, gv);
+        if (phi != nullptr)
+          store(phi + i, drop(active, gv));
+        fs += drop(active, gv * gv);
+        bs += keep(active, gm * gm);
+      }
+
+      DUALCONTACT_KERNEL_CLONES void
+      gradient_norms(const std::size_t n,
+                     const double     *x,
+                     const double     *g,
+                     const double     *l,
+                     const double      tol,
+                     double           *phi,
+                     double (&free_sq)[8],
+                     double (&chopped_sq)[8])
+      {
+        std::size_t i = 0;
+        {
+          D8 a0 = load<D8>(free_sq), a1 = load<D8>(chopped_sq);
+          for (; i + 8 <= n; i += 8)
+            gradient_norms_body(i, x, g, l, tol, phi, a0, a1);
+          store(free_sq, a0);
+          store(chopped_sq, a1);
+        }
+        if (i + 4 <= n)
+        {
+          D4 a0 = load<D4>(free_sq), a1 = load<D4>(chopped_sq);
+          gradient_norms_body(i, x, g, l, tol, phi, a0, a1);
+          store(free_sq, a0);
+          store(chopped_sq, a1);
+          i += 4;
+        }
+        for (; i < n; ++i)
+        {
+          const bool active =
+            x[i] - l[i] <= tol * (l[i] < 0. ? -l[i] : l[i]);
+          const double gm = 0. < g[i] ? 0. : g[i];
+          if (phi != nullptr)
+            phi[i] = active ? 0. : g[i];
+          free_sq[0] += active ? 0. : g[i] * g[i];
+          chopped_sq[0] += active ? gm * gm : 0.;
+        }
+      }
+
+      template <typename D>
+      DUALCONTACT_INLINE void
+      max_step_body(const std::size_t i,
+                    const double     *x,
+                    const double     *p,
+                    const double     *l,
+                    D                &num,
+                    D                &den)
+      {
+        const D room = load<D>(x + i) - load<D>(l + i);
+        take_smaller(num, den, drop(room < 0., room), load<D>(p + i));
+      }
+
+      DUALCONTACT_KERNEL_CLONES void
+      max_step(const std::size_t n,
+               const double     *x,
+               const double     *p,
+               const double     *l,
+               double (&num)[8],
+               double (&den)[8])
+      {
+        std::size_t i = 0;
+        {
+          // a second pair of accumulators for the odd blocks of eight
+          // (see conjugate_direction)
+          D8 a0 = load<D8>(num), a1 = load<D8>(den);
+          D8 c0 = a0 - a0 + 1., c1 = a1 - a1;
+          for (; i + 16 <= n; i += 16)
+          {
+            max_step_body(i, x, p, l, a0, a1);
+            max_step_body(i + 8, x, p, l, c0, c1);
+          }
+          if (i + 8 <= n)
+          {
+            max_step_body(i, x, p, l, a0, a1);
+            i += 8;
+          }
+          take_smaller(a0, a1, c0, c1);
+          store(num, a0);
+          store(den, a1);
+        }
+        if (i + 4 <= n)
+        {
+          D4 a0 = load<D4>(num), a1 = load<D4>(den);
+          max_step_body(i, x, p, l, a0, a1);
+          store(num, a0);
+          store(den, a1);
+          i += 4;
+        }
+        for (; i < n; ++i)
+        {
+          const double room = x[i] - l[i];
+          const double r    = room < 0. ? 0. : room;
+          const bool   take = r * den[0] < num[0] * p[i]; // see take_smaller
+          num[0]            = take ? r : num[0];
+          den[0]            = take ? p[i] : den[0];
+        }
+      }
+
+      // |y| as y < 0 ? -y : y (std::abs)
+      template <typename D>
+      DUALCONTACT_INLINE D
+      absolute(const D y)
+      {
+        return y < 0. ? -y : y;
+      }
+
+      template <typename D>
+      DUALCONTACT_INLINE void
+      feasible_step_body(const std::size_t i,
+                         double           *x,
+                         const double     *p,
+                         const double     *l,
+                         const double      alpha)
+      {
+        constexpr double eps8 = 8. * std::numeric_limits<double>::epsilon();
+        const D          lv   = load<D>(l + i);
+        const D          ap   = alpha * load<D>(p + i);
+        const D          y    = load<D>(x + i) - ap;
+        const D scale = (absolute(y) + absolute(ap)) + absolute(lv);
+        // (y < l or snapped) ? l : y, as two selections: GCC 12 turns a
+        // selection on the or of two masks into scalar code for AVX-512
+        const D below = y < lv ? lv : y;
+        store(x + i, absolute(y - lv) <= eps8 * scale ? lv : below);
+      }
+
+      DUALCONTACT_KERNEL_CLONES void
+      feasible_step(const std::size_t n,
+                    double           *x,
+                    const double     *p,
+                    const double     *l,
+                    const double      alpha)
+      {
+        std::size_t i = 0;
+        for (; i + 4 <= n; i += 4)
+          feasible_step_body<D4>(i, x, p, l, alpha);
+        constexpr double eps8 = 8. * std::numeric_limits<double>::epsilon();
+        for (; i < n; ++i)
+        {
+          const double ap    = alpha * p[i];
+          const double y     = x[i] - ap;
+          const double scale = (std::abs(y) + std::abs(ap)) + std::abs(l[i]);
+          x[i] = (y < l[i] || std::abs(y - l[i]) <= eps8 * scale) ? l[i] : y;
+        }
+      }
+
+      template <typename D>
+      DUALCONTACT_INLINE void
+      projected_step_body(const std::size_t i,
+                          double           *x,
+                          const double     *g,
+                          const double     *l,
+                          const double      tol,
+                          const double      alpha,
+                          const bool        free_only)
+      {
+        const D xv = load<D>(x + i), lv = load<D>(l + i);
+        D       step = alpha * load<D>(g + i);
+        if (free_only)
+          step = drop((xv - lv) <= tol * absolute(lv), step);
+        const D y = xv - step;
+        store(x + i, y < lv ? lv : y);
+      }
+
+      DUALCONTACT_KERNEL_CLONES void
+      projected_step(const std::size_t n,
+                     double           *x,
+                     const double     *g,
+                     const double     *l,
+                     const double      tol,
+                     const double      alpha,
+                     const bool        free_only)
+      {
+        std::size_t i = 0;
+        for (; i + 4 <= n; i += 4)
+          projected_step_body<D4>(i, x, g, l, tol, alpha, free_only);
+        for (; i < n; ++i)
+        {
+          const bool active =
+            free_only && x[i] - l[i] <= tol * std::abs(l[i]);
+          const double y = x[i] - (active ? 0. : alpha * g[i]);
+          x[i]           = y < l[i] ? l[i] : y;
+        }
+      }
     } // namespace vector_kernels_impl
 
 
@@ -393,6 +597,56 @@ namespace dualcontact
     {
       vector_kernels_impl::conjugate_direction(
         n, x, g, l, tol, beta, p, pp.v, gp.v, ratio.num, ratio.den);
+    }
+
+
+    void
+    VectorKernels::gradient_norms(const std::size_t n,
+                                  const double     *x,
+                                  const double     *g,
+                                  const double     *l,
+                                  const double      tol,
+                                  double           *phi,
+                                  Lanes            &free_sq,
+                                  Lanes            &chopped_sq)
+    {
+      vector_kernels_impl::gradient_norms(
+        n, x, g, l, tol, phi, free_sq.v, chopped_sq.v);
+    }
+
+
+    void
+    VectorKernels::max_step(const std::size_t n,
+                            const double     *x,
+                            const double     *p,
+                            const double     *l,
+                            RatioLanes       &ratio)
+    {
+      vector_kernels_impl::max_step(n, x, p, l, ratio.num, ratio.den);
+    }
+
+
+    void
+    VectorKernels::feasible_step(const std::size_t n,
+                                 double           *x,
+                                 const double     *p,
+                                 const double     *l,
+                                 const double      alpha)
+    {
+      vector_kernels_impl::feasible_step(n, x, p, l, alpha);
+    }
+
+
+    void
+    VectorKernels::projected_step(const std::size_t n,
+                                  double           *x,
+                                  const double     *g,
+                                  const double     *l,
+                                  const double      tol,
+                                  const double      alpha,
+                                  const bool        free_only)
+    {
+      vector_kernels_impl::projected_step(n, x, g, l, tol, alpha, free_only);
     }
 
 

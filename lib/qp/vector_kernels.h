@@ -120,6 +120,61 @@ namespace dualcontact
                           Lanes        &gp,
                           RatioLanes   &ratio);
 
+      /**
+       * The free gradient and the norms on a run of n lower bounds l, at x
+       * with the gradient g (unknown i active when x_i - l_i <= tol
+       * |l_i|): phi_i = g_i for inactive i, 0 for active, written to @p phi
+       * unless it is null, the squares of phi and of the chopped gradient
+       * (active min(g_i, 0)) added to the lanes.
+       */
+      static void
+      gradient_norms(std::size_t   n,
+                     const double *x,
+                     const double *g,
+                     const double *l,
+                     double        tol,
+                     double       *phi,
+                     Lanes        &free_sq,
+                     Lanes        &chopped_sq);
+
+      /**
+       * The largest feasible step along -p on a run of n lower bounds l:
+       * max(x_i - l_i, 0) / p_i over p_i > 0, offered to the ratio lanes.
+       */
+      static void
+      max_step(std::size_t   n,
+               const double *x,
+               const double *p,
+               const double *l,
+               RatioLanes   &ratio);
+
+      /**
+       * x := x - alpha p on a run of n lower bounds l, each new value
+       * below l_i or within 8 epsilon (|x_i| + |alpha p_i| + |l_i|) of it
+       * set to l_i: the step length came from rounding arithmetic, and a
+       * block meant to land on its bound may miss it by a few ulps.
+       */
+      static void
+      feasible_step(std::size_t   n,
+                    double       *x,
+                    const double *p,
+                    const double *l,
+                    double        alpha);
+
+      /**
+       * x := max(x - alpha g, l) on a run of n lower bounds; with
+       * @p free_only the step is along the free gradient (no step for an
+       * unknown active at x, with the tolerance @p tol).
+       */
+      static void
+      projected_step(std::size_t   n,
+                     double       *x,
+                     const double *g,
+                     const double *l,
+                     double        tol,
+                     double        alpha,
+                     bool          free_only);
+
       /// The least ratio of the lanes (infinity when none was offered).
       static double
       min_ratio(const RatioLanes &ratio);
