@@ -166,12 +166,18 @@ namespace dualcontact
       // 1/2 y'Ay - b'y from the gradient gy = Ay - b: 1/2 y'(gy - b)
       const auto cost_at = [&](const VectorType &y, const VectorType &gy)
       {
-        const double *yv = y.begin(), *gv = gy.begin(), *bv = problem.b.begin();
-        const std::size_t n = y.locally_owned_size();
-        double            s = 0.;
-        for (std::size_t i = 0; i < n; ++i)
-          s += yv[i] * (gv[i] - bv[i]);
-        return 0.5 * internal::sum(s, y);
+        VectorKernels::Lanes s;
+        VectorKernels::cost(
+          y.locally_owned_size(), y.begin(), gy.begin(), problem.b.begin(), s);
+        return 0.5 * internal::sum(s.total(), y);
+      };
+      // gy := gy - b (gy holds A y) and the cost at y in one pass
+      const auto residual_and_cost = [&](const VectorType &y, VectorType &gy)
+      {
+        VectorKernels::Lanes s;
+        VectorKernels::residual_cost(
+          y.locally_owned_size(), y.begin(), problem.b.begin(), gy.begin(), s);
+        return 0.5 * internal::sum(s.total(), y);
       };
       // The cost f(x), kept by recurrences (a step x - a p changes it by
       // -a g'p + a^2/2 p'Ap) and recomputed with every new gradient; only
@@ -185,8 +191,7 @@ namespace dualcontact
       const auto recompute_gradient = [&]()
       {
         this->apply_hessian(problem, g, x, stats);
-        g -= problem.b;
-        f              = cost_at(x, g);
+        f              = residual_and_cost(x, g);
         exact_gradient = true;
       };
 
@@ -427,8 +432,7 @@ namespace dualcontact
         if (problem.constraints)
           ++stats.n_projections;
         this->apply_hessian(problem, gy, y, stats);
-        gy -= problem.b;
-        return cost_at(y, gy);
+        return residual_and_cost(y, gy);
       };
       // the trial in work, phi becomes the best one so far (x_best, g_best)
       const auto keep_trial = [&]()

@@ -539,6 +539,68 @@ namespace dualcontact
           x[i]           = y < l[i] ? l[i] : y;
         }
       }
+
+      // y (g - b) into the lanes, with g := g - b first when Residual
+      template <bool residual>
+      DUALCONTACT_INLINE void
+      cost_loop(const std::size_t n,
+                const double     *y,
+                const double     *b,
+                double           *g,
+                double (&sum)[8])
+      {
+        D4          s0 = load<D4>(sum), s1 = load<D4>(sum + 4);
+        std::size_t i  = 0;
+        const auto  body = [&](const std::size_t k, D4 &s)
+        {
+          const D4 bv = load<D4>(b + k);
+          D4       gv = load<D4>(g + k);
+          if (residual)
+          {
+            gv -= bv;
+            store(g + k, gv);
+          }
+          s += load<D4>(y + k) * (gv - bv);
+        };
+        for (; i + 8 <= n; i += 8)
+        {
+          body(i, s0);
+          body(i + 4, s1);
+        }
+        if (i + 4 <= n)
+        {
+          body(i, s0);
+          i += 4;
+        }
+        store(sum, s0);
+        store(sum + 4, s1);
+        for (; i < n; ++i)
+        {
+          if (residual)
+            g[i] -= b[i];
+          sum[0] += y[i] * (g[i] - b[i]);
+        }
+      }
+
+      DUALCONTACT_KERNEL_CLONES void
+      cost(const std::size_t n,
+           const double     *y,
+           const double     *g,
+           const double     *b,
+           double (&sum)[8])
+      {
+        cost_loop<false>(n, y, b, const_cast<double *>(g), sum);
+      }
+
+      DUALCONTACT_KERNEL_CLONES void
+      residual_cost(const std::size_t n,
+                    const double     *y,
+                    const double     *b,
+                    double           *g,
+                    double (&sum)[8])
+      {
+        cost_loop<true>(n, y, b, g, sum);
+      }
     } // namespace vector_kernels_impl
 
 
@@ -647,6 +709,28 @@ namespace dualcontact
                                   const bool        free_only)
     {
       vector_kernels_impl::projected_step(n, x, g, l, tol, alpha, free_only);
+    }
+
+
+    void
+    VectorKernels::cost(const std::size_t n,
+                        const double     *y,
+                        const double     *g,
+                        const double     *b,
+                        Lanes            &sum)
+    {
+      vector_kernels_impl::cost(n, y, g, b, sum.v);
+    }
+
+
+    void
+    VectorKernels::residual_cost(const std::size_t n,
+                                 const double     *y,
+                                 const double     *b,
+                                 double           *g,
+                                 Lanes            &sum)
+    {
+      vector_kernels_impl::residual_cost(n, y, b, g, sum.v);
     }
 
 

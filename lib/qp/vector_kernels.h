@@ -175,6 +175,23 @@ namespace dualcontact
                      double        alpha,
                      bool          free_only);
 
+      /// sum of y_i (g_i - b_i) over n entries, added to the lanes: twice
+      /// the cost 1/2 y'Ay - b'y from the gradient g = Ay - b.
+      static void
+      cost(std::size_t   n,
+           const double *y,
+           const double *g,
+           const double *b,
+           Lanes        &sum);
+
+      /// g := g - b (g held A y), then cost(): one pass.
+      static void
+      residual_cost(std::size_t   n,
+                    const double *y,
+                    const double *b,
+                    double       *g,
+                    Lanes        &sum);
+
       /// The least ratio of the lanes (infinity when none was offered).
       static double
       min_ratio(const RatioLanes &ratio);
