@@ -7,7 +7,10 @@
 // One clone per instruction set on x86-64 with GCC (the loader's ifunc
 // resolver picks one at start-up); elsewhere one portable build of the
 // same code.
-#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__)
+// (DUALCONTACT_KERNEL_NO_CLONES: one build for the compiler's -march, to
+// compare the instruction sets' results with the test on one machine.)
+#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && \
+  !defined(DUALCONTACT_KERNEL_NO_CLONES)
 #  define DUALCONTACT_KERNEL_CLONES \
     __attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")))
 #  define DUALCONTACT_KERNEL_CLONED 1
