@@ -60,8 +60,8 @@ namespace
       const std::clock_t start = std::clock();
       for (unsigned long k = 0; k < calls; ++k)
         f();
-      best = std::min(best,
-                      double(std::clock() - start) / CLOCKS_PER_SEC / calls);
+      best =
+        std::min(best, double(std::clock() - start) / CLOCKS_PER_SEC / calls);
     }
     return best;
   }
@@ -126,14 +126,17 @@ main(int argc, char **argv)
 
     const double t_mv =
       time_per_call([&] { data->hessian.vmult(Ap, p); }, seconds);
-    double     sink = 0.;
+    double       sink = 0.;
     const double t_dot =
       time_per_call([&] { sink += internal::dot(p, Ap); }, seconds);
     double       phi_Ap = 0.;
-    const double t_step = time_per_call(
-      [&] { sink += set.cg_step(x, g, p, Ap, 0., phi_Ap).free_sq; }, seconds);
-    const double t_dir = time_per_call(
-      [&] { sink += set.conjugate_direction(x, g, 0., p).pp; }, seconds);
+    const double t_step =
+      time_per_call([&]
+                    { sink += set.cg_step(x, g, p, Ap, 0., phi_Ap).free_sq; },
+                    seconds);
+    const double t_dir =
+      time_per_call([&] { sink += set.conjugate_direction(x, g, 0., p).pp; },
+                    seconds);
     const double vector = t_dot + t_step + t_dir;
     std::printf("%9u %10.3e %10.3e %10.3e %10.3e %10.3e %8.1f%% %9.2f%s\n",
                 n,

@@ -1,7 +1,7 @@
 #include <qp/active_set_solver.h>
-#include <qp/vector_kernels.h>
 #include <qp/kkt_residuals.h>
 #include <qp/vector_helpers.h>
+#include <qp/vector_kernels.h>
 
 #include <deal.II/base/exceptions.h>
 
@@ -32,9 +32,14 @@ namespace dualcontact
       fused_dots(const VectorType &p, const VectorType &Ap, const VectorType &g)
       {
         VectorKernels::Lanes pAp, pp, gp;
-        VectorKernels::dots(
-          p.locally_owned_size(), p.begin(), Ap.begin(), g.begin(), pAp, pp, gp);
-        const double local[3] = {pAp.total(), pp.total(), gp.total()};
+        VectorKernels::dots(p.locally_owned_size(),
+                            p.begin(),
+                            Ap.begin(),
+                            g.begin(),
+                            pAp,
+                            pp,
+                            gp);
+        const double          local[3] = {pAp.total(), pp.total(), gp.total()};
         std::array<double, 3> global;
         dealii::Utilities::MPI::sum(dealii::ArrayView<const double>(local, 3),
                                     internal::communicator(p),

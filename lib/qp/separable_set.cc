@@ -1,6 +1,6 @@
-#include <qp/vector_kernels.h>
 #include <qp/separable_set.h>
 #include <qp/vector_helpers.h>
+#include <qp/vector_kernels.h>
 
 #include <deal.II/base/exceptions.h>
 
@@ -1502,14 +1502,14 @@ namespace dualcontact
                                       double           &phi_dot_Ap) const
     {
       Assert(finalized, dealii::ExcMessage("call finalize() first"));
-      double       *v   = x.begin();
-      double       *gv  = g.begin();
-      const double *pv  = p.begin();
-      const double *av  = Ap.begin();
+      double       *v  = x.begin();
+      double       *gv = g.begin();
+      const double *pv = p.begin();
+      const double *av = Ap.begin();
       // eight lanes (VectorKernels): the runs of bounds in the vectorized
       // kernel, everything else in lane 0
       VectorKernels::Lanes fs, bs, pa_lanes;
-      double &fsq = fs.v[0], &bsq = bs.v[0], &pa = pa_lanes.v[0];
+      double              &fsq = fs.v[0], &bsq = bs.v[0], &pa = pa_lanes.v[0];
       for (const auto &range : free_ranges)
         for (std::size_t i = range.first; i < range.second; ++i)
         {
@@ -1520,16 +1520,16 @@ namespace dualcontact
         }
       for (const Run &run : bound_runs)
         VectorKernels::cg_step(run.count,
-                              v + run.begin,
-                              gv + run.begin,
-                              pv + run.begin,
-                              av + run.begin,
-                              bound_lower.data() + run.first,
-                              tolerance,
-                              alpha,
-                              fs,
-                              bs,
-                              pa_lanes);
+                               v + run.begin,
+                               gv + run.begin,
+                               pv + run.begin,
+                               av + run.begin,
+                               bound_lower.data() + run.first,
+                               tolerance,
+                               alpha,
+                               fs,
+                               bs,
+                               pa_lanes);
       const BoxKind boxes{box_lower.data(), box_upper.data(), tolerance};
       for (const Run &run : box_runs)
       {
@@ -1607,7 +1607,7 @@ namespace dualcontact
       // kernel, everything else in lane 0
       VectorKernels::Lanes      pp_lanes, gp_lanes;
       VectorKernels::RatioLanes ratio;
-      double                  &pp0 = pp_lanes.v[0], &gp0 = gp_lanes.v[0];
+      double                   &pp0 = pp_lanes.v[0], &gp0 = gp_lanes.v[0];
       for (const auto &range : free_ranges)
         for (std::size_t i = range.first; i < range.second; ++i)
         {
@@ -1617,15 +1617,15 @@ namespace dualcontact
         }
       for (const Run &run : bound_runs)
         VectorKernels::conjugate_direction(run.count,
-                                          v + run.begin,
-                                          gv + run.begin,
-                                          bound_lower.data() + run.first,
-                                          tolerance,
-                                          beta,
-                                          pv + run.begin,
-                                          pp_lanes,
-                                          gp_lanes,
-                                          ratio);
+                                           v + run.begin,
+                                           gv + run.begin,
+                                           bound_lower.data() + run.first,
+                                           tolerance,
+                                           beta,
+                                           pv + run.begin,
+                                           pp_lanes,
+                                           gp_lanes,
+                                           ratio);
       {
         MinRatio      box_ratio{ratio.num[0], ratio.den[0]};
         const BoxKind boxes{box_lower.data(), box_upper.data(), tolerance};
@@ -1713,7 +1713,7 @@ namespace dualcontact
         for (std::size_t i = 0; i < run.count; ++i)
         {
           const bool active = free_only && k.classify(i, y[i]).active;
-          y[i] = k.project(i, y[i] - alpha * (active ? 0. : q[i]));
+          y[i]              = k.project(i, y[i] - alpha * (active ? 0. : q[i]));
         }
       }
       if (has_curved_blocks())

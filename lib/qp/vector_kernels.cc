@@ -11,12 +11,12 @@
 // compare the instruction sets' results with the test on one machine.)
 #if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && \
   !defined(DUALCONTACT_KERNEL_NO_CLONES)
-#  define DUALCONTACT_KERNEL_CLONES \
-    __attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")))
-#  define DUALCONTACT_KERNEL_CLONED 1
+#define DUALCONTACT_KERNEL_CLONES \
+  __attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")))
+#define DUALCONTACT_KERNEL_CLONED 1
 #else
-#  define DUALCONTACT_KERNEL_CLONES
-#  define DUALCONTACT_KERNEL_CLONED 0
+#define DUALCONTACT_KERNEL_CLONES
+#define DUALCONTACT_KERNEL_CLONED 0
 #endif
 
 #define DUALCONTACT_INLINE inline __attribute__((always_inline))
@@ -150,7 +150,7 @@ namespace dualcontact
           double (&ab)[8])
       {
         D4          s0 = load<D4>(ab), s1 = load<D4>(ab + 4);
-        std::size_t i  = 0;
+        std::size_t i = 0;
         for (; i + 8 <= n; i += 8)
         {
           s0 += load<D4>(a + i) * load<D4>(b + i);
@@ -230,9 +230,8 @@ namespace dualcontact
         {
           x[i] -= alpha * p[i];
           g[i] -= alpha * Ap[i];
-          const bool active =
-            x[i] - l[i] <= tol * (l[i] < 0. ? -l[i] : l[i]);
-          const double gm = 0. < g[i] ? 0. : g[i];
+          const bool   active = x[i] - l[i] <= tol * (l[i] < 0. ? -l[i] : l[i]);
+          const double gm     = 0. < g[i] ? 0. : g[i];
           free_sq[0] += active ? 0. : g[i] * g[i];
           chopped_sq[0] += active ? gm * gm : 0.;
           phi_Ap[0] += active ? 0. : g[i] * Ap[i];
@@ -270,8 +269,8 @@ namespace dualcontact
                      D                &num,
                      D                &den)
       {
-        const D    xv = load<D>(x + i), gv = load<D>(g + i), lv = load<D>(l + i);
-        const D    room   = xv - lv;
+        const D xv = load<D>(x + i), gv = load<D>(g + i), lv = load<D>(l + i);
+        const D room      = xv - lv;
         const auto active = room <= tol * (lv < 0. ? -lv : lv);
         const D    dv     = drop(active, gv) - beta * load<D>(p + i);
         store(p + i, dv);
@@ -351,7 +350,7 @@ namespace dualcontact
                           D                &fs,
                           D                &bs)
       {
-        const D    xv = load<D>(x + i), gv = load<D>(g + i), lv = load<D>(l + i);
+        const D xv = load<D>(x + i), gv = load<D>(g + i), lv = load<D>(l + i);
         const auto active = (xv - lv) <= tol * (lv < 0. ? -lv : lv);
         const D    gm     = drop(0. < gv, gv);
         if (phi != nullptr)
@@ -388,9 +387,8 @@ namespace dualcontact
         }
         for (; i < n; ++i)
         {
-          const bool active =
-            x[i] - l[i] <= tol * (l[i] < 0. ? -l[i] : l[i]);
-          const double gm = 0. < g[i] ? 0. : g[i];
+          const bool   active = x[i] - l[i] <= tol * (l[i] < 0. ? -l[i] : l[i]);
+          const double gm     = 0. < g[i] ? 0. : g[i];
           if (phi != nullptr)
             phi[i] = active ? 0. : g[i];
           free_sq[0] += active ? 0. : g[i] * g[i];
@@ -473,11 +471,11 @@ namespace dualcontact
                          const double     *l,
                          const double      alpha)
       {
-        constexpr double eps8 = 8. * std::numeric_limits<double>::epsilon();
-        const D          lv   = load<D>(l + i);
-        const D          ap   = alpha * load<D>(p + i);
-        const D          y    = load<D>(x + i) - ap;
-        const D scale = (absolute(y) + absolute(ap)) + absolute(lv);
+        constexpr double eps8  = 8. * std::numeric_limits<double>::epsilon();
+        const D          lv    = load<D>(l + i);
+        const D          ap    = alpha * load<D>(p + i);
+        const D          y     = load<D>(x + i) - ap;
+        const D          scale = (absolute(y) + absolute(ap)) + absolute(lv);
         // (y < l or snapped) ? l : y, as two selections: GCC 12 turns a
         // selection on the or of two masks into scalar code for AVX-512
         const D below = y < lv ? lv : y;
@@ -536,10 +534,9 @@ namespace dualcontact
           projected_step_body<D4>(i, x, g, l, tol, alpha, free_only);
         for (; i < n; ++i)
         {
-          const bool active =
-            free_only && x[i] - l[i] <= tol * std::abs(l[i]);
-          const double y = x[i] - (active ? 0. : alpha * g[i]);
-          x[i]           = y < l[i] ? l[i] : y;
+          const bool active = free_only && x[i] - l[i] <= tol * std::abs(l[i]);
+          const double y    = x[i] - (active ? 0. : alpha * g[i]);
+          x[i]              = y < l[i] ? l[i] : y;
         }
       }
 
@@ -553,7 +550,7 @@ namespace dualcontact
                 double (&sum)[8])
       {
         D4          s0 = load<D4>(sum), s1 = load<D4>(sum + 4);
-        std::size_t i  = 0;
+        std::size_t i    = 0;
         const auto  body = [&](const std::size_t k, D4 &s)
         {
           const D4 bv = load<D4>(b + k);
@@ -609,12 +606,12 @@ namespace dualcontact
 
     void
     VectorKernels::dots(const std::size_t n,
-                       const double     *p,
-                       const double     *Ap,
-                       const double     *g,
-                       Lanes            &pAp,
-                       Lanes            &pp,
-                       Lanes            &gp)
+                        const double     *p,
+                        const double     *Ap,
+                        const double     *g,
+                        Lanes            &pAp,
+                        Lanes            &pp,
+                        Lanes            &gp)
     {
       vector_kernels_impl::dots(n, p, Ap, g, pAp.v, pp.v, gp.v);
     }
@@ -632,16 +629,16 @@ namespace dualcontact
 
     void
     VectorKernels::cg_step(const std::size_t n,
-                          double           *x,
-                          double           *g,
-                          const double     *p,
-                          const double     *Ap,
-                          const double     *l,
-                          const double      tol,
-                          const double      alpha,
-                          Lanes            &free_sq,
-                          Lanes            &chopped_sq,
-                          Lanes            &phi_Ap)
+                           double           *x,
+                           double           *g,
+                           const double     *p,
+                           const double     *Ap,
+                           const double     *l,
+                           const double      tol,
+                           const double      alpha,
+                           Lanes            &free_sq,
+                           Lanes            &chopped_sq,
+                           Lanes            &phi_Ap)
     {
       vector_kernels_impl::cg_step(
         n, x, g, p, Ap, l, tol, alpha, free_sq.v, chopped_sq.v, phi_Ap.v);
@@ -650,15 +647,15 @@ namespace dualcontact
 
     void
     VectorKernels::conjugate_direction(const std::size_t n,
-                                      const double     *x,
-                                      const double     *g,
-                                      const double     *l,
-                                      const double      tol,
-                                      const double      beta,
-                                      double           *p,
-                                      Lanes            &pp,
-                                      Lanes            &gp,
-                                      RatioLanes       &ratio)
+                                       const double     *x,
+                                       const double     *g,
+                                       const double     *l,
+                                       const double      tol,
+                                       const double      beta,
+                                       double           *p,
+                                       Lanes            &pp,
+                                       Lanes            &gp,
+                                       RatioLanes       &ratio)
     {
       vector_kernels_impl::conjugate_direction(
         n, x, g, l, tol, beta, p, pp.v, gp.v, ratio.num, ratio.den);

@@ -8,9 +8,10 @@
 // Problem::free_set_preconditioner): converged to 1e-10, KKT residuals,
 // ||x - x*||, the distributed x equals the serial one (dealii::Vector,
 // solved on every rank) to 1e-9 and needs the same number of iterations
-// (so the counts on 1 and 2 ranks agree); jacobi needs at most half the
-// iterations of none; the factory (the same operator) the same iterations
-// as jacobi, rebuilt only when the global active set changes.
+// to 1% + 1 (the two matrices' products differ in rounding, and so do the
+// iterates; the counts on 1 and 2 ranks agree as well); jacobi needs at most
+// half the iterations of none; the factory (the same operator) the same
+// iterations as jacobi, rebuilt only when the global active set changes.
 // jacobi-rel (Proportioning step = preconditioned) the same checks.
 // Preconditioner = amg on distributed vectors without a factory (there is
 // no distributed FreeSetAMG) is refused on every rank with a message
@@ -24,6 +25,7 @@
 
 #include <qp/solver_factory.h>
 
+#include <algorithm>
 #include <functional>
 #include <map>
 
@@ -239,8 +241,14 @@ main(int argc, char **argv)
                 tag + "||x - x*|| = " + sci(err));
     check.check(diff.l2_norm() <= 1e-9 * (1. + norm_x_star),
                 tag + "||x_mpi - x_serial|| = " + sci(diff.l2_norm()));
-    check.check(ps.iterations == ss.iterations && ps.n_cg == ss.n_cg &&
-                  ps.n_proportioning == ss.n_proportioning,
+    // the same counts up to rounding: the Trilinos and the deal.II matrix
+    // sum a row in different orders, so the iterates differ in the last
+    // bits (447 against 448 iterations of 40 x 40 happen on 1 rank)
+    const auto close_count = [](const unsigned int a, const unsigned int b)
+    { return std::max(a, b) - std::min(a, b) <= 1 + std::max(a, b) / 100; };
+    check.check(close_count(ps.iterations, ss.iterations) &&
+                  close_count(ps.n_cg, ss.n_cg) &&
+                  close_count(ps.n_proportioning, ss.n_proportioning),
                 tag + std::to_string(ps.iterations) + " iterations (" +
                   std::to_string(ps.n_cg) + " CG, " +
                   std::to_string(ps.n_proportioning) +

@@ -127,7 +127,7 @@ namespace
         l = 0.;
       else if (kind == 1)
         l = -0.;
-      double room = uniform(rng, 0., 1.);
+      double             room  = uniform(rng, 0., 1.);
       const unsigned int state = rng() % 10;
       if (state < 3)
         room = 0.; // active
@@ -138,7 +138,7 @@ namespace
       d.l.push_back(l);
       d.x.push_back(l + room);
       d.g.push_back(uniform(rng, -1., 1.));
-      double p = uniform(rng, -1., 1.);
+      double             p   = uniform(rng, -1., 1.);
       const unsigned int dir = rng() % 10;
       if (dir == 0)
         p = 0.;
@@ -159,10 +159,11 @@ main()
   c.verbose  = false;
   std::cout << "vector kernels: " << VectorKernels::instruction_set()
             << std::endl;
-  std::mt19937 rng(20261121);
-  const std::vector<std::size_t> sizes = {
-    0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 11, 12, 13, 15, 16, 17, 19, 20, 23, 24,
-    25, 28, 31, 32, 33, 47, 64, 100, 1001};
+  std::mt19937                   rng(20261121);
+  const std::vector<std::size_t> sizes = {0,  1,  2,  3,   4,   5,  6,  7,
+                                          8,  9,  11, 12,  13,  15, 16, 17,
+                                          19, 20, 23, 24,  25,  28, 31, 32,
+                                          33, 47, 64, 100, 1001};
   for (const std::size_t n : sizes)
   {
     const std::string at = " (n = " + std::to_string(n) + ")";
@@ -203,8 +204,7 @@ main()
     {
       const double        alpha = uniform(rng, 0., 0.5);
       std::vector<double> x = d.x, g = d.g, rx = d.x, rg = d.g;
-      Lanes fs = start_lanes(rng), bs = start_lanes(rng),
-            pa = start_lanes(rng);
+      Lanes fs = start_lanes(rng), bs = start_lanes(rng), pa = start_lanes(rng);
       Lanes rfs = fs, rbs = bs, rpa = pa;
       for (std::size_t i = 0; i < n; ++i)
       {
@@ -238,10 +238,10 @@ main()
     for (const double beta : {0., 0.37})
     {
       std::vector<double> p = d.p, rp = d.p;
-      Lanes      pp = start_lanes(rng), gp = start_lanes(rng);
-      Lanes      rpp = pp, rgp = gp;
-      RatioLanes ratio;
-      Ratio      reference;
+      Lanes               pp = start_lanes(rng), gp = start_lanes(rng);
+      Lanes               rpp = pp, rgp = gp;
+      RatioLanes          ratio;
+      Ratio               reference;
       for (std::size_t i = 0; i < n; ++i)
       {
         const bool         active = is_active(d.x[i], d.l[i]);
@@ -286,8 +286,8 @@ main()
     for (const bool with_phi : {true, false})
     {
       std::vector<double> phi(n, 7.), rphi(n, 7.);
-      Lanes fs = start_lanes(rng), bs = start_lanes(rng);
-      Lanes rfs = fs, rbs = bs;
+      Lanes               fs = start_lanes(rng), bs = start_lanes(rng);
+      Lanes               rfs = fs, rbs = bs;
       for (std::size_t i = 0; i < n; ++i)
       {
         const bool         active = is_active(d.x[i], d.l[i]);
@@ -306,15 +306,14 @@ main()
                                     with_phi ? phi.data() : nullptr,
                                     fs,
                                     bs);
-      c.check(same_bits(phi, rphi) && same_bits(fs, rfs) &&
-                same_bits(bs, rbs),
+      c.check(same_bits(phi, rphi) && same_bits(fs, rfs) && same_bits(bs, rbs),
               std::string("gradient_norms") + (with_phi ? "" : " (no phi)") +
                 ": bitwise" + at);
     }
 
     // feasible_step: SeparableSet's old loop
     {
-      const double alpha = uniform(rng, 0., 2.);
+      const double        alpha = uniform(rng, 0., 2.);
       std::vector<double> x = d.x, rx = d.x;
       for (std::size_t i = 0; i < n; ++i)
       {
@@ -332,7 +331,7 @@ main()
     // projected_step, along g and along the free gradient
     for (const bool free_only : {false, true})
     {
-      const double alpha = uniform(rng, -0.5, 2.);
+      const double        alpha = uniform(rng, -0.5, 2.);
       std::vector<double> x = d.x, rx = d.x;
       for (std::size_t i = 0; i < n; ++i)
       {
