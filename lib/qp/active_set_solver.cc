@@ -26,28 +26,6 @@ namespace dualcontact
       // rounding noise of that size.
       constexpr double curvature_threshold = 1e-13;
 
-      // {p'Ap, p'p, g'p} in one pass over the local entries, one reduction
-      template <typename VectorType>
-      std::array<double, 3>
-      fused_dots(const VectorType &p, const VectorType &Ap, const VectorType &g)
-      {
-        VectorKernels::Lanes pAp, pp, gp;
-        VectorKernels::dots(p.locally_owned_size(),
-                            p.begin(),
-                            Ap.begin(),
-                            g.begin(),
-                            pAp,
-                            pp,
-                            gp);
-        const double          local[3] = {pAp.total(), pp.total(), gp.total()};
-        std::array<double, 3> global;
-        dealii::Utilities::MPI::sum(dealii::ArrayView<const double>(local, 3),
-                                    internal::communicator(p),
-                                    dealii::ArrayView<double>(global.data(),
-                                                              3));
-        return global;
-      }
-
       // x -= alpha p, g -= alpha Ap in one pass (the CG step)
       template <typename VectorType>
       void
@@ -170,12 +148,7 @@ namespace dualcontact
 
       // 1/2 y'Ay - b'y from the gradient gy = Ay - b: 1/2 y'(gy - b)
       const auto cost_at = [&](const VectorType &y, const VectorType &gy)
-      {
-        VectorKernels::Lanes s;
-        VectorKernels::cost(
-          y.locally_owned_size(), y.begin(), gy.begin(), problem.b.begin(), s);
-        return 0.5 * internal::sum(s.total(), y);
-      };
+      { return internal::cost(y, gy, problem.b); };
       // gy := gy - b (gy holds A y) and the cost at y in one pass
       const auto residual_and_cost = [&](const VectorType &y, VectorType &gy)
       {
@@ -507,19 +480,17 @@ namespace dualcontact
           // BB length from the last iterate difference s = x_k -
           // x_{k-1}, y = g_k - g_{k-1} = A s (no extra product)
           // one pass: s's, s'y, and x_prev := x, g_prev := g
-          bb_alpha                   = alpha_bar;
-          double            local[2] = {0., 0.};
-          double           *xp = x_prev.begin(), *gp = g_prev.begin();
-          const double     *xv = x.begin(), *gv = g.begin();
-          const std::size_t n = x.locally_owned_size();
-          for (std::size_t i = 0; i < n; ++i)
-          {
-            const double si = xv[i] - xp[i], yi = gv[i] - gp[i];
-            local[0] += si * si;
-            local[1] += si * yi;
-            xp[i] = xv[i];
-            gp[i] = gv[i];
-          }
+          bb_alpha = alpha_bar;
+          VectorKernels::Lanes ss, sy;
+          VectorKernels::step_differences(x.locally_owned_size(),
+                                          x.begin(),
+                                          g.begin(),
+                                          x_prev.begin(),
+                                          g_prev.begin(),
+                                          true,
+                                          ss,
+                                          sy);
+          const double local[2] = {ss.total(), sy.total()};
           if (stats.iterations > 1)
           {
             double global[2];
@@ -552,7 +523,7 @@ namespace dualcontact
           if (direction_valid)
             d = {{internal::dot(p, Ap), direction.pp, direction.gp}};
           else
-            d = fused_dots(p, Ap, g);
+            d = internal::dots(p, Ap, g);
           const double pAp = d[0], pp = d[1], gp = d[2];
           const double alpha_f =
             direction_valid ? direction.max_step : set.max_feasible_step(x, p);
@@ -739,7 +710,7 @@ namespace dualcontact
           direction_valid = false;
           set.chopped_gradient(x, g, p);
           this->apply_hessian(problem, Ap, p, stats);
-          const std::array<double, 3> d   = fused_dots(p, Ap, g);
+          const std::array<double, 3> d   = internal::dots(p, Ap, g);
           const double                bAb = d[0], bb = d[1], gb = d[2];
           if (!std::isfinite(bAb + bb + gb))
           {

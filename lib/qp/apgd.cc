@@ -1,4 +1,5 @@
 #include <qp/apgd.h>
+#include <qp/vector_helpers.h>
 
 #include <deal.II/base/exceptions.h>
 #include <deal.II/lac/trilinos_vector.h>
@@ -41,15 +42,13 @@ namespace dualcontact
         this->check_stop(stats, this->criterion(problem, x, g, stats));
       while (!stop)
       {
-        x_old  = x;
-        Ax_old = Ax;
+        // x_old := x, Ax_old := Ax (swaps: x and Ax are overwritten next)
+        x_old.swap(x);
+        Ax_old.swap(Ax);
         // x^{k+1} = P(y^k - 1/L grad f(y^k))
         x = y;
-        x.add(-1. / L, gy);
-        this->project(problem, x, stats);
+        this->projected_step(problem, x, gy, 1. / L, stats);
         this->apply_hessian(problem, Ax, x, stats);
-        g = Ax;
-        g -= problem.b;
         ++stats.iterations;
         ++stats.n_expansions;
 
@@ -59,11 +58,18 @@ namespace dualcontact
         const double beta      = theta * (1. - theta) / (t2 + theta_new);
         theta                  = theta_new;
         // y^{k+1} = x^{k+1} + beta (x^{k+1} - x^k), gradient by linearity
-        y = x;
-        y.sadd(1. + beta, -beta, x_old);
-        gy = Ax;
-        gy.sadd(1. + beta, -beta, Ax_old);
-        gy -= problem.b;
+        // g = Ax - b, y = (1 + beta) x - beta x_old, gy = (1 + beta) Ax -
+        // beta Ax_old - b in one pass
+        VectorKernels::extrapolate(x.locally_owned_size(),
+                                   beta,
+                                   x.begin(),
+                                   x_old.begin(),
+                                   Ax.begin(),
+                                   Ax_old.begin(),
+                                   problem.b.begin(),
+                                   g.begin(),
+                                   y.begin(),
+                                   gy.begin());
 
         stop = this->check_stop(stats, this->criterion(problem, x, g, stats));
       }

@@ -1,4 +1,5 @@
 #include <qp/pbbf.h>
+#include <qp/vector_helpers.h>
 
 #include <deal.II/base/exceptions.h>
 #include <deal.II/lac/trilinos_vector.h>
@@ -26,14 +27,9 @@ namespace dualcontact
       this->lambda_max(problem, stats);
       const double alpha_bar = stats.alpha_bar;
 
-      VectorType g(x), x_old(x), g_old(x), s(x), y(x), x_min(x), g_min(x),
-        work(x);
+      VectorType g(x), x_old(x), g_old(x), x_min(x), g_min(x);
       const auto cost = [&](const VectorType &point, const VectorType &gradient)
-      {
-        work = gradient;
-        work -= problem.b;
-        return 0.5 * (work * point);
-      };
+      { return internal::cost(point, gradient, problem.b); };
       // dst = P(src - alpha g_src), g_dst = A dst - b
       const auto projected_step = [&](VectorType       &dst,
                                       VectorType       &g_dst,
@@ -41,10 +37,8 @@ namespace dualcontact
                                       const VectorType &g_src,
                                       const double      alpha)
       {
-        work = src;
-        work.add(-alpha, g_src);
-        dst = work;
-        this->project(problem, dst, stats);
+        dst = src;
+        this->projected_step(problem, dst, g_src, alpha, stats);
         this->apply_hessian(problem, g_dst, dst, stats);
         g_dst -= problem.b;
       };
@@ -72,12 +66,18 @@ namespace dualcontact
       {
         // BB step length from s = x^k - x^{k-1}, As = g^k - g^{k-1}:
         // no extra product
-        s = x;
-        s -= x_old;
-        y = g;
-        y -= g_old;
-        const double ss       = s * s;
-        const double sAs      = s * y;
+        // s = x - x_old, y = g - g_old = A s: s's and s'y in one pass
+        VectorKernels::Lanes ss_lanes, sy_lanes;
+        VectorKernels::step_differences(x.locally_owned_size(),
+                                        x.begin(),
+                                        g.begin(),
+                                        x_old.begin(),
+                                        g_old.begin(),
+                                        false,
+                                        ss_lanes,
+                                        sy_lanes);
+        const double ss  = internal::sum(ss_lanes.total(), x);
+        const double sAs = internal::sum(sy_lanes.total(), x);
         const double alpha_bb = (sAs > 0. && ss > 0.) ? ss / sAs : alpha_bar;
         if (!std::isfinite(alpha_bb))
         {

@@ -144,6 +144,24 @@ namespace dualcontact
 
 
     template <typename VectorType>
+    void
+    SolverBase<VectorType>::projected_step(const Problem<VectorType> &problem,
+                                           VectorType                &x,
+                                           const VectorType          &g,
+                                           const double               alpha,
+                                           SolverStatistics &stats) const
+    {
+      if (problem.constraints)
+      {
+        problem.constraints->projected_step(x, g, alpha, false);
+        ++stats.n_projections;
+      }
+      else
+        x.add(-alpha, g);
+    }
+
+
+    template <typename VectorType>
     double
     SolverBase<VectorType>::lambda_max(const Problem<VectorType> &problem,
                                        SolverStatistics          &stats) const

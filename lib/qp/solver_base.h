@@ -93,6 +93,16 @@ namespace dualcontact
               VectorType                &x,
               SolverStatistics          &stats) const;
 
+      /// x := P(x - alpha g) in one pass (SeparableSet::projected_step),
+      /// the projection counted in @p stats; x - alpha g without
+      /// constraints.  @p g must not be @p x.
+      void
+      projected_step(const Problem<VectorType> &problem,
+                     VectorType                &x,
+                     const VectorType          &g,
+                     double                     alpha,
+                     SolverStatistics          &stats) const;
+
       /// lambda_max from the problem or by power iteration (counted);
       /// sets stats.lambda_max and stats.alpha_bar = factor / lambda_max.
       double

@@ -1,10 +1,12 @@
 #include <qp/spg_qp.h>
+#include <qp/vector_helpers.h>
 
 #include <deal.II/base/exceptions.h>
 #include <deal.II/lac/trilinos_vector.h>
 #include <deal.II/lac/vector.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <deque>
 #include <limits>
@@ -28,16 +30,11 @@ namespace dualcontact
       SolverStatistics        stats = this->start(problem, x);
       const double            lmax  = this->lambda_max(problem, stats);
 
-      VectorType g(x), d(x), Ad(x), work(x);
+      VectorType g(x), d(x), Ad(x);
       this->apply_hessian(problem, g, x, stats);
       g -= problem.b;
       // f = 1/2 x'Ax - b'x = 1/2 (g - b)'x: no product needed
-      const auto cost = [&]()
-      {
-        work = g;
-        work -= problem.b;
-        return 0.5 * (work * x);
-      };
+      const auto cost = [&]() { return internal::cost(x, g, problem.b); };
       double             f = cost();
       std::deque<double> recent(1, f); // the last m cost values (GLL)
       double             alpha = prm.spg_alpha0_factor / lmax;
@@ -51,13 +48,12 @@ namespace dualcontact
       {
         // d = P(x - alpha g) - x
         d = x;
-        d.add(-alpha, g);
-        this->project(problem, d, stats);
+        this->projected_step(problem, d, g, alpha, stats);
         d -= x;
         this->apply_hessian(problem, Ad, d, stats);
-        const double dAd = d * Ad;
-        const double gd  = g * d;
-        const double dd  = d * d;
+        // d'Ad, d'd, g'd in one pass
+        const std::array<double, 3> dots = internal::dots(d, Ad, g);
+        const double dAd = dots[0], dd = dots[1], gd = dots[2];
         ++stats.iterations;
         ++stats.n_bb;
         if (dd == 0.)
@@ -106,8 +102,9 @@ namespace dualcontact
         // (dAd <= 0 with g'd < 0: the cost decreases along d without
         // bound inside the segment; beta = sigma_2 keeps x feasible)
 
-        x.add(beta, d);
-        g.add(beta, Ad);
+        // x += beta d, g += beta Ad in one pass, then the cost
+        VectorKernels::step(
+          x.locally_owned_size(), beta, d.begin(), Ad.begin(), x.begin(), g.begin());
         f = cost();
         recent.push_back(f);
         while (recent.size() > std::max(1u, prm.spg_m))

@@ -14,6 +14,7 @@
 #include <deal.II/lac/trilinos_vector.h>
 #include <deal.II/lac/vector.h>
 
+#include <array>
 #include <cmath>
 
 namespace dualcontact
@@ -80,6 +81,35 @@ namespace dualcontact
       norm(const VectorType &a)
       {
         return std::sqrt(dot(a, a));
+      }
+
+      /// {p'Ap, p'p, g'p} in one pass (VectorKernels::dots), one reduction.
+      template <typename VectorType>
+      inline std::array<double, 3>
+      dots(const VectorType &p, const VectorType &Ap, const VectorType &g)
+      {
+        VectorKernels::Lanes pAp, pp, gp;
+        VectorKernels::dots(
+          p.locally_owned_size(), p.begin(), Ap.begin(), g.begin(), pAp, pp, gp);
+        const double          local[3] = {pAp.total(), pp.total(), gp.total()};
+        std::array<double, 3> global;
+        dealii::Utilities::MPI::sum(dealii::ArrayView<const double>(local, 3),
+                                    communicator(p),
+                                    dealii::ArrayView<double>(global.data(),
+                                                              3));
+        return global;
+      }
+
+      /// The cost 1/2 y'Ay - b'y from the gradient g = Ay - b: 1/2 y'(g -
+      /// b), in one pass (VectorKernels::cost).
+      template <typename VectorType>
+      inline double
+      cost(const VectorType &y, const VectorType &g, const VectorType &b)
+      {
+        VectorKernels::Lanes s;
+        VectorKernels::cost(
+          y.locally_owned_size(), y.begin(), g.begin(), b.begin(), s);
+        return 0.5 * sum(s.total(), y);
       }
     } // namespace internal
   }   // namespace qp

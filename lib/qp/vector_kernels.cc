@@ -601,6 +601,118 @@ namespace dualcontact
       {
         cost_loop<true>(n, y, b, g, sum);
       }
+
+      DUALCONTACT_KERNEL_CLONES void
+      step(const std::size_t n,
+           const double      beta,
+           const double     *d,
+           const double     *Ad,
+           double           *x,
+           double           *g)
+      {
+        std::size_t i = 0;
+        for (; i + 4 <= n; i += 4)
+        {
+          store(x + i, load<D4>(x + i) + beta * load<D4>(d + i));
+          store(g + i, load<D4>(g + i) + beta * load<D4>(Ad + i));
+        }
+        for (; i < n; ++i)
+        {
+          x[i] += beta * d[i];
+          g[i] += beta * Ad[i];
+        }
+      }
+
+      template <typename D>
+      DUALCONTACT_INLINE void
+      differences_body(const std::size_t i,
+                       const double     *x,
+                       const double     *g,
+                       double           *x_prev,
+                       double           *g_prev,
+                       const bool        copy,
+                       D                &ss,
+                       D                &sy)
+      {
+        const D xv = load<D>(x + i), gv = load<D>(g + i);
+        const D sv = xv - load<D>(x_prev + i), yv = gv - load<D>(g_prev + i);
+        ss += sv * sv;
+        sy += sv * yv;
+        if (copy)
+        {
+          store(x_prev + i, xv);
+          store(g_prev + i, gv);
+        }
+      }
+
+      DUALCONTACT_KERNEL_CLONES void
+      step_differences(const std::size_t n,
+                       const double     *x,
+                       const double     *g,
+                       double           *x_prev,
+                       double           *g_prev,
+                       const bool        copy,
+                       double (&ss)[8],
+                       double (&sy)[8])
+      {
+        D4 a0 = load<D4>(ss), a1 = load<D4>(sy);
+        D4 b0 = load<D4>(ss + 4), b1 = load<D4>(sy + 4);
+        std::size_t i = 0;
+        for (; i + 8 <= n; i += 8)
+        {
+          differences_body(i, x, g, x_prev, g_prev, copy, a0, a1);
+          differences_body(i + 4, x, g, x_prev, g_prev, copy, b0, b1);
+        }
+        if (i + 4 <= n)
+        {
+          differences_body(i, x, g, x_prev, g_prev, copy, a0, a1);
+          i += 4;
+        }
+        store(ss, a0);
+        store(sy, a1);
+        store(ss + 4, b0);
+        store(sy + 4, b1);
+        for (; i < n; ++i)
+        {
+          const double si = x[i] - x_prev[i], yi = g[i] - g_prev[i];
+          ss[0] += si * si;
+          sy[0] += si * yi;
+          if (copy)
+          {
+            x_prev[i] = x[i];
+            g_prev[i] = g[i];
+          }
+        }
+      }
+
+      DUALCONTACT_KERNEL_CLONES void
+      extrapolate(const std::size_t n,
+                  const double      beta,
+                  const double     *x,
+                  const double     *x_old,
+                  const double     *Ax,
+                  const double     *Ax_old,
+                  const double     *b,
+                  double           *g,
+                  double           *y,
+                  double           *gy)
+      {
+        const double s = 1. + beta;
+        std::size_t  i = 0;
+        for (; i + 4 <= n; i += 4)
+        {
+          const D4 av = load<D4>(Ax + i), bv = load<D4>(b + i);
+          store(g + i, av - bv);
+          store(y + i, s * load<D4>(x + i) - beta * load<D4>(x_old + i));
+          store(gy + i, (s * av - beta * load<D4>(Ax_old + i)) - bv);
+        }
+        for (; i < n; ++i)
+        {
+          g[i]  = Ax[i] - b[i];
+          y[i]  = s * x[i] - beta * x_old[i];
+          gy[i] = (s * Ax[i] - beta * Ax_old[i]) - b[i];
+        }
+      }
     } // namespace vector_kernels_impl
 
 
@@ -731,6 +843,50 @@ namespace dualcontact
                                  Lanes            &sum)
     {
       vector_kernels_impl::residual_cost(n, y, b, g, sum.v);
+    }
+
+
+    void
+    VectorKernels::step(const std::size_t n,
+                        const double      beta,
+                        const double     *d,
+                        const double     *Ad,
+                        double           *x,
+                        double           *g)
+    {
+      vector_kernels_impl::step(n, beta, d, Ad, x, g);
+    }
+
+
+    void
+    VectorKernels::step_differences(const std::size_t n,
+                                    const double     *x,
+                                    const double     *g,
+                                    double           *x_prev,
+                                    double           *g_prev,
+                                    const bool        copy,
+                                    Lanes            &ss,
+                                    Lanes            &sy)
+    {
+      vector_kernels_impl::step_differences(
+        n, x, g, x_prev, g_prev, copy, ss.v, sy.v);
+    }
+
+
+    void
+    VectorKernels::extrapolate(const std::size_t n,
+                               const double      beta,
+                               const double     *x,
+                               const double     *x_old,
+                               const double     *Ax,
+                               const double     *Ax_old,
+                               const double     *b,
+                               double           *g,
+                               double           *y,
+                               double           *gy)
+    {
+      vector_kernels_impl::extrapolate(
+        n, beta, x, x_old, Ax, Ax_old, b, g, y, gy);
     }
 
 

@@ -192,6 +192,47 @@ namespace dualcontact
                     double       *g,
                     Lanes        &sum);
 
+      /// x += beta d and g += beta Ad over n entries (a step and its
+      /// gradient update, one pass).
+      static void
+      step(std::size_t   n,
+           double        beta,
+           const double *d,
+           const double *Ad,
+           double       *x,
+           double       *g);
+
+      /**
+       * The Barzilai-Borwein quantities of the last step over n entries:
+       * s = x - x_prev, y = g - g_prev, s's and s'y added to the lanes;
+       * with @p copy then x_prev := x, g_prev := g (one pass).
+       */
+      static void
+      step_differences(std::size_t   n,
+                       const double *x,
+                       const double *g,
+                       double       *x_prev,
+                       double       *g_prev,
+                       bool          copy,
+                       Lanes        &ss,
+                       Lanes        &sy);
+
+      /**
+       * APGD's extrapolation over n entries: g = Ax - b, y = (1 + beta) x
+       * - beta x_old, gy = ((1 + beta) Ax - beta Ax_old) - b.
+       */
+      static void
+      extrapolate(std::size_t   n,
+                  double        beta,
+                  const double *x,
+                  const double *x_old,
+                  const double *Ax,
+                  const double *Ax_old,
+                  const double *b,
+                  double       *g,
+                  double       *y,
+                  double       *gy);
+
       /// The least ratio of the lanes (infinity when none was offered).
       static double
       min_ratio(const RatioLanes &ratio);
