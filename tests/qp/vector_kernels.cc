@@ -345,6 +345,61 @@ main()
                 ": bitwise" + at);
     }
 
+    // step, step_differences (with and without the copy), extrapolate:
+    // elementwise in the expressions of the loops they replaced
+    {
+      const double        beta = uniform(rng, -1., 1.);
+      std::vector<double> x = d.x, g = d.g, rx = d.x, rg = d.g;
+      for (std::size_t i = 0; i < n; ++i)
+      {
+        rx[i] += beta * d.p[i];
+        rg[i] += beta * d.Ap[i];
+      }
+      VectorKernels::step(n, beta, d.p.data(), d.Ap.data(), x.data(), g.data());
+      c.check(same_bits(x, rx) && same_bits(g, rg), "step: bitwise" + at);
+
+      for (const bool copy : {false, true})
+      {
+        std::vector<double> xp = d.p, gp = d.Ap;
+        Lanes ss = start_lanes(rng), sy = start_lanes(rng), rss = ss, rsy = sy;
+        for (std::size_t i = 0; i < n; ++i)
+        {
+          const double si = d.x[i] - d.p[i], yi = d.g[i] - d.Ap[i];
+          rss.v[lane(i, n)] += si * si;
+          rsy.v[lane(i, n)] += si * yi;
+        }
+        VectorKernels::step_differences(
+          n, d.x.data(), d.g.data(), xp.data(), gp.data(), copy, ss, sy);
+        c.check(same_bits(ss, rss) && same_bits(sy, rsy) &&
+                  same_bits(xp, copy ? d.x : d.p) &&
+                  same_bits(gp, copy ? d.g : d.Ap),
+                std::string("step_differences") + (copy ? " (copy)" : "") +
+                  ": bitwise" + at);
+      }
+
+      std::vector<double> eg(n), ey(n), egy(n), rgo(n), ry(n), rgy(n);
+      for (std::size_t i = 0; i < n; ++i)
+      {
+        // the deal.II operations APGD made: g = Ax; g -= b; y = x;
+        // y.sadd(1 + beta, -beta, x_old); gy = Ax; gy.sadd(...); gy -= b
+        rgo[i] = d.Ap[i] - d.b[i];
+        ry[i]  = (1. + beta) * d.x[i] + -beta * d.p[i];
+        rgy[i] = ((1. + beta) * d.Ap[i] + -beta * d.g[i]) - d.b[i];
+      }
+      VectorKernels::extrapolate(n,
+                                 beta,
+                                 d.x.data(),
+                                 d.p.data(),
+                                 d.Ap.data(),
+                                 d.g.data(),
+                                 d.b.data(),
+                                 eg.data(),
+                                 ey.data(),
+                                 egy.data());
+      c.check(same_bits(eg, rgo) && same_bits(ey, ry) && same_bits(egy, rgy),
+              "extrapolate: bitwise" + at);
+    }
+
     // cost, residual_cost
     {
       Lanes s = start_lanes(rng), rs = s;
