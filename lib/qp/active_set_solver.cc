@@ -26,25 +26,6 @@ namespace dualcontact
       // rounding noise of that size.
       constexpr double curvature_threshold = 1e-13;
 
-      // x -= alpha p, g -= alpha Ap in one pass (the CG step)
-      template <typename VectorType>
-      void
-      fused_step(VectorType       &x,
-                 VectorType       &g,
-                 const VectorType &p,
-                 const VectorType &Ap,
-                 const double      alpha)
-      {
-        double           *xv = x.begin(), *gv = g.begin();
-        const double     *pv = p.begin(), *av = Ap.begin();
-        const std::size_t n = x.locally_owned_size();
-        for (std::size_t i = 0; i < n; ++i)
-        {
-          xv[i] -= alpha * pv[i];
-          gv[i] -= alpha * av[i];
-        }
-      }
-
       // compute_kkt_residuals() with the gradient g = A x - b already known
       // (the one a converged solve has just verified by a product): no
       // product for the KKT report when x is feasible to rounding (then
@@ -580,7 +561,13 @@ namespace dualcontact
             }
             else
             {
-              fused_step(x, g, p, Ap, alpha_cg);
+              // x -= alpha p, g -= alpha Ap in one pass
+              VectorKernels::step(x.locally_owned_size(),
+                                  -alpha_cg,
+                                  p.begin(),
+                                  Ap.begin(),
+                                  x.begin(),
+                                  g.begin());
               value   = refresh(phi);
               beta_cg = internal::dot(phi, Ap) / pAp;
             }

@@ -76,8 +76,8 @@ namespace dualcontact
                                         false,
                                         ss_lanes,
                                         sy_lanes);
-        const double ss  = internal::sum(ss_lanes.total(), x);
-        const double sAs = internal::sum(sy_lanes.total(), x);
+        const double ss       = internal::sum(ss_lanes.total(), x);
+        const double sAs      = internal::sum(sy_lanes.total(), x);
         const double alpha_bb = (sAs > 0. && ss > 0.) ? ss / sAs : alpha_bar;
         if (!std::isfinite(alpha_bb))
         {

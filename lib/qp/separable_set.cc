@@ -980,7 +980,8 @@ namespace dualcontact
                                     const double      alpha,
                                     const bool        reduced,
                                     Sink             &sink,
-                                    const bool        curved_only) const
+                                    const bool        curved_only,
+                                    const bool        skip_bounds) const
     {
       Assert(finalized, dealii::ExcMessage("call finalize() first"));
       const Kernels            k{tolerance};
@@ -990,7 +991,7 @@ namespace dualcontact
       const std::vector<Box>   no_boxes;
       double                   phi[3], beta[3], red[3];
 
-      for (const auto &blk : (curved_only ? no_bounds : bounds))
+      for (const auto &blk : (curved_only || skip_bounds ? no_bounds : bounds))
       {
         const double y = v[blk.global], gi = gv[blk.global];
         if (!k.bound_active(y, blk.lower))
@@ -1812,7 +1813,27 @@ namespace dualcontact
             rsq += red[c] * red[c];
         }
       };
-      sweep(x, g, alpha, reduced, sink, !reduced);
+      if (reduced)
+      {
+        // bounds in the vectorized kernel, the rest in the sweep
+        VectorKernels::Lanes fs_lanes, bs_lanes, rs_lanes;
+        for (const Run &run : bound_runs)
+          VectorKernels::reduced_norms(run.count,
+                                       v + run.begin,
+                                       gv + run.begin,
+                                       bound_lower.data() + run.first,
+                                       tolerance,
+                                       alpha,
+                                       fs_lanes,
+                                       bs_lanes,
+                                       rs_lanes);
+        fsq += fs_lanes.total();
+        bsq += bs_lanes.total();
+        rsq += rs_lanes.total();
+        sweep(x, g, alpha, true, sink, false, true);
+      }
+      else
+        sweep(x, g, alpha, false, sink, true);
       double local[3] = {fsq, bsq, rsq};
       double global[3];
       dealii::Utilities::MPI::sum(dealii::ArrayView<const double>(local, 3),

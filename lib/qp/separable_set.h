@@ -333,8 +333,9 @@ namespace dualcontact
       /// One sweep over all blocks computing phi_j, beta_j and (if
       /// @p reduced) beta~_alpha_j, handed to sink(offset, width, phi,
       /// beta, reduced_beta); all gradient functions are built on it.
-      /// (With @p curved_only, bound and box blocks are skipped: the hot
-      /// paths treat them in their own vectorisable loops over runs.)
+      /// (With @p curved_only, bound and box blocks are skipped, with
+      /// @p skip_bounds the bound blocks: the hot paths treat them in
+      /// their own loops over runs, the bounds' in VectorKernels.)
       template <typename Sink>
       void
       sweep(const VectorType &x,
@@ -342,7 +343,8 @@ namespace dualcontact
             double            alpha,
             bool              reduced,
             Sink             &sink,
-            bool              curved_only = false) const;
+            bool              curved_only = false,
+            bool              skip_bounds = false) const;
 
       /// max_feasible_step() over the disc, ellipse and cone blocks only,
       /// local (no reduction); v, d: local entries of x and p

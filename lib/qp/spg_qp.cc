@@ -35,7 +35,7 @@ namespace dualcontact
       g -= problem.b;
       // f = 1/2 x'Ax - b'x = 1/2 (g - b)'x: no product needed
       const auto cost = [&]() { return internal::cost(x, g, problem.b); };
-      double             f = cost();
+      double     f    = cost();
       std::deque<double> recent(1, f); // the last m cost values (GLL)
       double             alpha = prm.spg_alpha0_factor / lmax;
       // the sufficient-decrease parameter of the Armijo condition (2.8);
@@ -53,7 +53,7 @@ namespace dualcontact
         this->apply_hessian(problem, Ad, d, stats);
         // d'Ad, d'd, g'd in one pass
         const std::array<double, 3> dots = internal::dots(d, Ad, g);
-        const double dAd = dots[0], dd = dots[1], gd = dots[2];
+        const double                dAd = dots[0], dd = dots[1], gd = dots[2];
         ++stats.iterations;
         ++stats.n_bb;
         if (dd == 0.)
@@ -103,8 +103,12 @@ namespace dualcontact
         // bound inside the segment; beta = sigma_2 keeps x feasible)
 
         // x += beta d, g += beta Ad in one pass, then the cost
-        VectorKernels::step(
-          x.locally_owned_size(), beta, d.begin(), Ad.begin(), x.begin(), g.begin());
+        VectorKernels::step(x.locally_owned_size(),
+                            beta,
+                            d.begin(),
+                            Ad.begin(),
+                            x.begin(),
+                            g.begin());
         f = cost();
         recent.push_back(f);
         while (recent.size() > std::max(1u, prm.spg_m))

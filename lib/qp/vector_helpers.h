@@ -89,8 +89,13 @@ namespace dualcontact
       dots(const VectorType &p, const VectorType &Ap, const VectorType &g)
       {
         VectorKernels::Lanes pAp, pp, gp;
-        VectorKernels::dots(
-          p.locally_owned_size(), p.begin(), Ap.begin(), g.begin(), pAp, pp, gp);
+        VectorKernels::dots(p.locally_owned_size(),
+                            p.begin(),
+                            Ap.begin(),
+                            g.begin(),
+                            pAp,
+                            pp,
+                            gp);
         const double          local[3] = {pAp.total(), pp.total(), gp.total()};
         std::array<double, 3> global;
         dealii::Utilities::MPI::sum(dealii::ArrayView<const double>(local, 3),

@@ -655,8 +655,8 @@ namespace dualcontact
                        double (&ss)[8],
                        double (&sy)[8])
       {
-        D4 a0 = load<D4>(ss), a1 = load<D4>(sy);
-        D4 b0 = load<D4>(ss + 4), b1 = load<D4>(sy + 4);
+        D4          a0 = load<D4>(ss), a1 = load<D4>(sy);
+        D4          b0 = load<D4>(ss + 4), b1 = load<D4>(sy + 4);
         std::size_t i = 0;
         for (; i + 8 <= n; i += 8)
         {
@@ -711,6 +711,75 @@ namespace dualcontact
           g[i]  = Ax[i] - b[i];
           y[i]  = s * x[i] - beta * x_old[i];
           gy[i] = (s * Ax[i] - beta * Ax_old[i]) - b[i];
+        }
+      }
+
+      template <typename D>
+      DUALCONTACT_INLINE void
+      reduced_norms_body(const std::size_t i,
+                         const double     *x,
+                         const double     *g,
+                         const double     *l,
+                         const double      tol,
+                         const double      alpha,
+                         D                &fs,
+                         D                &bs,
+                         D                &rs)
+      {
+        const D xv = load<D>(x + i), gv = load<D>(g + i), lv = load<D>(l + i);
+        const auto active = (xv - lv) <= tol * (lv < 0. ? -lv : lv);
+        const D    gm     = drop(0. < gv, gv);
+        // std::max(l, t) = l < t ? t : l
+        const D t   = xv - alpha * gv;
+        const D m   = lv < t ? t : lv;
+        const D red = gv < 0. ? gv : (xv - m) / alpha;
+        fs += drop(active, gv * gv);
+        bs += keep(active, gm * gm);
+        rs += keep(active, red * red);
+      }
+
+      DUALCONTACT_KERNEL_CLONES void
+      reduced_norms(const std::size_t n,
+                    const double     *x,
+                    const double     *g,
+                    const double     *l,
+                    const double      tol,
+                    const double      alpha,
+                    double (&free_sq)[8],
+                    double (&chopped_sq)[8],
+                    double (&reduced_sq)[8])
+      {
+        D4 a0 = load<D4>(free_sq), a1 = load<D4>(chopped_sq),
+           a2 = load<D4>(reduced_sq);
+        D4 b0 = load<D4>(free_sq + 4), b1 = load<D4>(chopped_sq + 4),
+           b2         = load<D4>(reduced_sq + 4);
+        std::size_t i = 0;
+        for (; i + 8 <= n; i += 8)
+        {
+          reduced_norms_body(i, x, g, l, tol, alpha, a0, a1, a2);
+          reduced_norms_body(i + 4, x, g, l, tol, alpha, b0, b1, b2);
+        }
+        if (i + 4 <= n)
+        {
+          reduced_norms_body(i, x, g, l, tol, alpha, a0, a1, a2);
+          i += 4;
+        }
+        store(free_sq, a0);
+        store(chopped_sq, a1);
+        store(reduced_sq, a2);
+        store(free_sq + 4, b0);
+        store(chopped_sq + 4, b1);
+        store(reduced_sq + 4, b2);
+        for (; i < n; ++i)
+        {
+          const bool   active = x[i] - l[i] <= tol * (l[i] < 0. ? -l[i] : l[i]);
+          const double gm     = 0. < g[i] ? 0. : g[i];
+          const double t      = x[i] - alpha * g[i];
+          const double m      = l[i] < t ? t : l[i];
+          const double red    = g[i] < 0. ? g[i] : (x[i] - m) / alpha;
+          free_sq[0] += active ? 0. : g[i] * g[i];
+          chopped_sq[0] += active ? gm * gm : 0.;
+          reduced_sq[0] += active ? red * red : 0.;
         }
       }
     } // namespace vector_kernels_impl
@@ -786,6 +855,22 @@ namespace dualcontact
     {
       vector_kernels_impl::gradient_norms(
         n, x, g, l, tol, phi, free_sq.v, chopped_sq.v);
+    }
+
+
+    void
+    VectorKernels::reduced_norms(const std::size_t n,
+                                 const double     *x,
+                                 const double     *g,
+                                 const double     *l,
+                                 const double      tol,
+                                 const double      alpha,
+                                 Lanes            &free_sq,
+                                 Lanes            &chopped_sq,
+                                 Lanes            &reduced_sq)
+    {
+      vector_kernels_impl::reduced_norms(
+        n, x, g, l, tol, alpha, free_sq.v, chopped_sq.v, reduced_sq.v);
     }
 
 

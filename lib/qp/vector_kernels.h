@@ -138,6 +138,23 @@ namespace dualcontact
                      Lanes        &chopped_sq);
 
       /**
+       * gradient_norms() with the reduced chopped gradient (thesis 1.4.2)
+       * for the step length alpha > 0: for an active unknown g_i if g_i <
+       * 0, else (x_i - max(l_i, x_i - alpha g_i)) / alpha; its squares
+       * added to @p reduced_sq (no phi written).
+       */
+      static void
+      reduced_norms(std::size_t   n,
+                    const double *x,
+                    const double *g,
+                    const double *l,
+                    double        tol,
+                    double        alpha,
+                    Lanes        &free_sq,
+                    Lanes        &chopped_sq,
+                    Lanes        &reduced_sq);
+
+      /**
        * The largest feasible step along -p on a run of n lower bounds l:
        * max(x_i - l_i, 0) / p_i over p_i > 0, offered to the ratio lanes.
        */

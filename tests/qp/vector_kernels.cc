@@ -270,6 +270,32 @@ main()
                 sci(VectorKernels::min_ratio(ratio)) + at);
     }
 
+    // reduced_norms (SeparableSet's sweep for a bound block)
+    {
+      const double alpha = uniform(rng, 0.1, 2.);
+      Lanes fs = start_lanes(rng), bs = start_lanes(rng), rs = start_lanes(rng);
+      Lanes rfs = fs, rbs = bs, rrs = rs;
+      for (std::size_t i = 0; i < n; ++i)
+      {
+        const bool         active = is_active(d.x[i], d.l[i]);
+        const double       y = d.x[i], gi = d.g[i];
+        const unsigned int j   = lane(i, n);
+        const double       phi = active ? 0. : gi,
+                     beta      = active ? std::min(gi, 0.) : 0.;
+        const double red =
+          !active ?
+            0. :
+            (gi < 0. ? gi : (y - std::max(d.l[i], y - alpha * gi)) / alpha);
+        rfs.v[j] += phi * phi;
+        rbs.v[j] += beta * beta;
+        rrs.v[j] += red * red;
+      }
+      VectorKernels::reduced_norms(
+        n, d.x.data(), d.g.data(), d.l.data(), tol, alpha, fs, bs, rs);
+      c.check(same_bits(fs, rfs) && same_bits(bs, rbs) && same_bits(rs, rrs),
+              "reduced_norms: lanes bitwise" + at);
+    }
+
     // max_step
     {
       RatioLanes ratio;
