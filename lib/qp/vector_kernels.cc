@@ -25,7 +25,7 @@ namespace dualcontact
 {
   namespace qp
   {
-    namespace vector_kernels_impl
+    namespace
     {
       // W doubles, one lane each; comparisons give a mask of longs.  Four
       // (one AVX2 register; GCC lowers it to two SSE2 registers in the
@@ -106,67 +106,6 @@ namespace dualcontact
         s2 += gv * pv;
       }
 
-      DUALCONTACT_KERNEL_CLONES void
-      dots(const std::size_t n,
-           const double     *p,
-           const double     *Ap,
-           const double     *g,
-           double (&pAp)[8],
-           double (&pp)[8],
-           double (&gp)[8])
-      {
-        // lanes 0-3 in a*, 4-7 in b*
-        D4 a0 = load<D4>(pAp), a1 = load<D4>(pp), a2 = load<D4>(gp);
-        D4 b0 = load<D4>(pAp + 4), b1 = load<D4>(pp + 4), b2 = load<D4>(gp + 4);
-        std::size_t i = 0;
-        for (; i + 8 <= n; i += 8)
-        {
-          dots_body(i, p, Ap, g, a0, a1, a2);
-          dots_body(i + 4, p, Ap, g, b0, b1, b2);
-        }
-        if (i + 4 <= n)
-        {
-          dots_body(i, p, Ap, g, a0, a1, a2);
-          i += 4;
-        }
-        store(pAp, a0);
-        store(pp, a1);
-        store(gp, a2);
-        store(pAp + 4, b0);
-        store(pp + 4, b1);
-        store(gp + 4, b2);
-        for (; i < n; ++i)
-        {
-          pAp[0] += p[i] * Ap[i];
-          pp[0] += p[i] * p[i];
-          gp[0] += g[i] * p[i];
-        }
-      }
-
-      DUALCONTACT_KERNEL_CLONES void
-      dot(const std::size_t n,
-          const double     *a,
-          const double     *b,
-          double (&ab)[8])
-      {
-        D4          s0 = load<D4>(ab), s1 = load<D4>(ab + 4);
-        std::size_t i = 0;
-        for (; i + 8 <= n; i += 8)
-        {
-          s0 += load<D4>(a + i) * load<D4>(b + i);
-          s1 += load<D4>(a + i + 4) * load<D4>(b + i + 4);
-        }
-        if (i + 4 <= n)
-        {
-          s0 += load<D4>(a + i) * load<D4>(b + i);
-          i += 4;
-        }
-        store(ab, s0);
-        store(ab + 4, s1);
-        for (; i < n; ++i)
-          ab[0] += a[i] * b[i];
-      }
-
       template <typename D>
       DUALCONTACT_INLINE void
       cg_step_body(const std::size_t i,
@@ -191,51 +130,6 @@ namespace dualcontact
         fs += drop(active, gv * gv);
         bs += keep(active, gm * gm);
         pa += drop(active, gv * av);
-      }
-
-      DUALCONTACT_KERNEL_CLONES void
-      cg_step(const std::size_t n,
-              double           *x,
-              double           *g,
-              const double     *p,
-              const double     *Ap,
-              const double     *l,
-              const double      tol,
-              const double      alpha,
-              double (&free_sq)[8],
-              double (&chopped_sq)[8],
-              double (&phi_Ap)[8])
-      {
-        std::size_t i = 0;
-        {
-          D8 a0 = load<D8>(free_sq), a1 = load<D8>(chopped_sq),
-             a2 = load<D8>(phi_Ap);
-          for (; i + 8 <= n; i += 8)
-            cg_step_body(i, x, g, p, Ap, l, tol, alpha, a0, a1, a2);
-          store(free_sq, a0);
-          store(chopped_sq, a1);
-          store(phi_Ap, a2);
-        }
-        if (i + 4 <= n)
-        {
-          D4 a0 = load<D4>(free_sq), a1 = load<D4>(chopped_sq),
-             a2 = load<D4>(phi_Ap);
-          cg_step_body(i, x, g, p, Ap, l, tol, alpha, a0, a1, a2);
-          store(free_sq, a0);
-          store(chopped_sq, a1);
-          store(phi_Ap, a2);
-          i += 4;
-        }
-        for (; i < n; ++i)
-        {
-          x[i] -= alpha * p[i];
-          g[i] -= alpha * Ap[i];
-          const bool   active = x[i] - l[i] <= tol * (l[i] < 0. ? -l[i] : l[i]);
-          const double gm     = 0. < g[i] ? 0. : g[i];
-          free_sq[0] += active ? 0. : g[i] * g[i];
-          chopped_sq[0] += active ? gm * gm : 0.;
-          phi_Ap[0] += active ? 0. : g[i] * Ap[i];
-        }
       }
 
       // The smaller of two fractions num/den and other_num/other_den per
@@ -279,66 +173,6 @@ namespace dualcontact
         take_smaller(num, den, drop(room < 0., room), dv);
       }
 
-      DUALCONTACT_KERNEL_CLONES void
-      conjugate_direction(const std::size_t n,
-                          const double     *x,
-                          const double     *g,
-                          const double     *l,
-                          const double      tol,
-                          const double      beta,
-                          double           *p,
-                          double (&pp)[8],
-                          double (&gp)[8],
-                          double (&num)[8],
-                          double (&den)[8])
-      {
-        std::size_t i = 0;
-        {
-          D8 a0 = load<D8>(pp), a1 = load<D8>(gp), a2 = load<D8>(num),
-             a3 = load<D8>(den);
-          D8 c2 = a2 - a2 + 1., c3 = a3 - a3;
-          for (; i + 16 <= n; i += 16)
-          {
-            direction_body(i, x, g, l, tol, beta, p, a0, a1, a2, a3);
-            direction_body(i + 8, x, g, l, tol, beta, p, a0, a1, c2, c3);
-          }
-          if (i + 8 <= n)
-          {
-            direction_body(i, x, g, l, tol, beta, p, a0, a1, a2, a3);
-            i += 8;
-          }
-          take_smaller(a2, a3, c2, c3);
-          store(pp, a0);
-          store(gp, a1);
-          store(num, a2);
-          store(den, a3);
-        }
-        if (i + 4 <= n)
-        {
-          D4 a0 = load<D4>(pp), a1 = load<D4>(gp), a2 = load<D4>(num),
-             a3 = load<D4>(den);
-          direction_body(i, x, g, l, tol, beta, p, a0, a1, a2, a3);
-          store(pp, a0);
-          store(gp, a1);
-          store(num, a2);
-          store(den, a3);
-          i += 4;
-        }
-        for (; i < n; ++i)
-        {
-          const double room   = x[i] - l[i];
-          const bool   active = room <= tol * (l[i] < 0. ? -l[i] : l[i]);
-          const double di     = (active ? 0. : g[i]) - beta * p[i];
-          p[i]                = di;
-          pp[0] += di * di;
-          gp[0] += g[i] * di;
-          const double r    = room < 0. ? 0. : room;
-          const bool   take = r * den[0] < num[0] * di; // see take_smaller
-          num[0]            = take ? r : num[0];
-          den[0]            = take ? di : den[0];
-        }
-      }
-
       template <typename D>
       DUALCONTACT_INLINE void
       gradient_norms_body(const std::size_t i,
@@ -359,43 +193,6 @@ namespace dualcontact
         bs += keep(active, gm * gm);
       }
 
-      DUALCONTACT_KERNEL_CLONES void
-      gradient_norms(const std::size_t n,
-                     const double     *x,
-                     const double     *g,
-                     const double     *l,
-                     const double      tol,
-                     double           *phi,
-                     double (&free_sq)[8],
-                     double (&chopped_sq)[8])
-      {
-        std::size_t i = 0;
-        {
-          D8 a0 = load<D8>(free_sq), a1 = load<D8>(chopped_sq);
-          for (; i + 8 <= n; i += 8)
-            gradient_norms_body(i, x, g, l, tol, phi, a0, a1);
-          store(free_sq, a0);
-          store(chopped_sq, a1);
-        }
-        if (i + 4 <= n)
-        {
-          D4 a0 = load<D4>(free_sq), a1 = load<D4>(chopped_sq);
-          gradient_norms_body(i, x, g, l, tol, phi, a0, a1);
-          store(free_sq, a0);
-          store(chopped_sq, a1);
-          i += 4;
-        }
-        for (; i < n; ++i)
-        {
-          const bool   active = x[i] - l[i] <= tol * (l[i] < 0. ? -l[i] : l[i]);
-          const double gm     = 0. < g[i] ? 0. : g[i];
-          if (phi != nullptr)
-            phi[i] = active ? 0. : g[i];
-          free_sq[0] += active ? 0. : g[i] * g[i];
-          chopped_sq[0] += active ? gm * gm : 0.;
-        }
-      }
-
       template <typename D>
       DUALCONTACT_INLINE void
       max_step_body(const std::size_t i,
@@ -407,52 +204,6 @@ namespace dualcontact
       {
         const D room = load<D>(x + i) - load<D>(l + i);
         take_smaller(num, den, drop(room < 0., room), load<D>(p + i));
-      }
-
-      DUALCONTACT_KERNEL_CLONES void
-      max_step(const std::size_t n,
-               const double     *x,
-               const double     *p,
-               const double     *l,
-               double (&num)[8],
-               double (&den)[8])
-      {
-        std::size_t i = 0;
-        {
-          // a second pair of accumulators for the odd blocks of eight
-          // (see conjugate_direction)
-          D8 a0 = load<D8>(num), a1 = load<D8>(den);
-          D8 c0 = a0 - a0 + 1., c1 = a1 - a1;
-          for (; i + 16 <= n; i += 16)
-          {
-            max_step_body(i, x, p, l, a0, a1);
-            max_step_body(i + 8, x, p, l, c0, c1);
-          }
-          if (i + 8 <= n)
-          {
-            max_step_body(i, x, p, l, a0, a1);
-            i += 8;
-          }
-          take_smaller(a0, a1, c0, c1);
-          store(num, a0);
-          store(den, a1);
-        }
-        if (i + 4 <= n)
-        {
-          D4 a0 = load<D4>(num), a1 = load<D4>(den);
-          max_step_body(i, x, p, l, a0, a1);
-          store(num, a0);
-          store(den, a1);
-          i += 4;
-        }
-        for (; i < n; ++i)
-        {
-          const double room = x[i] - l[i];
-          const double r    = room < 0. ? 0. : room;
-          const bool   take = r * den[0] < num[0] * p[i]; // see take_smaller
-          num[0]            = take ? r : num[0];
-          den[0]            = take ? p[i] : den[0];
-        }
       }
 
       // |y| as y < 0 ? -y : y (std::abs)
@@ -482,26 +233,6 @@ namespace dualcontact
         store(x + i, absolute(y - lv) <= eps8 * scale ? lv : below);
       }
 
-      DUALCONTACT_KERNEL_CLONES void
-      feasible_step(const std::size_t n,
-                    double           *x,
-                    const double     *p,
-                    const double     *l,
-                    const double      alpha)
-      {
-        std::size_t i = 0;
-        for (; i + 4 <= n; i += 4)
-          feasible_step_body<D4>(i, x, p, l, alpha);
-        constexpr double eps8 = 8. * std::numeric_limits<double>::epsilon();
-        for (; i < n; ++i)
-        {
-          const double ap    = alpha * p[i];
-          const double y     = x[i] - ap;
-          const double scale = (std::abs(y) + std::abs(ap)) + std::abs(l[i]);
-          x[i] = (y < l[i] || std::abs(y - l[i]) <= eps8 * scale) ? l[i] : y;
-        }
-      }
-
       template <typename D>
       DUALCONTACT_INLINE void
       projected_step_body(const std::size_t i,
@@ -518,26 +249,6 @@ namespace dualcontact
           step = drop((xv - lv) <= tol * absolute(lv), step);
         const D y = xv - step;
         store(x + i, y < lv ? lv : y);
-      }
-
-      DUALCONTACT_KERNEL_CLONES void
-      projected_step(const std::size_t n,
-                     double           *x,
-                     const double     *g,
-                     const double     *l,
-                     const double      tol,
-                     const double      alpha,
-                     const bool        free_only)
-      {
-        std::size_t i = 0;
-        for (; i + 4 <= n; i += 4)
-          projected_step_body<D4>(i, x, g, l, tol, alpha, free_only);
-        for (; i < n; ++i)
-        {
-          const bool active = free_only && x[i] - l[i] <= tol * std::abs(l[i]);
-          const double y    = x[i] - (active ? 0. : alpha * g[i]);
-          x[i]              = y < l[i] ? l[i] : y;
-        }
       }
 
       // y (g - b) into the lanes, with g := g - b first when Residual
@@ -582,47 +293,6 @@ namespace dualcontact
         }
       }
 
-      DUALCONTACT_KERNEL_CLONES void
-      cost(const std::size_t n,
-           const double     *y,
-           const double     *g,
-           const double     *b,
-           double (&sum)[8])
-      {
-        cost_loop<false>(n, y, b, const_cast<double *>(g), sum);
-      }
-
-      DUALCONTACT_KERNEL_CLONES void
-      residual_cost(const std::size_t n,
-                    const double     *y,
-                    const double     *b,
-                    double           *g,
-                    double (&sum)[8])
-      {
-        cost_loop<true>(n, y, b, g, sum);
-      }
-
-      DUALCONTACT_KERNEL_CLONES void
-      step(const std::size_t n,
-           const double      beta,
-           const double     *d,
-           const double     *Ad,
-           double           *x,
-           double           *g)
-      {
-        std::size_t i = 0;
-        for (; i + 4 <= n; i += 4)
-        {
-          store(x + i, load<D4>(x + i) + beta * load<D4>(d + i));
-          store(g + i, load<D4>(g + i) + beta * load<D4>(Ad + i));
-        }
-        for (; i < n; ++i)
-        {
-          x[i] += beta * d[i];
-          g[i] += beta * Ad[i];
-        }
-      }
-
       template <typename D>
       DUALCONTACT_INLINE void
       differences_body(const std::size_t i,
@@ -642,75 +312,6 @@ namespace dualcontact
         {
           store(x_prev + i, xv);
           store(g_prev + i, gv);
-        }
-      }
-
-      DUALCONTACT_KERNEL_CLONES void
-      step_differences(const std::size_t n,
-                       const double     *x,
-                       const double     *g,
-                       double           *x_prev,
-                       double           *g_prev,
-                       const bool        copy,
-                       double (&ss)[8],
-                       double (&sy)[8])
-      {
-        D4          a0 = load<D4>(ss), a1 = load<D4>(sy);
-        D4          b0 = load<D4>(ss + 4), b1 = load<D4>(sy + 4);
-        std::size_t i = 0;
-        for (; i + 8 <= n; i += 8)
-        {
-          differences_body(i, x, g, x_prev, g_prev, copy, a0, a1);
-          differences_body(i + 4, x, g, x_prev, g_prev, copy, b0, b1);
-        }
-        if (i + 4 <= n)
-        {
-          differences_body(i, x, g, x_prev, g_prev, copy, a0, a1);
-          i += 4;
-        }
-        store(ss, a0);
-        store(sy, a1);
-        store(ss + 4, b0);
-        store(sy + 4, b1);
-        for (; i < n; ++i)
-        {
-          const double si = x[i] - x_prev[i], yi = g[i] - g_prev[i];
-          ss[0] += si * si;
-          sy[0] += si * yi;
-          if (copy)
-          {
-            x_prev[i] = x[i];
-            g_prev[i] = g[i];
-          }
-        }
-      }
-
-      DUALCONTACT_KERNEL_CLONES void
-      extrapolate(const std::size_t n,
-                  const double      beta,
-                  const double     *x,
-                  const double     *x_old,
-                  const double     *Ax,
-                  const double     *Ax_old,
-                  const double     *b,
-                  double           *g,
-                  double           *y,
-                  double           *gy)
-      {
-        const double s = 1. + beta;
-        std::size_t  i = 0;
-        for (; i + 4 <= n; i += 4)
-        {
-          const D4 av = load<D4>(Ax + i), bv = load<D4>(b + i);
-          store(g + i, av - bv);
-          store(y + i, s * load<D4>(x + i) - beta * load<D4>(x_old + i));
-          store(gy + i, (s * av - beta * load<D4>(Ax_old + i)) - bv);
-        }
-        for (; i < n; ++i)
-        {
-          g[i]  = Ax[i] - b[i];
-          y[i]  = s * x[i] - beta * x_old[i];
-          gy[i] = (s * Ax[i] - beta * Ax_old[i]) - b[i];
         }
       }
 
@@ -738,76 +339,79 @@ namespace dualcontact
         rs += keep(active, red * red);
       }
 
-      DUALCONTACT_KERNEL_CLONES void
-      reduced_norms(const std::size_t n,
-                    const double     *x,
-                    const double     *g,
-                    const double     *l,
-                    const double      tol,
-                    const double      alpha,
-                    double (&free_sq)[8],
-                    double (&chopped_sq)[8],
-                    double (&reduced_sq)[8])
-      {
-        D4 a0 = load<D4>(free_sq), a1 = load<D4>(chopped_sq),
-           a2 = load<D4>(reduced_sq);
-        D4 b0 = load<D4>(free_sq + 4), b1 = load<D4>(chopped_sq + 4),
-           b2         = load<D4>(reduced_sq + 4);
-        std::size_t i = 0;
-        for (; i + 8 <= n; i += 8)
-        {
-          reduced_norms_body(i, x, g, l, tol, alpha, a0, a1, a2);
-          reduced_norms_body(i + 4, x, g, l, tol, alpha, b0, b1, b2);
-        }
-        if (i + 4 <= n)
-        {
-          reduced_norms_body(i, x, g, l, tol, alpha, a0, a1, a2);
-          i += 4;
-        }
-        store(free_sq, a0);
-        store(chopped_sq, a1);
-        store(reduced_sq, a2);
-        store(free_sq + 4, b0);
-        store(chopped_sq + 4, b1);
-        store(reduced_sq + 4, b2);
-        for (; i < n; ++i)
-        {
-          const bool   active = x[i] - l[i] <= tol * (l[i] < 0. ? -l[i] : l[i]);
-          const double gm     = 0. < g[i] ? 0. : g[i];
-          const double t      = x[i] - alpha * g[i];
-          const double m      = l[i] < t ? t : l[i];
-          const double red    = g[i] < 0. ? g[i] : (x[i] - m) / alpha;
-          free_sq[0] += active ? 0. : g[i] * g[i];
-          chopped_sq[0] += active ? gm * gm : 0.;
-          reduced_sq[0] += active ? red * red : 0.;
-        }
-      }
-    } // namespace vector_kernels_impl
+    } // namespace
 
 
+    DUALCONTACT_KERNEL_CLONES
     void
     VectorKernels::dots(const std::size_t n,
                         const double     *p,
                         const double     *Ap,
                         const double     *g,
-                        Lanes            &pAp,
-                        Lanes            &pp,
-                        Lanes            &gp)
+                        Lanes            &pAp_lanes,
+                        Lanes            &pp_lanes,
+                        Lanes            &gp_lanes)
     {
-      vector_kernels_impl::dots(n, p, Ap, g, pAp.v, pp.v, gp.v);
+      double(&pAp)[8] = pAp_lanes.v;
+      double(&pp)[8]  = pp_lanes.v;
+      double(&gp)[8]  = gp_lanes.v;
+      // lanes 0-3 in a*, 4-7 in b*
+      D4 a0 = load<D4>(pAp), a1 = load<D4>(pp), a2 = load<D4>(gp);
+      D4 b0 = load<D4>(pAp + 4), b1 = load<D4>(pp + 4), b2 = load<D4>(gp + 4);
+      std::size_t i = 0;
+      for (; i + 8 <= n; i += 8)
+      {
+        dots_body(i, p, Ap, g, a0, a1, a2);
+        dots_body(i + 4, p, Ap, g, b0, b1, b2);
+      }
+      if (i + 4 <= n)
+      {
+        dots_body(i, p, Ap, g, a0, a1, a2);
+        i += 4;
+      }
+      store(pAp, a0);
+      store(pp, a1);
+      store(gp, a2);
+      store(pAp + 4, b0);
+      store(pp + 4, b1);
+      store(gp + 4, b2);
+      for (; i < n; ++i)
+      {
+        pAp[0] += p[i] * Ap[i];
+        pp[0] += p[i] * p[i];
+        gp[0] += g[i] * p[i];
+      }
     }
 
 
+    DUALCONTACT_KERNEL_CLONES
     void
     VectorKernels::dot(const std::size_t n,
                        const double     *a,
                        const double     *b,
-                       Lanes            &ab)
+                       Lanes            &ab_lanes)
     {
-      vector_kernels_impl::dot(n, a, b, ab.v);
+      double(&ab)[8] = ab_lanes.v;
+      D4          s0 = load<D4>(ab), s1 = load<D4>(ab + 4);
+      std::size_t i = 0;
+      for (; i + 8 <= n; i += 8)
+      {
+        s0 += load<D4>(a + i) * load<D4>(b + i);
+        s1 += load<D4>(a + i + 4) * load<D4>(b + i + 4);
+      }
+      if (i + 4 <= n)
+      {
+        s0 += load<D4>(a + i) * load<D4>(b + i);
+        i += 4;
+      }
+      store(ab, s0);
+      store(ab + 4, s1);
+      for (; i < n; ++i)
+        ab[0] += a[i] * b[i];
     }
 
 
+    DUALCONTACT_KERNEL_CLONES
     void
     VectorKernels::cg_step(const std::size_t n,
                            double           *x,
@@ -817,15 +421,47 @@ namespace dualcontact
                            const double     *l,
                            const double      tol,
                            const double      alpha,
-                           Lanes            &free_sq,
-                           Lanes            &chopped_sq,
-                           Lanes            &phi_Ap)
+                           Lanes            &free_sq_lanes,
+                           Lanes            &chopped_sq_lanes,
+                           Lanes            &phi_Ap_lanes)
     {
-      vector_kernels_impl::cg_step(
-        n, x, g, p, Ap, l, tol, alpha, free_sq.v, chopped_sq.v, phi_Ap.v);
+      double(&free_sq)[8]    = free_sq_lanes.v;
+      double(&chopped_sq)[8] = chopped_sq_lanes.v;
+      double(&phi_Ap)[8]     = phi_Ap_lanes.v;
+      std::size_t i          = 0;
+      {
+        D8 a0 = load<D8>(free_sq), a1 = load<D8>(chopped_sq),
+           a2 = load<D8>(phi_Ap);
+        for (; i + 8 <= n; i += 8)
+          cg_step_body(i, x, g, p, Ap, l, tol, alpha, a0, a1, a2);
+        store(free_sq, a0);
+        store(chopped_sq, a1);
+        store(phi_Ap, a2);
+      }
+      if (i + 4 <= n)
+      {
+        D4 a0 = load<D4>(free_sq), a1 = load<D4>(chopped_sq),
+           a2 = load<D4>(phi_Ap);
+        cg_step_body(i, x, g, p, Ap, l, tol, alpha, a0, a1, a2);
+        store(free_sq, a0);
+        store(chopped_sq, a1);
+        store(phi_Ap, a2);
+        i += 4;
+      }
+      for (; i < n; ++i)
+      {
+        x[i] -= alpha * p[i];
+        g[i] -= alpha * Ap[i];
+        const bool   active = x[i] - l[i] <= tol * (l[i] < 0. ? -l[i] : l[i]);
+        const double gm     = 0. < g[i] ? 0. : g[i];
+        free_sq[0] += active ? 0. : g[i] * g[i];
+        chopped_sq[0] += active ? gm * gm : 0.;
+        phi_Ap[0] += active ? 0. : g[i] * Ap[i];
+      }
     }
 
 
+    DUALCONTACT_KERNEL_CLONES
     void
     VectorKernels::conjugate_direction(const std::size_t n,
                                        const double     *x,
@@ -834,15 +470,63 @@ namespace dualcontact
                                        const double      tol,
                                        const double      beta,
                                        double           *p,
-                                       Lanes            &pp,
-                                       Lanes            &gp,
+                                       Lanes            &pp_lanes,
+                                       Lanes            &gp_lanes,
                                        RatioLanes       &ratio)
     {
-      vector_kernels_impl::conjugate_direction(
-        n, x, g, l, tol, beta, p, pp.v, gp.v, ratio.num, ratio.den);
+      double(&pp)[8]  = pp_lanes.v;
+      double(&gp)[8]  = gp_lanes.v;
+      double(&num)[8] = ratio.num;
+      double(&den)[8] = ratio.den;
+      std::size_t i   = 0;
+      {
+        D8 a0 = load<D8>(pp), a1 = load<D8>(gp), a2 = load<D8>(num),
+           a3 = load<D8>(den);
+        D8 c2 = {1., 1., 1., 1., 1., 1., 1., 1.}, c3 = {};
+        for (; i + 16 <= n; i += 16)
+        {
+          direction_body(i, x, g, l, tol, beta, p, a0, a1, a2, a3);
+          direction_body(i + 8, x, g, l, tol, beta, p, a0, a1, c2, c3);
+        }
+        if (i + 8 <= n)
+        {
+          direction_body(i, x, g, l, tol, beta, p, a0, a1, a2, a3);
+          i += 8;
+        }
+        take_smaller(a2, a3, c2, c3);
+        store(pp, a0);
+        store(gp, a1);
+        store(num, a2);
+        store(den, a3);
+      }
+      if (i + 4 <= n)
+      {
+        D4 a0 = load<D4>(pp), a1 = load<D4>(gp), a2 = load<D4>(num),
+           a3 = load<D4>(den);
+        direction_body(i, x, g, l, tol, beta, p, a0, a1, a2, a3);
+        store(pp, a0);
+        store(gp, a1);
+        store(num, a2);
+        store(den, a3);
+        i += 4;
+      }
+      for (; i < n; ++i)
+      {
+        const double room   = x[i] - l[i];
+        const bool   active = room <= tol * (l[i] < 0. ? -l[i] : l[i]);
+        const double di     = (active ? 0. : g[i]) - beta * p[i];
+        p[i]                = di;
+        pp[0] += di * di;
+        gp[0] += g[i] * di;
+        const double r    = room < 0. ? 0. : room;
+        const bool   take = r * den[0] < num[0] * di; // see take_smaller
+        num[0]            = take ? r : num[0];
+        den[0]            = take ? di : den[0];
+      }
     }
 
 
+    DUALCONTACT_KERNEL_CLONES
     void
     VectorKernels::gradient_norms(const std::size_t n,
                                   const double     *x,
@@ -850,14 +534,40 @@ namespace dualcontact
                                   const double     *l,
                                   const double      tol,
                                   double           *phi,
-                                  Lanes            &free_sq,
-                                  Lanes            &chopped_sq)
+                                  Lanes            &free_sq_lanes,
+                                  Lanes            &chopped_sq_lanes)
     {
-      vector_kernels_impl::gradient_norms(
-        n, x, g, l, tol, phi, free_sq.v, chopped_sq.v);
+      double(&free_sq)[8]    = free_sq_lanes.v;
+      double(&chopped_sq)[8] = chopped_sq_lanes.v;
+      std::size_t i          = 0;
+      {
+        D8 a0 = load<D8>(free_sq), a1 = load<D8>(chopped_sq);
+        for (; i + 8 <= n; i += 8)
+          gradient_norms_body(i, x, g, l, tol, phi, a0, a1);
+        store(free_sq, a0);
+        store(chopped_sq, a1);
+      }
+      if (i + 4 <= n)
+      {
+        D4 a0 = load<D4>(free_sq), a1 = load<D4>(chopped_sq);
+        gradient_norms_body(i, x, g, l, tol, phi, a0, a1);
+        store(free_sq, a0);
+        store(chopped_sq, a1);
+        i += 4;
+      }
+      for (; i < n; ++i)
+      {
+        const bool   active = x[i] - l[i] <= tol * (l[i] < 0. ? -l[i] : l[i]);
+        const double gm     = 0. < g[i] ? 0. : g[i];
+        if (phi != nullptr)
+          phi[i] = active ? 0. : g[i];
+        free_sq[0] += active ? 0. : g[i] * g[i];
+        chopped_sq[0] += active ? gm * gm : 0.;
+      }
     }
 
 
+    DUALCONTACT_KERNEL_CLONES
     void
     VectorKernels::reduced_norms(const std::size_t n,
                                  const double     *x,
@@ -865,15 +575,49 @@ namespace dualcontact
                                  const double     *l,
                                  const double      tol,
                                  const double      alpha,
-                                 Lanes            &free_sq,
-                                 Lanes            &chopped_sq,
-                                 Lanes            &reduced_sq)
+                                 Lanes            &free_sq_lanes,
+                                 Lanes            &chopped_sq_lanes,
+                                 Lanes            &reduced_sq_lanes)
     {
-      vector_kernels_impl::reduced_norms(
-        n, x, g, l, tol, alpha, free_sq.v, chopped_sq.v, reduced_sq.v);
+      double(&free_sq)[8]    = free_sq_lanes.v;
+      double(&chopped_sq)[8] = chopped_sq_lanes.v;
+      double(&reduced_sq)[8] = reduced_sq_lanes.v;
+      D4 a0 = load<D4>(free_sq), a1 = load<D4>(chopped_sq),
+         a2 = load<D4>(reduced_sq);
+      D4 b0 = load<D4>(free_sq + 4), b1 = load<D4>(chopped_sq + 4),
+         b2         = load<D4>(reduced_sq + 4);
+      std::size_t i = 0;
+      for (; i + 8 <= n; i += 8)
+      {
+        reduced_norms_body(i, x, g, l, tol, alpha, a0, a1, a2);
+        reduced_norms_body(i + 4, x, g, l, tol, alpha, b0, b1, b2);
+      }
+      if (i + 4 <= n)
+      {
+        reduced_norms_body(i, x, g, l, tol, alpha, a0, a1, a2);
+        i += 4;
+      }
+      store(free_sq, a0);
+      store(chopped_sq, a1);
+      store(reduced_sq, a2);
+      store(free_sq + 4, b0);
+      store(chopped_sq + 4, b1);
+      store(reduced_sq + 4, b2);
+      for (; i < n; ++i)
+      {
+        const bool   active = x[i] - l[i] <= tol * (l[i] < 0. ? -l[i] : l[i]);
+        const double gm     = 0. < g[i] ? 0. : g[i];
+        const double t      = x[i] - alpha * g[i];
+        const double m      = l[i] < t ? t : l[i];
+        const double red    = g[i] < 0. ? g[i] : (x[i] - m) / alpha;
+        free_sq[0] += active ? 0. : g[i] * g[i];
+        chopped_sq[0] += active ? gm * gm : 0.;
+        reduced_sq[0] += active ? red * red : 0.;
+      }
     }
 
 
+    DUALCONTACT_KERNEL_CLONES
     void
     VectorKernels::max_step(const std::size_t n,
                             const double     *x,
@@ -881,10 +625,48 @@ namespace dualcontact
                             const double     *l,
                             RatioLanes       &ratio)
     {
-      vector_kernels_impl::max_step(n, x, p, l, ratio.num, ratio.den);
+      double(&num)[8] = ratio.num;
+      double(&den)[8] = ratio.den;
+      std::size_t i   = 0;
+      {
+        // a second pair of accumulators for the odd blocks of eight
+        // (see conjugate_direction)
+        D8 a0 = load<D8>(num), a1 = load<D8>(den);
+        D8 c0 = {1., 1., 1., 1., 1., 1., 1., 1.}, c1 = {};
+        for (; i + 16 <= n; i += 16)
+        {
+          max_step_body(i, x, p, l, a0, a1);
+          max_step_body(i + 8, x, p, l, c0, c1);
+        }
+        if (i + 8 <= n)
+        {
+          max_step_body(i, x, p, l, a0, a1);
+          i += 8;
+        }
+        take_smaller(a0, a1, c0, c1);
+        store(num, a0);
+        store(den, a1);
+      }
+      if (i + 4 <= n)
+      {
+        D4 a0 = load<D4>(num), a1 = load<D4>(den);
+        max_step_body(i, x, p, l, a0, a1);
+        store(num, a0);
+        store(den, a1);
+        i += 4;
+      }
+      for (; i < n; ++i)
+      {
+        const double room = x[i] - l[i];
+        const double r    = room < 0. ? 0. : room;
+        const bool   take = r * den[0] < num[0] * p[i]; // see take_smaller
+        num[0]            = take ? r : num[0];
+        den[0]            = take ? p[i] : den[0];
+      }
     }
 
 
+    DUALCONTACT_KERNEL_CLONES
     void
     VectorKernels::feasible_step(const std::size_t n,
                                  double           *x,
@@ -892,10 +674,21 @@ namespace dualcontact
                                  const double     *l,
                                  const double      alpha)
     {
-      vector_kernels_impl::feasible_step(n, x, p, l, alpha);
+      std::size_t i = 0;
+      for (; i + 4 <= n; i += 4)
+        feasible_step_body<D4>(i, x, p, l, alpha);
+      constexpr double eps8 = 8. * std::numeric_limits<double>::epsilon();
+      for (; i < n; ++i)
+      {
+        const double ap    = alpha * p[i];
+        const double y     = x[i] - ap;
+        const double scale = (std::abs(y) + std::abs(ap)) + std::abs(l[i]);
+        x[i] = (y < l[i] || std::abs(y - l[i]) <= eps8 * scale) ? l[i] : y;
+      }
     }
 
 
+    DUALCONTACT_KERNEL_CLONES
     void
     VectorKernels::projected_step(const std::size_t n,
                                   double           *x,
@@ -905,32 +698,45 @@ namespace dualcontact
                                   const double      alpha,
                                   const bool        free_only)
     {
-      vector_kernels_impl::projected_step(n, x, g, l, tol, alpha, free_only);
+      std::size_t i = 0;
+      for (; i + 4 <= n; i += 4)
+        projected_step_body<D4>(i, x, g, l, tol, alpha, free_only);
+      for (; i < n; ++i)
+      {
+        const bool   active = free_only && x[i] - l[i] <= tol * std::abs(l[i]);
+        const double y      = x[i] - (active ? 0. : alpha * g[i]);
+        x[i]                = y < l[i] ? l[i] : y;
+      }
     }
 
 
+    DUALCONTACT_KERNEL_CLONES
     void
     VectorKernels::cost(const std::size_t n,
                         const double     *y,
                         const double     *g,
                         const double     *b,
-                        Lanes            &sum)
+                        Lanes            &sum_lanes)
     {
-      vector_kernels_impl::cost(n, y, g, b, sum.v);
+      double(&sum)[8] = sum_lanes.v;
+      cost_loop<false>(n, y, b, const_cast<double *>(g), sum);
     }
 
 
+    DUALCONTACT_KERNEL_CLONES
     void
     VectorKernels::residual_cost(const std::size_t n,
                                  const double     *y,
                                  const double     *b,
                                  double           *g,
-                                 Lanes            &sum)
+                                 Lanes            &sum_lanes)
     {
-      vector_kernels_impl::residual_cost(n, y, b, g, sum.v);
+      double(&sum)[8] = sum_lanes.v;
+      cost_loop<true>(n, y, b, g, sum);
     }
 
 
+    DUALCONTACT_KERNEL_CLONES
     void
     VectorKernels::step(const std::size_t n,
                         const double      beta,
@@ -939,10 +745,21 @@ namespace dualcontact
                         double           *x,
                         double           *g)
     {
-      vector_kernels_impl::step(n, beta, d, Ad, x, g);
+      std::size_t i = 0;
+      for (; i + 4 <= n; i += 4)
+      {
+        store(x + i, load<D4>(x + i) + beta * load<D4>(d + i));
+        store(g + i, load<D4>(g + i) + beta * load<D4>(Ad + i));
+      }
+      for (; i < n; ++i)
+      {
+        x[i] += beta * d[i];
+        g[i] += beta * Ad[i];
+      }
     }
 
 
+    DUALCONTACT_KERNEL_CLONES
     void
     VectorKernels::step_differences(const std::size_t n,
                                     const double     *x,
@@ -950,14 +767,43 @@ namespace dualcontact
                                     double           *x_prev,
                                     double           *g_prev,
                                     const bool        copy,
-                                    Lanes            &ss,
-                                    Lanes            &sy)
+                                    Lanes            &ss_lanes,
+                                    Lanes            &sy_lanes)
     {
-      vector_kernels_impl::step_differences(
-        n, x, g, x_prev, g_prev, copy, ss.v, sy.v);
+      double(&ss)[8] = ss_lanes.v;
+      double(&sy)[8] = sy_lanes.v;
+      D4          a0 = load<D4>(ss), a1 = load<D4>(sy);
+      D4          b0 = load<D4>(ss + 4), b1 = load<D4>(sy + 4);
+      std::size_t i = 0;
+      for (; i + 8 <= n; i += 8)
+      {
+        differences_body(i, x, g, x_prev, g_prev, copy, a0, a1);
+        differences_body(i + 4, x, g, x_prev, g_prev, copy, b0, b1);
+      }
+      if (i + 4 <= n)
+      {
+        differences_body(i, x, g, x_prev, g_prev, copy, a0, a1);
+        i += 4;
+      }
+      store(ss, a0);
+      store(sy, a1);
+      store(ss + 4, b0);
+      store(sy + 4, b1);
+      for (; i < n; ++i)
+      {
+        const double si = x[i] - x_prev[i], yi = g[i] - g_prev[i];
+        ss[0] += si * si;
+        sy[0] += si * yi;
+        if (copy)
+        {
+          x_prev[i] = x[i];
+          g_prev[i] = g[i];
+        }
+      }
     }
 
 
+    DUALCONTACT_KERNEL_CLONES
     void
     VectorKernels::extrapolate(const std::size_t n,
                                const double      beta,
@@ -970,8 +816,21 @@ namespace dualcontact
                                double           *y,
                                double           *gy)
     {
-      vector_kernels_impl::extrapolate(
-        n, beta, x, x_old, Ax, Ax_old, b, g, y, gy);
+      const double s = 1. + beta;
+      std::size_t  i = 0;
+      for (; i + 4 <= n; i += 4)
+      {
+        const D4 av = load<D4>(Ax + i), bv = load<D4>(b + i);
+        store(g + i, av - bv);
+        store(y + i, s * load<D4>(x + i) - beta * load<D4>(x_old + i));
+        store(gy + i, (s * av - beta * load<D4>(Ax_old + i)) - bv);
+      }
+      for (; i < n; ++i)
+      {
+        g[i]  = Ax[i] - b[i];
+        y[i]  = s * x[i] - beta * x_old[i];
+        gy[i] = (s * Ax[i] - beta * Ax_old[i]) - b[i];
+      }
     }
 
 

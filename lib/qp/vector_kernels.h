@@ -9,28 +9,35 @@ namespace dualcontact
   {
     /**
      * The innermost loops of the QP solvers, on raw arrays of one process'
-     * entries: the active-set solvers' CG iteration on runs of lower bounds
+     * entries: the active-set solvers' passes over runs of lower bounds
      * x_i >= l_i (the membrane's unknowns, the contact problem's normal
-     * multipliers), the dot products after the product, and every dot
-     * product of the library (internal::dot()).
+     * multipliers), the dot products after a product, the cost, the
+     * spectral solvers' updates, and every dot product of the library
+     * (internal::dot()).
      *
-     * Why a class of its own: these loops are the solver's whole overhead
+     * Why a class of its own: these loops are the solvers' whole overhead
      * beside the Hessian product (doc/benchmarks/membrane.md, goals 2 and
      * 3 of the QP issue), and the build targets the x86-64 baseline (SSE2)
-     * so that the binary runs anywhere.  Written with four-wide vectors and
-     * compiled once per instruction set (baseline, x86-64-v3 = AVX2, v4 =
-     * AVX-512; the loader picks the clone for the machine, as OpenBLAS does
-     * for its kernels), the comparisons, blends and sums of four entries
+     * so that the binary runs anywhere.  Written with four-wide vectors
+     * (eight-wide in cg_step, conjugate_direction, gradient_norms and
+     * max_step, which ran faster so with AVX-512) and compiled once per
+     * instruction set (baseline, x86-64-v3 = AVX2, v4 = AVX-512; the
+     * loader picks the clone for the machine, as OpenBLAS does for its
+     * kernels), the comparisons, selections and sums of several entries
      * run as one instruction each, where the scalar loops made a branch or
-     * a dependent sum per entry.
+     * a dependent sum per entry.  On the membrane at n = 2500 a CG
+     * iteration's vector work fell from 136% to 27% of a mat-vec
+     * (benchmarks/qp_cg_iteration.cc).
      *
      * The result does not depend on the clone: every sum is kept in eight
      * lanes, lane j taking the entries i = j (mod 8) of a run (a
      * remainder of four to seven entries: lanes 0-3 take the first four,
-     * the rest goes to lane 0), and this file is compiled with
+     * the rest goes to lane 0), and vector_kernels.cc is compiled with
      * -ffp-contract=off, so that no clone fuses a multiply-add into an FMA
      * (GCC does by default for C++): the same operations in the same order
      * run on every machine.  Callers add the lanes with Lanes::total().
+     * tests/qp/vector_kernels checks every kernel against scalar loops in
+     * this order, bitwise.
      */
     class VectorKernels
     {
