@@ -550,26 +550,16 @@ namespace dualcontact
               apply_preconditioner(phi, z);
               beta_cg = internal::dot(z, Ap) / pAp;
             }
-            else if (!weak)
-            {
-              // x, g, norms and phi'Ap in one pass; the new direction
-              // p = phi - beta p with its feasible step in a second
-              double phi_Ap = 0.;
-              norms         = set.cg_step(x, g, p, Ap, alpha_cg, phi_Ap);
-              value         = criterion_value();
-              beta_cg       = phi_Ap / pAp;
-            }
             else
             {
-              // x -= alpha p, g -= alpha Ap in one pass
-              VectorKernels::step(x.locally_owned_size(),
-                                  -alpha_cg,
-                                  p.begin(),
-                                  Ap.begin(),
-                                  x.begin(),
-                                  g.begin());
-              value   = refresh(phi);
-              beta_cg = internal::dot(phi, Ap) / pAp;
+              // x, g, norms (MwPGP: with the reduced chopped gradient's)
+              // and phi'Ap in one pass; the new direction p = phi - beta p
+              // with its feasible step in a second
+              double phi_Ap = 0.;
+              norms         = set.cg_step(
+                x, g, p, Ap, alpha_cg, phi_Ap, weak ? alpha_bar : 0.);
+              value   = criterion_value();
+              beta_cg = phi_Ap / pAp;
             }
             if (!std::isfinite(beta_cg))
             {
@@ -581,13 +571,11 @@ namespace dualcontact
             }
             if (preconditioned)
               p.sadd(-beta_cg, 1., z);
-            else if (!weak)
+            else
             {
               direction       = set.conjugate_direction(x, g, beta_cg, p);
               direction_valid = true;
             }
-            else
-              p.sadd(-beta_cg, 1., phi);
           }
           else
           {

@@ -1500,8 +1500,10 @@ namespace dualcontact
                                       const VectorType &p,
                                       const VectorType &Ap,
                                       const double      alpha,
-                                      double           &phi_dot_Ap) const
+                                      double           &phi_dot_Ap,
+                                      const double      reduced_alpha) const
     {
+      const bool reduced = reduced_alpha > 0.;
       Assert(finalized, dealii::ExcMessage("call finalize() first"));
       double       *v  = x.begin();
       double       *gv = g.begin();
@@ -1509,8 +1511,9 @@ namespace dualcontact
       const double *av = Ap.begin();
       // eight lanes (VectorKernels): the runs of bounds in the vectorized
       // kernel, everything else in lane 0
-      VectorKernels::Lanes fs, bs, pa_lanes;
-      double              &fsq = fs.v[0], &bsq = bs.v[0], &pa = pa_lanes.v[0];
+      VectorKernels::Lanes fs, bs, pa_lanes, rs;
+      double              &fsq = fs.v[0], &bsq = bs.v[0], &pa = pa_lanes.v[0],
+             &rsq = rs.v[0];
       for (const auto &range : free_ranges)
         for (std::size_t i = range.first; i < range.second; ++i)
         {
@@ -1520,17 +1523,32 @@ namespace dualcontact
           pa += gv[i] * av[i];
         }
       for (const Run &run : bound_runs)
-        VectorKernels::cg_step(run.count,
-                               v + run.begin,
-                               gv + run.begin,
-                               pv + run.begin,
-                               av + run.begin,
-                               bound_lower.data() + run.first,
-                               tolerance,
-                               alpha,
-                               fs,
-                               bs,
-                               pa_lanes);
+        if (reduced)
+          VectorKernels::cg_step_reduced(run.count,
+                                         v + run.begin,
+                                         gv + run.begin,
+                                         pv + run.begin,
+                                         av + run.begin,
+                                         bound_lower.data() + run.first,
+                                         tolerance,
+                                         alpha,
+                                         reduced_alpha,
+                                         fs,
+                                         bs,
+                                         pa_lanes,
+                                         rs);
+        else
+          VectorKernels::cg_step(run.count,
+                                 v + run.begin,
+                                 gv + run.begin,
+                                 pv + run.begin,
+                                 av + run.begin,
+                                 bound_lower.data() + run.first,
+                                 tolerance,
+                                 alpha,
+                                 fs,
+                                 bs,
+                                 pa_lanes);
       const BoxKind boxes{box_lower.data(), box_upper.data(), tolerance};
       for (const Run &run : box_runs)
       {
@@ -1548,6 +1566,18 @@ namespace dualcontact
           fsq += state.active ? 0. : q[i] * q[i];
           bsq += c * c;
           pa += state.active ? 0. : q[i] * a[i];
+          if (reduced && state.active)
+          {
+            // the sweep's reduced component of a box: the gradient if it
+            // points into the box, else the projected step's length
+            const bool inward = !(state.at_lower && state.at_upper) &&
+                                (state.at_lower ? q[i] < 0. : q[i] > 0.);
+            const double red =
+              inward ? q[i] :
+                       (y[i] - k.project(i, y[i] - reduced_alpha * q[i])) /
+                         reduced_alpha;
+            rsq += red * red;
+          }
         }
       }
       if (has_curved_blocks())
@@ -1570,25 +1600,29 @@ namespace dualcontact
                         const unsigned  w,
                         const double   *fphi,
                         const double   *beta,
-                        const double *)
+                        const double   *red)
         {
           for (unsigned c = 0; c < w; ++c)
           {
             fsq += fphi[c] * fphi[c];
             bsq += beta[c] * beta[c];
             pa += fphi[c] * av[off + c];
+            if (reduced)
+              rsq += red[c] * red[c];
           }
         };
-        sweep(x, g, 1., false, sink, true);
+        sweep(x, g, reduced ? reduced_alpha : 1., reduced, sink, true);
       }
-      double local[3] = {fs.total(), bs.total(), pa_lanes.total()}, global[3];
-      dealii::Utilities::MPI::sum(dealii::ArrayView<const double>(local, 3),
+      double local[4] = {fs.total(), bs.total(), pa_lanes.total(), rs.total()},
+             global[4];
+      dealii::Utilities::MPI::sum(dealii::ArrayView<const double>(local, 4),
                                   internal::communicator(x),
-                                  dealii::ArrayView<double>(global, 3));
+                                  dealii::ArrayView<double>(global, 4));
       GradientNorms n;
-      n.free_sq    = global[0];
-      n.chopped_sq = global[1];
-      phi_dot_Ap   = global[2];
+      n.free_sq            = global[0];
+      n.chopped_sq         = global[1];
+      n.reduced_chopped_sq = global[3];
+      phi_dot_Ap           = global[2];
       return n;
     }
 

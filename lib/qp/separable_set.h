@@ -240,7 +240,10 @@ namespace dualcontact
        * The CG step: x -= alpha p, g -= alpha Ap, and at the new x the
        * squared norms of phi and beta and @p phi_dot_Ap = phi'Ap (the
        * numerator of the CG coefficient).  phi is not stored:
-       * conjugate_direction() recomputes it from x and g.
+       * conjugate_direction() recomputes it from x and g.  With
+       * @p reduced_alpha > 0 also the reduced chopped gradient's squared
+       * norm for that step length (reduced_gradient_norms(); MwPGP's
+       * test), else that field is 0.
        */
       GradientNorms
       cg_step(VectorType       &x,
@@ -248,7 +251,8 @@ namespace dualcontact
               const VectorType &p,
               const VectorType &Ap,
               double            alpha,
-              double           &phi_dot_Ap) const;
+              double           &phi_dot_Ap,
+              double            reduced_alpha = 0.) const;
 
       /// What conjugate_direction() measures of the new direction.
       struct Direction

@@ -253,6 +253,51 @@ namespace dualcontact
         }
       }
 
+      // The square of the reduced chopped gradient's component of an
+      // active bound (thesis 1.4.2) for the step length alpha: g if g < 0,
+      // else (x - max(l, x - alpha g)) / alpha, with std::max(l, t) as l <
+      // t ? t : l (SeparableSet's sweep)
+      template <typename D>
+      DUALCONTACT_INLINE D
+      reduced_chopped(const D xv, const D gv, const D lv, const double alpha)
+      {
+        const D t   = xv - alpha * gv;
+        const D m   = lv < t ? t : lv;
+        const D red = gv < 0. ? gv : (xv - m) / alpha;
+        return red * red;
+      }
+
+      // The CG step on entry i (x -= alpha p, g -= alpha Ap), and at the
+      // new point ||phi||^2, ||beta||^2, phi'Ap into s[0..2], with
+      // @p reduced also the reduced chopped gradient's square into s[3]
+      template <bool reduced, typename S>
+      DUALCONTACT_INLINE void
+      cg_step_body(const std::size_t i,
+                   double           *x,
+                   double           *g,
+                   const double     *p,
+                   const double     *Ap,
+                   const double     *l,
+                   const double      tol,
+                   const double      alpha,
+                   const double      reduced_alpha,
+                   S                &s)
+      {
+        using D    = value_of<S>;
+        const D av = load<D>(Ap + i), lv = load<D>(l + i);
+        const D xv = load<D>(x + i) - alpha * load<D>(p + i);
+        const D gv = load<D>(g + i) - alpha * av;
+        store(x + i, xv);
+        store(g + i, gv);
+        const auto active = (xv - lv) <= tol * absolute(lv);
+        const D    gm     = drop(0. < gv, gv);
+        s[0] += drop(active, gv * gv);
+        s[1] += keep(active, gm * gm);
+        s[2] += drop(active, gv * av);
+        if constexpr (reduced)
+          s[3] += keep(active, reduced_chopped(xv, gv, lv, reduced_alpha));
+      }
+
       // elementwise, no sums: body(i) with vectors of four, then doubles
       template <typename Body>
       DUALCONTACT_INLINE void
@@ -326,17 +371,32 @@ namespace dualcontact
         n,
         {free_sq.v, chopped_sq.v, phi_Ap.v},
         [&](const std::size_t i, auto &s) __attribute__((always_inline)) {
-          using D    = value_of<decltype(s)>;
-          const D av = load<D>(Ap + i), lv = load<D>(l + i);
-          const D xv = load<D>(x + i) - alpha * load<D>(p + i);
-          const D gv = load<D>(g + i) - alpha * av;
-          store(x + i, xv);
-          store(g + i, gv);
-          const auto active = (xv - lv) <= tol * absolute(lv);
-          const D    gm     = drop(0. < gv, gv);
-          s[0] += drop(active, gv * gv);
-          s[1] += keep(active, gm * gm);
-          s[2] += drop(active, gv * av);
+          cg_step_body<false>(i, x, g, p, Ap, l, tol, alpha, 0., s);
+        });
+    }
+
+
+    DUALCONTACT_KERNEL_CLONES
+    void
+    VectorKernels::cg_step_reduced(const std::size_t n,
+                                   double           *x,
+                                   double           *g,
+                                   const double     *p,
+                                   const double     *Ap,
+                                   const double     *l,
+                                   const double      tol,
+                                   const double      alpha,
+                                   const double      reduced_alpha,
+                                   Lanes            &free_sq,
+                                   Lanes            &chopped_sq,
+                                   Lanes            &phi_Ap,
+                                   Lanes            &reduced_sq)
+    {
+      over_lanes<true>(
+        n,
+        {free_sq.v, chopped_sq.v, phi_Ap.v, reduced_sq.v},
+        [&](const std::size_t i, auto &s) __attribute__((always_inline)) {
+          cg_step_body<true>(i, x, g, p, Ap, l, tol, alpha, reduced_alpha, s);
         });
     }
 
@@ -423,13 +483,9 @@ namespace dualcontact
           const D xv = load<D>(x + i), gv = load<D>(g + i), lv = load<D>(l + i);
           const auto active = (xv - lv) <= tol * absolute(lv);
           const D    gm     = drop(0. < gv, gv);
-          // std::max(l, t) = l < t ? t : l
-          const D t   = xv - alpha * gv;
-          const D m   = lv < t ? t : lv;
-          const D red = gv < 0. ? gv : (xv - m) / alpha;
           s[0] += drop(active, gv * gv);
           s[1] += keep(active, gm * gm);
-          s[2] += keep(active, red * red);
+          s[2] += keep(active, reduced_chopped(xv, gv, lv, alpha));
         });
     }
 

@@ -110,6 +110,26 @@ namespace dualcontact
               Lanes        &phi_Ap);
 
       /**
+       * cg_step() with also the reduced chopped gradient's squares (see
+       * reduced_norms()) for the step length @p reduced_alpha > 0 at the
+       * new point added to @p reduced_sq: MwPGP's CG step.
+       */
+      static void
+      cg_step_reduced(std::size_t   n,
+                      double       *x,
+                      double       *g,
+                      const double *p,
+                      const double *Ap,
+                      const double *l,
+                      double        tol,
+                      double        alpha,
+                      double        reduced_alpha,
+                      Lanes        &free_sq,
+                      Lanes        &chopped_sq,
+                      Lanes        &phi_Ap,
+                      Lanes        &reduced_sq);
+
+      /**
        * The next conjugate direction on a run of n lower bounds l: p :=
        * phi - beta p (phi_i = g_i for inactive i, 0 for active), with p'p
        * and g'p added to the lanes and the largest feasible step along -p,

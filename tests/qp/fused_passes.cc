@@ -4,7 +4,7 @@
 // sets of every block type mixed with free unknowns, at feasible points
 // with many active blocks (a projected random vector):
 //  - cg_step: x - alpha p, g - alpha Ap, gradient_norms() at the new point
-//    and phi'Ap;
+//    and phi'Ap; with a reduced alpha also reduced_gradient_norms();
 //  - conjugate_direction: phi - beta p (p on the free set), the
 //    max_feasible_step() along it (finite and positive), p'p, g'p (also
 //    beta = 0, the restart);
@@ -120,6 +120,25 @@ main()
                       sci(nr.free_sq) + ", ||beta||^2 " + sci(nf.chopped_sq) +
                       " vs " + sci(nr.chopped_sq) + ", phi'Ap " + sci(phiAp) +
                       " vs " + sci(phiAp_r));
+
+        // with the reduced chopped gradient (MwPGP's CG step)
+        const double        ra = 0.7 / (1. + alpha);
+        const GradientNorms rr = set->reduced_gradient_norms(xr, gr, ra);
+        Vec                 xw(x), gw(g);
+        double              phiAp_w = 0.;
+        const GradientNorms nw =
+          set->cg_step(xw, gw, p, Ap, alpha, phiAp_w, ra);
+        check.check(rel(xw, xr) <= 1e-15 && rel(gw, gr) <= 1e-15 &&
+                      rel(nw.free_sq, rr.free_sq) <= 1e-13 &&
+                      rel(nw.chopped_sq, rr.chopped_sq) <= 1e-13 &&
+                      rel(nw.reduced_chopped_sq, rr.reduced_chopped_sq) <=
+                        1e-13 &&
+                      rel(phiAp_w, phiAp_r) <= 1e-13,
+                    tag + "cg_step (reduced): ||beta~||^2 " +
+                      sci(nw.reduced_chopped_sq) + " vs " +
+                      sci(rr.reduced_chopped_sq));
+        check.check(nf.reduced_chopped_sq == 0.,
+                    tag + "cg_step: no reduced norm without its alpha");
       }
 
       // conjugate_direction (and the restart beta = 0), with the old

@@ -234,6 +234,48 @@ main()
               "cg_step: lanes bitwise" + at);
     }
 
+    // cg_step_reduced: cg_step and the reduced chopped gradient (the
+    // sweep's expression for an active bound) at the new point
+    {
+      const double alpha = uniform(rng, 0., 0.5), ra = uniform(rng, 0.1, 2.);
+      std::vector<double> x = d.x, g = d.g, rx = d.x, rg = d.g;
+      Lanes fs = start_lanes(rng), bs = start_lanes(rng), pa = start_lanes(rng),
+            rs  = start_lanes(rng);
+      Lanes rfs = fs, rbs = bs, rpa = pa, rrs = rs;
+      for (std::size_t i = 0; i < n; ++i)
+      {
+        rx[i] -= alpha * d.p[i];
+        rg[i] -= alpha * d.Ap[i];
+        const bool         active = is_active(rx[i], d.l[i]);
+        const double       y = rx[i], gi = rg[i];
+        const double       gm = std::min(gi, 0.);
+        const unsigned int j  = lane(i, n);
+        const double       red =
+          !active ? 0. :
+                          (gi < 0. ? gi : (y - std::max(d.l[i], y - ra * gi)) / ra);
+        rfs.v[j] += active ? 0. : gi * gi;
+        rbs.v[j] += active ? gm * gm : 0.;
+        rpa.v[j] += active ? 0. : gi * d.Ap[i];
+        rrs.v[j] += red * red;
+      }
+      VectorKernels::cg_step_reduced(n,
+                                     x.data(),
+                                     g.data(),
+                                     d.p.data(),
+                                     d.Ap.data(),
+                                     d.l.data(),
+                                     tol,
+                                     alpha,
+                                     ra,
+                                     fs,
+                                     bs,
+                                     pa,
+                                     rs);
+      c.check(same_bits(x, rx) && same_bits(g, rg) && same_bits(fs, rfs) &&
+                same_bits(bs, rbs) && same_bits(pa, rpa) && same_bits(rs, rrs),
+              "cg_step_reduced: x, g, lanes bitwise" + at);
+    }
+
     // conjugate_direction
     for (const double beta : {0., 0.37})
     {
