@@ -156,10 +156,11 @@ namespace dualcontact
 
       double        bb_alpha = alpha_bar;
       GradientNorms norms;
-      // the stopping criterion from fresh norms at x
+      // the stopping criterion from fresh norms at x (every assignment to
+      // norms has ||phi|| and ||beta||, MwPGP's also ||beta~||)
       const auto criterion_value = [&]() -> double
       {
-        if (prm.stopping_criterion == StoppingCriterion::projected && !weak)
+        if (prm.stopping_criterion == StoppingCriterion::projected)
           return std::sqrt(norms.free_sq + norms.chopped_sq);
         if (prm.stopping_criterion == StoppingCriterion::reduced_projected &&
             weak)
