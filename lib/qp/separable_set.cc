@@ -670,6 +670,83 @@ namespace dualcontact
     } // namespace
 
 
+    // ======================== box runs ==================================
+
+    namespace
+    {
+      // The smallest ratio room/q over q > 0 (the largest feasible step
+      // of a bound or box along -q), tracked as a fraction compared by
+      // cross-multiplication: no division per entry, no branch.
+      struct MinRatio
+      {
+        double num = 1., den = 0.;
+        inline void
+        offer(const double room, const double q)
+        {
+          const bool take = q > 0. && room * den < num * q;
+          num             = take ? room : num;
+          den             = take ? q : den;
+        }
+      };
+
+      /**
+       * A box block l_i <= x_i <= u_i in the loops over box runs (the
+       * runs of bounds go to VectorKernels): at(first) views the run of
+       * blocks starting at
+       * the type's block `first`; classify() tests unknown i of the run at
+       * the value y; chopped() is its component of beta for the gradient
+       * component g; project() is P_i; offer_step() hands the largest step
+       * along -p (p the direction component) to a MinRatio.
+       */
+      struct BoxKind
+      {
+        const double *lower, *upper;
+        double        tol;
+        struct State
+        {
+          bool at_lower, at_upper, active;
+        };
+
+        inline BoxKind
+        at(const std::size_t first) const
+        {
+          return {lower + first, upper + first, tol};
+        }
+        inline State
+        classify(const std::size_t i, const double y) const
+        {
+          const bool at_l = y - lower[i] <= tol * std::abs(lower[i]);
+          const bool at_u = upper[i] - y <= tol * std::abs(upper[i]);
+          return {at_l, at_u, at_l || at_u};
+        }
+        // l = u: both bounds active, beta = 0
+        inline double
+        chopped(const State &state, const double g) const
+        {
+          return (state.at_lower && state.at_upper) ?
+                   0. :
+                   (state.at_lower ? std::min(g, 0.) :
+                                     (state.at_upper ? std::max(g, 0.) : 0.));
+        }
+        inline double
+        project(const std::size_t i, const double y) const
+        {
+          return std::min(std::max(y, lower[i]), upper[i]);
+        }
+        inline void
+        offer_step(const std::size_t i,
+                   const double      y,
+                   const double      p,
+                   MinRatio         &ratio) const
+        {
+          const double room =
+            p > 0. ? std::max(y - lower[i], 0.) : std::max(upper[i] - y, 0.);
+          ratio.offer(room, std::abs(p));
+        }
+      };
+    } // namespace
+
+
     // ======================== projection ================================
 
     template <typename VectorType>
@@ -685,13 +762,13 @@ namespace dualcontact
         for (std::size_t i = 0; i < run.count; ++i)
           y[i] = std::max(y[i], l[i]);
       }
+      const BoxKind boxes{box_lower.data(), box_upper.data(), tolerance};
       for (const Run &run : box_runs)
       {
-        double       *y = v + run.begin;
-        const double *l = box_lower.data() + run.first;
-        const double *u = box_upper.data() + run.first;
+        double    *y = v + run.begin;
+        const auto k = boxes.at(run.first);
         for (std::size_t i = 0; i < run.count; ++i)
-          y[i] = std::min(std::max(y[i], l[i]), u[i]);
+          y[i] = k.project(i, y[i]);
       }
       project_curved(v);
     }
@@ -798,25 +875,19 @@ namespace dualcontact
                                 d + run.begin,
                                 bound_lower.data() + run.first,
                                 ratio);
-      const auto offer =
-        [](double &num, double &den, const double room, const double q)
       {
-        const bool take = q > 0. && room * den < num * q;
-        num             = take ? room : num;
-        den             = take ? q : den;
-      };
-      for (const Run &run : box_runs)
-      {
-        const double *y = v + run.begin;
-        const double *q = d + run.begin;
-        const double *l = box_lower.data() + run.first;
-        const double *u = box_upper.data() + run.first;
-        for (std::size_t i = 0; i < run.count; ++i)
+        MinRatio      box_ratio{ratio.num[0], ratio.den[0]};
+        const BoxKind boxes{box_lower.data(), box_upper.data(), tolerance};
+        for (const Run &run : box_runs)
         {
-          const double room =
-            q[i] > 0. ? std::max(y[i] - l[i], 0.) : std::max(u[i] - y[i], 0.);
-          offer(ratio.num[0], ratio.den[0], room, std::abs(q[i]));
+          const double *y = v + run.begin;
+          const double *q = d + run.begin;
+          const auto    k = boxes.at(run.first);
+          for (std::size_t i = 0; i < run.count; ++i)
+            k.offer_step(i, y[i], q[i], box_ratio);
         }
+        ratio.num[0] = box_ratio.num;
+        ratio.den[0] = box_ratio.den;
       }
       alpha = VectorKernels::min_ratio(ratio);
       alpha = std::min(alpha, curved_max_step(v, d));
@@ -1345,153 +1416,11 @@ namespace dualcontact
     {
       Assert(finalized, dealii::ExcMessage("call finalize() first"));
       Assert(&phi != &g, dealii::ExcMessage("phi must not alias g"));
-      const double *gv  = g.begin();
-      const double *v   = x.begin();
-      double       *o   = phi.begin();
-      double        fsq = 0., bsq = 0.;
-      for (const auto &range : free_ranges)
-        for (std::size_t i = range.first; i < range.second; ++i)
-        {
-          o[i] = gv[i];
-          fsq += gv[i] * gv[i];
-        }
-      VectorKernels::Lanes fs_lanes, bs_lanes;
-      for (const Run &run : bound_runs)
-        VectorKernels::gradient_norms(run.count,
-                                      v + run.begin,
-                                      gv + run.begin,
-                                      bound_lower.data() + run.first,
-                                      tolerance,
-                                      o + run.begin,
-                                      fs_lanes,
-                                      bs_lanes);
-      fsq += fs_lanes.total();
-      bsq += bs_lanes.total();
-      for (const Run &run : box_runs)
-      {
-        const double *y  = v + run.begin;
-        const double *q  = gv + run.begin;
-        double       *f  = o + run.begin;
-        const double *l  = box_lower.data() + run.first;
-        const double *u  = box_upper.data() + run.first;
-        double        fs = 0., bs = 0.;
-        for (std::size_t i = 0; i < run.count; ++i)
-        {
-          const bool   at_l = y[i] - l[i] <= tolerance * std::abs(l[i]);
-          const bool   at_u = u[i] - y[i] <= tolerance * std::abs(u[i]);
-          const double c =
-            (at_l && at_u) ?
-              0. :
-              (at_l ? std::min(q[i], 0.) : (at_u ? std::max(q[i], 0.) : 0.));
-          f[i] = (at_l || at_u) ? 0. : q[i];
-          fs += (at_l || at_u) ? 0. : q[i] * q[i];
-          bs += c * c;
-        }
-        fsq += fs;
-        bsq += bs;
-      }
-      auto sink = [&](const size_type off,
-                      const unsigned  w,
-                      const double   *fphi,
-                      const double   *beta,
-                      const double *)
-      {
-        for (unsigned c = 0; c < w; ++c)
-        {
-          o[off + c] = fphi[c];
-          fsq += fphi[c] * fphi[c];
-          bsq += beta[c] * beta[c];
-        }
-      };
-      sweep(x, g, 1., false, sink, true);
-      double local[2] = {fsq, bsq}, global[2];
-      dealii::Utilities::MPI::sum(dealii::ArrayView<const double>(local, 2),
-                                  internal::communicator(x),
-                                  dealii::ArrayView<double>(global, 2));
-      GradientNorms n;
-      n.free_sq    = global[0];
-      n.chopped_sq = global[1];
-      return n;
+      return norms(x, g, 1., false, phi.begin());
     }
 
 
     // ======================== fused passes ==============================
-
-    namespace
-    {
-      // The smallest ratio room/q over q > 0 (the largest feasible step
-      // of a bound or box along -q), tracked as a fraction compared by
-      // cross-multiplication: no division per entry, no branch.
-      struct MinRatio
-      {
-        double num = 1., den = 0.;
-        inline void
-        offer(const double room, const double q)
-        {
-          const bool take = q > 0. && room * den < num * q;
-          num             = take ? room : num;
-          den             = take ? q : den;
-        }
-      };
-
-      /**
-       * A box block l_i <= x_i <= u_i in the passes of cg_step(),
-       * conjugate_direction() and projected_step(), whose runs of bounds
-       * go to VectorKernels: at(first) views the run of blocks starting at
-       * the type's block `first`; classify() tests unknown i of the run at
-       * the value y; chopped() is its component of beta for the gradient
-       * component g; project() is P_i; offer_step() hands the largest step
-       * along -p (p the direction component) to a MinRatio.
-       */
-      struct BoxKind
-      {
-        const double *lower, *upper;
-        double        tol;
-        struct State
-        {
-          bool at_lower, at_upper, active;
-        };
-
-        inline BoxKind
-        at(const std::size_t first) const
-        {
-          return {lower + first, upper + first, tol};
-        }
-        inline State
-        classify(const std::size_t i, const double y) const
-        {
-          const bool at_l = y - lower[i] <= tol * std::abs(lower[i]);
-          const bool at_u = upper[i] - y <= tol * std::abs(upper[i]);
-          return {at_l, at_u, at_l || at_u};
-        }
-        // l = u: both bounds active, beta = 0
-        inline double
-        chopped(const State &state, const double g) const
-        {
-          return (state.at_lower && state.at_upper) ?
-                   0. :
-                   (state.at_lower ? std::min(g, 0.) :
-                                     (state.at_upper ? std::max(g, 0.) : 0.));
-        }
-        inline double
-        project(const std::size_t i, const double y) const
-        {
-          return std::min(std::max(y, lower[i]), upper[i]);
-        }
-        inline void
-        offer_step(const State &,
-                   const std::size_t i,
-                   const double      y,
-                   const double      p,
-                   MinRatio         &ratio) const
-        {
-          const double room =
-            p > 0. ? std::max(y - lower[i], 0.) : std::max(upper[i] - y, 0.);
-          ratio.offer(room, std::abs(p));
-        }
-      };
-    } // namespace
-
 
     template <typename VectorType>
     GradientNorms
@@ -1677,7 +1606,7 @@ namespace dualcontact
             d[i]               = di;
             pp0 += di * di;
             gp0 += q[i] * di;
-            k.offer_step(state, i, y[i], di, box_ratio);
+            k.offer_step(i, y[i], di, box_ratio);
           }
         }
         ratio.num[0] = box_ratio.num;
@@ -1788,69 +1717,42 @@ namespace dualcontact
     SeparableSet<VectorType>::norms(const VectorType &x,
                                     const VectorType &g,
                                     const double      alpha,
-                                    const bool        reduced) const
+                                    const bool        reduced,
+                                    double           *phi) const
     {
+      Assert(finalized, dealii::ExcMessage("call finalize() first"));
+      Assert(!reduced || phi == nullptr, dealii::ExcInternalError());
       const double *gv  = g.begin();
       const double *v   = x.begin();
       double        fsq = 0., bsq = 0., rsq = 0.;
       for (const auto &range : free_ranges)
         for (std::size_t i = range.first; i < range.second; ++i)
-          fsq += gv[i] * gv[i];
-      if (!reduced)
-      {
-        // bounds and boxes in branch-free streaming loops
-        VectorKernels::Lanes fs_lanes, bs_lanes;
-        for (const Run &run : bound_runs)
-          VectorKernels::gradient_norms(run.count,
-                                        v + run.begin,
-                                        gv + run.begin,
-                                        bound_lower.data() + run.first,
-                                        tolerance,
-                                        nullptr,
-                                        fs_lanes,
-                                        bs_lanes);
-        fsq += fs_lanes.total();
-        bsq += bs_lanes.total();
-        for (const Run &run : box_runs)
         {
-          const double *y = v + run.begin;
-          const double *q = gv + run.begin;
-          const double *l = box_lower.data() + run.first;
-          const double *u = box_upper.data() + run.first;
-          double        f = 0., b = 0.;
-          for (std::size_t i = 0; i < run.count; ++i)
-          {
-            const bool   at_l = y[i] - l[i] <= tolerance * std::abs(l[i]);
-            const bool   at_u = u[i] - y[i] <= tolerance * std::abs(u[i]);
-            const double c =
-              (at_l && at_u) ?
-                0. :
-                (at_l ? std::min(q[i], 0.) : (at_u ? std::max(q[i], 0.) : 0.));
-            f += (at_l || at_u) ? 0. : q[i] * q[i];
-            b += c * c;
-          }
-          fsq += f;
-          bsq += b;
+          if (phi != nullptr)
+            phi[i] = gv[i];
+          fsq += gv[i] * gv[i];
         }
-      }
-      auto sink = [&](const size_type,
-                      const unsigned w,
-                      const double  *phi,
-                      const double  *beta,
-                      const double  *red)
+      auto sink = [&](const size_type off,
+                      const unsigned  w,
+                      const double   *fphi,
+                      const double   *beta,
+                      const double   *red)
       {
         for (unsigned c = 0; c < w; ++c)
         {
-          fsq += phi[c] * phi[c];
+          if (phi != nullptr)
+            phi[off + c] = fphi[c];
+          fsq += fphi[c] * fphi[c];
           bsq += beta[c] * beta[c];
           if (reduced)
             rsq += red[c] * red[c];
         }
       };
+      VectorKernels::Lanes fs_lanes, bs_lanes, rs_lanes;
       if (reduced)
       {
-        // bounds in the vectorized kernel, the rest in the sweep
-        VectorKernels::Lanes fs_lanes, bs_lanes, rs_lanes;
+        // bounds in the vectorized kernel, boxes and curved blocks in the
+        // sweep
         for (const Run &run : bound_runs)
           VectorKernels::reduced_norms(run.count,
                                        v + run.begin,
@@ -1867,7 +1769,42 @@ namespace dualcontact
         sweep(x, g, alpha, true, sink, false, true);
       }
       else
-        sweep(x, g, alpha, false, sink, true);
+      {
+        // bounds in the vectorized kernel, boxes in a branch-free loop,
+        // curved blocks in the sweep
+        for (const Run &run : bound_runs)
+          VectorKernels::gradient_norms(run.count,
+                                        v + run.begin,
+                                        gv + run.begin,
+                                        bound_lower.data() + run.first,
+                                        tolerance,
+                                        phi == nullptr ? nullptr :
+                                                         phi + run.begin,
+                                        fs_lanes,
+                                        bs_lanes);
+        fsq += fs_lanes.total();
+        bsq += bs_lanes.total();
+        const BoxKind boxes{box_lower.data(), box_upper.data(), tolerance};
+        for (const Run &run : box_runs)
+        {
+          const double *y = v + run.begin;
+          const double *q = gv + run.begin;
+          const auto    k = boxes.at(run.first);
+          double        f = 0., b = 0.;
+          for (std::size_t i = 0; i < run.count; ++i)
+          {
+            const auto   state = k.classify(i, y[i]);
+            const double c     = k.chopped(state, q[i]);
+            if (phi != nullptr)
+              phi[run.begin + i] = state.active ? 0. : q[i];
+            f += state.active ? 0. : q[i] * q[i];
+            b += c * c;
+          }
+          fsq += f;
+          bsq += b;
+        }
+        sweep(x, g, 1., false, sink, true);
+      }
       double local[3] = {fsq, bsq, rsq};
       double global[3];
       dealii::Utilities::MPI::sum(dealii::ArrayView<const double>(local, 3),

@@ -52,7 +52,8 @@ namespace dualcontact
       /// ||beta||^2: chopped gradient (thesis 1.31)
       double chopped_sq = 0.;
       /// ||beta~_alpha||^2: reduced chopped gradient (thesis 1.4.3);
-      /// only filled by reduced_gradient_norms()
+      /// only filled by reduced_gradient_norms() and cg_step() with a
+      /// reduced alpha
       double reduced_chopped_sq = 0.;
     };
 
@@ -363,11 +364,15 @@ namespace dualcontact
       bool
       has_curved_blocks() const;
 
+      /// gradient_norms() (and with @p phi the free gradient's local
+      /// entries written there: free_gradient_and_norms()) or, with
+      /// @p reduced, reduced_gradient_norms() for the step length alpha
       GradientNorms
       norms(const VectorType &x,
             const VectorType &g,
             double            alpha,
-            bool              reduced) const;
+            bool              reduced,
+            double           *phi = nullptr) const;
 
       struct Bound
       {

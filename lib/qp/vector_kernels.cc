@@ -253,6 +253,25 @@ namespace dualcontact
         }
       }
 
+      // whether a bound is active at x: x - l <= tol |l|
+      template <typename D>
+      DUALCONTACT_INLINE auto
+      at_bound(const D xv, const D lv, const double tol)
+      {
+        return (xv - lv) <= tol * absolute(lv);
+      }
+
+      // a bound's squares of the free gradient (g if inactive) and of the
+      // chopped gradient (min(g, 0) if active) into s[0], s[1]
+      template <typename S, typename M, typename D>
+      DUALCONTACT_INLINE void
+      add_free_and_chopped(S &s, const M active, const D gv)
+      {
+        const D gm = drop(0. < gv, gv);
+        s[0] += drop(active, gv * gv);
+        s[1] += keep(active, gm * gm);
+      }
+
       // The square of the reduced chopped gradient's component of an
       // active bound (thesis 1.4.2) for the step length alpha: g if g < 0,
       // else (x - max(l, x - alpha g)) / alpha, with std::max(l, t) as l <
@@ -289,10 +308,8 @@ namespace dualcontact
         const D gv = load<D>(g + i) - alpha * av;
         store(x + i, xv);
         store(g + i, gv);
-        const auto active = (xv - lv) <= tol * absolute(lv);
-        const D    gm     = drop(0. < gv, gv);
-        s[0] += drop(active, gv * gv);
-        s[1] += keep(active, gm * gm);
+        const auto active = at_bound(xv, lv, tol);
+        add_free_and_chopped(s, active, gv);
         s[2] += drop(active, gv * av);
         if constexpr (reduced)
           s[3] += keep(active, reduced_chopped(xv, gv, lv, reduced_alpha));
@@ -426,7 +443,7 @@ namespace dualcontact
             const D xv = load<D>(x + i), gv = load<D>(g + i),
                     lv        = load<D>(l + i);
             const D    room   = xv - lv;
-            const auto active = room <= tol * absolute(lv);
+            const auto active = at_bound(xv, lv, tol);
             const D    dv     = drop(active, gv) - beta * load<D>(p + i);
             store(p + i, dv);
             s[0] += dv * dv;
@@ -453,12 +470,10 @@ namespace dualcontact
         [&](const std::size_t i, auto &s) __attribute__((always_inline)) {
           using D    = value_of<decltype(s)>;
           const D xv = load<D>(x + i), gv = load<D>(g + i), lv = load<D>(l + i);
-          const auto active = (xv - lv) <= tol * absolute(lv);
-          const D    gm     = drop(0. < gv, gv);
+          const auto active = at_bound(xv, lv, tol);
           if (phi != nullptr)
             store(phi + i, drop(active, gv));
-          s[0] += drop(active, gv * gv);
-          s[1] += keep(active, gm * gm);
+          add_free_and_chopped(s, active, gv);
         });
     }
 
@@ -481,10 +496,8 @@ namespace dualcontact
         [&](const std::size_t i, auto &s) __attribute__((always_inline)) {
           using D    = value_of<decltype(s)>;
           const D xv = load<D>(x + i), gv = load<D>(g + i), lv = load<D>(l + i);
-          const auto active = (xv - lv) <= tol * absolute(lv);
-          const D    gm     = drop(0. < gv, gv);
-          s[0] += drop(active, gv * gv);
-          s[1] += keep(active, gm * gm);
+          const auto active = at_bound(xv, lv, tol);
+          add_free_and_chopped(s, active, gv);
           s[2] += keep(active, reduced_chopped(xv, gv, lv, alpha));
         });
     }
@@ -553,7 +566,7 @@ namespace dualcontact
           const D xv = load<D>(x + i), lv = load<D>(l + i);
           D       step = alpha * load<D>(g + i);
           if (free_only)
-            step = drop((xv - lv) <= tol * absolute(lv), step);
+            step = drop(at_bound(xv, lv, tol), step);
           const D y = xv - step;
           store(x + i, y < lv ? lv : y);
         });
