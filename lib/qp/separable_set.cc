@@ -676,10 +676,11 @@ namespace dualcontact
     {
       // The smallest ratio room/q over q > 0 (the largest feasible step
       // of a bound or box along -q), tracked as a fraction compared by
-      // cross-multiplication: no division per entry, no branch.
+      // cross-multiplication: no division per entry, no branch.  It works
+      // on a lane of VectorKernels::RatioLanes (lane 0 for the boxes).
       struct MinRatio
       {
-        double num = 1., den = 0.;
+        double &num, &den;
         inline void
         offer(const double room, const double q)
         {
@@ -886,8 +887,6 @@ namespace dualcontact
           for (std::size_t i = 0; i < run.count; ++i)
             k.offer_step(i, y[i], q[i], box_ratio);
         }
-        ratio.num[0] = box_ratio.num;
-        ratio.den[0] = box_ratio.den;
       }
       alpha = VectorKernels::min_ratio(ratio);
       alpha = std::min(alpha, curved_max_step(v, d));
@@ -1609,8 +1608,6 @@ namespace dualcontact
             k.offer_step(i, y[i], di, box_ratio);
           }
         }
-        ratio.num[0] = box_ratio.num;
-        ratio.den[0] = box_ratio.den;
       }
       double alpha = VectorKernels::min_ratio(ratio);
       double pp    = pp_lanes.total();
