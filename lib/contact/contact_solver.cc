@@ -47,7 +47,7 @@ namespace dualcontact
 
     template <int dim>
     ContactSolver<dim>::ContactSolver(
-      DualProblem<dim>            &dual,
+      DualFormulation<dim>        &dual,
       const qp::SolverParameters  &qp_parameters,
       const qp::SMALSEMParameters &smalse_parameters,
       const CoulombParameters     &coulomb_parameters)
@@ -66,28 +66,28 @@ namespace dualcontact
 
       template <int dim>
       qp::Problem<Replicated>
-      make_problem(const DualProblem<dim> &dual, const Replicated &)
+      make_problem(const DualFormulation<dim> &dual, const Replicated &)
       {
         return dual.make_problem();
       }
 
       template <int dim>
       qp::Problem<Distributed>
-      make_problem(const DualProblem<dim> &dual, const Distributed &)
+      make_problem(const DualFormulation<dim> &dual, const Distributed &)
       {
         return dual.make_distributed_problem();
       }
 
       template <int dim>
       void
-      update_bounds(DualProblem<dim> &dual, const Replicated &lambda)
+      update_bounds(DualFormulation<dim> &dual, const Replicated &lambda)
       {
         dual.update_slip_bounds(&lambda);
       }
 
       template <int dim>
       void
-      update_bounds(DualProblem<dim> &dual, const Distributed &lambda)
+      update_bounds(DualFormulation<dim> &dual, const Distributed &lambda)
       {
         dual.update_slip_bounds(lambda);
       }
@@ -95,14 +95,16 @@ namespace dualcontact
       /** Result::lambda: the whole vector (gathered if distributed). */
       template <int dim>
       void
-      whole(const DualProblem<dim> &, const Replicated &v, Replicated &out)
+      whole(const DualFormulation<dim> &, const Replicated &v, Replicated &out)
       {
         out = v;
       }
 
       template <int dim>
       void
-      whole(const DualProblem<dim> &dual, const Distributed &v, Replicated &out)
+      whole(const DualFormulation<dim> &dual,
+            const Distributed          &v,
+            Replicated                 &out)
       {
         dual.gather(v, out);
       }

@@ -3,7 +3,7 @@
 #include <deal.II/base/parameter_handler.h>
 #include <deal.II/lac/vector.h>
 
-#include <contact/dual_problem.h>
+#include <contact/dual_formulation.h>
 #include <qp/smalse_m.h>
 #include <qp/solver_parameters.h>
 #include <qp/solver_statistics.h>
@@ -37,16 +37,17 @@ namespace dualcontact
 
 
     /**
-     * Solves the contact problem of a DualProblem: one QP for frictionless
-     * and Tresca scenes; for Coulomb pairs the fixed point over Tresca
-     * problems psi_i = mu lambda_N,i (the first one bonded: no bound on
-     * lambda_T, which is feasible for any load), each QP warm
-     * started from the previous multipliers.  QPs with equality constraints
-     * (floating bodies) go through SMALSE-M with the chosen solver inside.
+     * Solves the contact problem of a DualFormulation (DualProblem or
+     * decomposition::TFETIDual): one QP for frictionless and Tresca scenes; for
+     * Coulomb pairs the fixed point over Tresca problems psi_i = mu lambda_N,i
+     * (the first one bonded: no bound on lambda_T, which is feasible for any
+     * load), each QP warm started from the previous multipliers.  QPs with
+     * equality constraints (floating bodies) go through SMALSE-M with the
+     * chosen solver inside.
      *
-     * The QPs run on the DualProblem's vectors: dealii::Vector<double>
+     * The QPs run on the dual's vectors: dealii::Vector<double>
      * (replicated), or dealii::TrilinosWrappers::MPI::Vector with each
-     * contact node's multipliers on one process (DualProblem::
+     * contact node's multipliers on one process (DualFormulation::
      * is_distributed()); then the Coulomb bounds and the recovery are
      * computed from the owned multipliers too, and Result::lambda is the
      * gathered whole vector (for the output).
@@ -78,7 +79,7 @@ namespace dualcontact
         std::vector<unsigned int> multipliers_per_process;
       };
 
-      ContactSolver(DualProblem<dim>            &dual,
+      ContactSolver(DualFormulation<dim>        &dual,
                     const qp::SolverParameters  &qp_parameters,
                     const qp::SMALSEMParameters &smalse_parameters,
                     const CoulombParameters     &coulomb_parameters);
@@ -98,7 +99,7 @@ namespace dualcontact
       qp::SolverStatistics
       solve_qp(V &lambda) const;
 
-      DualProblem<dim>     &dual_;
+      DualFormulation<dim> &dual_;
       qp::SolverParameters  qp_parameters_;
       qp::SMALSEMParameters smalse_parameters_;
       CoulombParameters     coulomb_parameters_;

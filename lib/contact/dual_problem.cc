@@ -106,20 +106,9 @@ namespace dualcontact
       const ContactDiscretization<dim>                             &contact,
       const std::function<std::unique_ptr<fem::StiffnessSolver>()> &make_solver,
       const DualProblemParameters                                  &parameters)
-        : bodies_(bodies)
-        , contact_(contact)
+        : DualFormulation<dim>(contact)
+        , bodies_(bodies)
     {
-      // Frictional nodes: those of pairs with a friction law.
-      frictional_index_.assign(contact.n_nodes(), -1);
-      for (unsigned int i = 0; i < contact.n_nodes(); ++i)
-        if (contact.pairs()[contact.nodes()[i].pair].friction.has_friction())
-        {
-          frictional_index_[i] = frictional_nodes_.size();
-          frictional_nodes_.push_back(i);
-        }
-      psi_first_.assign(frictional_nodes_.size(), 0.);
-      psi_second_.assign(frictional_nodes_.size(), 0.);
-
       // The dofs of each body that B touches (C_b) and the rows of B that
       // touch it; and the memory the assembled form would take.
       const unsigned int n_bodies = bodies_.size();
@@ -470,129 +459,9 @@ namespace dualcontact
 
     template <int dim>
     unsigned int
-    DualProblem<dim>::n_contact_nodes() const
-    {
-      return contact_.n_nodes();
-    }
-
-    template <int dim>
-    unsigned int
-    DualProblem<dim>::n_frictional_nodes() const
-    {
-      return frictional_nodes_.size();
-    }
-
-    template <int dim>
-    int
-    DualProblem<dim>::frictional_index(const unsigned int node) const
-    {
-      return frictional_index_[node];
-    }
-
-    template <int dim>
-    bool
-    DualProblem<dim>::has_coulomb_friction() const
-    {
-      for (const auto &pair : contact_.pairs())
-        if (pair.friction.is_coulomb())
-          return true;
-      return false;
-    }
-
-
-    template <int dim>
-    unsigned int
     DualProblem<dim>::n_rigid_body_modes() const
     {
       return rigid_modes_.size();
-    }
-
-
-    template <int dim>
-    double
-    DualProblem<dim>::friction_utilization(const VectorType  &lambda,
-                                           const unsigned int j) const
-    {
-      const unsigned int first = n_contact_nodes() + (dim - 1) * j;
-      return friction_utilization(j, lambda.begin() + first);
-    }
-
-
-    template <int dim>
-    double
-    DualProblem<dim>::friction_utilization(const unsigned int j,
-                                           const double      *tangential) const
-    {
-      const FrictionLaw &law =
-        contact_.pairs()[contact_.nodes()[frictional_nodes_[j]].pair].friction;
-      double ratio2 = 0;
-      for (unsigned int k = 0; k + 1 < dim; ++k)
-      {
-        // ellipse semi-axes (psi_1, psi_2) for orthotropic laws in 3D
-        const double bound = (dim == 3 && law.is_orthotropic() && k == 1) ?
-                               psi_second_[j] :
-                               psi_first_[j];
-        const double value = tangential[k];
-        if (std::isinf(bound))
-          continue;
-        if (bound > 0)
-          ratio2 += (value / bound) * (value / bound);
-        else if (value != 0)
-          return std::numeric_limits<double>::infinity();
-      }
-      return std::sqrt(ratio2);
-    }
-
-
-    template <int dim>
-    void
-    DualProblem<dim>::set_slip_bounds(const std::vector<double> &first,
-                                      const std::vector<double> &second)
-    {
-      AssertDimension(first.size(), frictional_nodes_.size());
-      AssertDimension(second.size(), frictional_nodes_.size());
-      psi_first_  = first;
-      psi_second_ = second;
-    }
-
-
-    template <int dim>
-    void
-    DualProblem<dim>::update_slip_bounds(const VectorType *lambda)
-    {
-      for (unsigned int j = 0; j < frictional_nodes_.size(); ++j)
-      {
-        const unsigned int      node = frictional_nodes_[j];
-        const ContactNode<dim> &n    = contact_.nodes()[node];
-        const FrictionLaw      &law  = contact_.pairs()[n.pair].friction;
-        if (law.is_coulomb())
-        {
-          // Without multipliers yet: bonded (no bound), which is feasible
-          // for any load; psi = 0 would forbid tangential forces and make
-          // a body with a tangential load and no tangential support
-          // infeasible.
-          const double mu_1 = law.first;
-          const double mu_2 = law.is_orthotropic() ? law.second : law.first;
-          const double inf  = std::numeric_limits<double>::infinity();
-          if (lambda)
-          {
-            const double lambda_n = std::max((*lambda)(node), 0.);
-            psi_first_[j]         = mu_1 * lambda_n;
-            psi_second_[j]        = mu_2 * lambda_n;
-          }
-          else
-          {
-            psi_first_[j]  = mu_1 > 0 ? inf : 0.;
-            psi_second_[j] = mu_2 > 0 ? inf : 0.;
-          }
-        }
-        else
-        {
-          psi_first_[j] = law.first * n.weight;
-          psi_second_[j] =
-            (law.is_orthotropic() ? law.second : law.first) * n.weight;
-        }
-      }
     }
 
 
@@ -632,21 +501,6 @@ namespace dualcontact
 
 
     template <int dim>
-    const std::vector<double> &
-    DualProblem<dim>::slip_bounds_first() const
-    {
-      return psi_first_;
-    }
-
-    template <int dim>
-    const std::vector<double> &
-    DualProblem<dim>::slip_bounds_second() const
-    {
-      return psi_second_;
-    }
-
-
-    template <int dim>
     qp::Problem<typename DualProblem<dim>::VectorType>
     DualProblem<dim>::make_problem() const
     {
@@ -661,27 +515,8 @@ namespace dualcontact
       // the power iteration's estimate approaches from below
       problem.lambda_max = 1.05;
 
-      auto               set = std::make_shared<qp::SeparableSet<VectorType>>();
-      const unsigned int n_nodes = contact_.n_nodes();
-      for (unsigned int i = 0; i < n_nodes; ++i)
-        set->add_bound(i, 0.);
-      for (unsigned int j = 0; j < frictional_nodes_.size(); ++j)
-      {
-        const unsigned int first = n_nodes + (dim - 1) * j;
-        const FrictionLaw &law =
-          contact_.pairs()[contact_.nodes()[frictional_nodes_[j]].pair]
-            .friction;
-        if (std::isinf(psi_first_[j]) || std::isinf(psi_second_[j]))
-          continue; // bonded: tangential multipliers free
-        if (dim == 2)
-          set->add_box(first, -psi_first_[j], psi_first_[j]);
-        else if (law.is_orthotropic() && psi_first_[j] > 0 &&
-                 psi_second_[j] > 0)
-          set->add_ellipse(first, psi_first_[j], psi_second_[j]);
-        else
-          // isotropic, or a node without normal force (all bounds zero)
-          set->add_disc(first, std::min(psi_first_[j], psi_second_[j]));
-      }
+      auto set = std::make_shared<qp::SeparableSet<VectorType>>();
+      this->add_contact_blocks(*set);
       VectorType layout(n_multipliers());
       set->finalize(layout);
       problem.constraints = set;

@@ -8,6 +8,7 @@
 #include <deal.II/lac/vector.h>
 
 #include <contact/contact_discretization.h>
+#include <contact/dual_formulation.h>
 #include <fem/elastic_body.h>
 #include <fem/rigid_body_modes.h>
 #include <fem/stiffness_solver.h>
@@ -118,12 +119,21 @@ namespace dualcontact
      * as the output needs them.
      */
     template <int dim>
-    class DualProblem
+    class DualProblem : public DualFormulation<dim>
     {
     public:
       using VectorType = dealii::Vector<double>;
       /** The QP's vectors under MPI (see "Distribution"). */
       using DistributedVector = dealii::TrilinosWrappers::MPI::Vector;
+      using DualFormulation<dim>::n_contact_nodes;
+      using DualFormulation<dim>::n_frictional_nodes;
+      using DualFormulation<dim>::frictional_index;
+      using DualFormulation<dim>::has_coulomb_friction;
+      using DualFormulation<dim>::set_slip_bounds;
+      using DualFormulation<dim>::update_slip_bounds;
+      using DualFormulation<dim>::slip_bounds_first;
+      using DualFormulation<dim>::slip_bounds_second;
+      using DualFormulation<dim>::friction_utilization;
 
       /**
        * Factorizes every body's K with a solver made by @p make_solver
@@ -137,81 +147,40 @@ namespace dualcontact
                                     &make_solver,
         const DualProblemParameters &parameters = DualProblemParameters());
 
-      ~DualProblem();
+      ~DualProblem() override;
 
       unsigned int
-      n_multipliers() const;
-      unsigned int
-      n_contact_nodes() const;
-      /** Nodes with tangential multipliers (frictional pairs). */
-      unsigned int
-      n_frictional_nodes() const;
-      /** Index into the frictional nodes, or -1 for a frictionless node. */
-      int
-      frictional_index(const unsigned int node) const;
-      /** Whether some pair has Coulomb friction (bounds depend on lambda). */
-      bool
-      has_coulomb_friction() const;
+      n_multipliers() const override;
       /** Total number of rigid-body modes (rows of G). */
       unsigned int
-      n_rigid_body_modes() const;
+      n_rigid_body_modes() const override;
 
-      /**
-       * Nodal slip bounds [N] of the frictional nodes (size
-       * n_frictional_nodes(); @p second is used by orthotropic pairs in 3D
-       * only).
-       */
+      /** The same as DualFormulation::update_slip_bounds() from
+       *  distributed multipliers (collective). */
       void
-      set_slip_bounds(const std::vector<double> &first,
-                      const std::vector<double> &second);
-      /**
-       * The bounds of the pairs' laws: Tresca psi = g w_i; Coulomb
-       * psi = mu lambda_N,i with lambda_N from @p lambda, or, if @p lambda is
-       * null, no bound at all (bonded: the first Coulomb iterate, feasible
-       * for any load).
-       */
-      void
-      update_slip_bounds(const VectorType *lambda);
-      /** The same from distributed multipliers (collective). */
-      void
-      update_slip_bounds(const DistributedVector &lambda);
-      const std::vector<double> &
-      slip_bounds_first() const;
-      const std::vector<double> &
-      slip_bounds_second() const;
-
-      /**
-       * How much of its friction bound the tangential multiplier of the
-       * @p j-th frictional node uses: |lambda_T| / psi in 2D and for
-       * isotropic laws, the ellipse norm sqrt((lambda_1/psi_1)^2 +
-       * (lambda_2/psi_2)^2) for orthotropic ones.  Below 1: the node sticks;
-       * 1: it may slip (on the bound).
-       */
-      double
-      friction_utilization(const VectorType  &lambda,
-                           const unsigned int j) const;
+      update_slip_bounds(const DistributedVector &lambda) override;
 
       /**
        * Whether the QP runs on DistributedVector (more than one process,
        * or `set QP vectors = distributed').
        */
       bool
-      is_distributed() const;
+      is_distributed() const override;
       /** The multipliers this process owns (all of them if replicated). */
       const dealii::IndexSet &
       locally_owned_multipliers() const;
       /** Owned contact nodes per process (one entry if replicated). */
       const std::vector<unsigned int> &
-      contact_nodes_per_process() const;
+      contact_nodes_per_process() const override;
       /** Owned multipliers per process (one entry if replicated). */
       const std::vector<unsigned int> &
       multipliers_per_process() const;
       /** A distributed vector of multipliers, zero (collective). */
       void
-      initialize_multipliers(DistributedVector &lambda) const;
+      initialize_multipliers(DistributedVector &lambda) const override;
       /** The whole vector of multipliers on every process (collective). */
       void
-      gather(const DistributedVector &lambda, VectorType &whole) const;
+      gather(const DistributedVector &lambda, VectorType &whole) const override;
 
       /**
        * The QP with the current slip bounds (F counted by the solver), in
@@ -222,7 +191,7 @@ namespace dualcontact
        * minimizer is that of the unscaled problem.
        */
       qp::Problem<VectorType>
-      make_problem() const;
+      make_problem() const override;
 
       /**
        * The same QP on distributed vectors: each process adds the blocks
@@ -230,7 +199,7 @@ namespace dualcontact
        * and G are those of "Distribution" above.  Collective.
        */
       qp::Problem<DistributedVector>
-      make_distributed_problem() const;
+      make_distributed_problem() const override;
 
       /** dst = F src. */
       void
@@ -248,7 +217,7 @@ namespace dualcontact
 
       /** s = lambda_max(F) (power iteration) [m/N]. */
       double
-      scale() const;
+      scale() const override;
 
       /**
        * Displacements of every body for multipliers @p lambda:
@@ -267,7 +236,7 @@ namespace dualcontact
       bool
       recover(const VectorType                    &lambda,
               std::vector<dealii::Vector<double>> &displacements,
-              const bool require_determined = true) const;
+              const bool require_determined = true) const override;
 
       /**
        * The same from distributed multipliers: B' applied to the owned
@@ -279,19 +248,19 @@ namespace dualcontact
       bool
       recover(const DistributedVector             &lambda,
               std::vector<dealii::Vector<double>> &displacements,
-              const bool require_determined = true) const;
+              const bool require_determined = true) const override;
 
       /** Number of K^# applications so far (one per implicit F product). */
       unsigned long
-      n_stiffness_solves() const;
+      n_stiffness_solves() const override;
 
       /** Wall time [s] of the bodies' factorizations (with Schur factors). */
       double
-      stiffness_setup_time() const;
+      stiffness_setup_time() const override;
 
       /** Wall time [s] of all K^# solves so far (over all bodies). */
       double
-      stiffness_solve_time() const;
+      stiffness_solve_time() const override;
 
       /** Whether F is held as a dense matrix (see DualProblemParameters). */
       bool
@@ -302,13 +271,19 @@ namespace dualcontact
        * sizes ...)" or "implicit (...)", with the reason for the choice.
        */
       const std::string &
-      operator_description() const;
+      operator_description() const override;
 
       /** Wall time [s] of assembling F (Schur factors excluded). */
       double
-      assembly_time() const;
+      assembly_time() const override;
 
     private:
+      using DualFormulation<dim>::contact_;
+      using DualFormulation<dim>::frictional_index_;
+      using DualFormulation<dim>::frictional_nodes_;
+      using DualFormulation<dim>::psi_first_;
+      using DualFormulation<dim>::psi_second_;
+
       /** Calls @p f(column, value) for the entries of row @p r of B. */
       template <typename Function>
       void
@@ -321,11 +296,6 @@ namespace dualcontact
       void
       assemble_operator(std::vector<fem::StiffnessSolver::SchurFactor> &schur,
                         const std::vector<std::vector<unsigned int>>   &rows);
-
-      /** friction_utilization() from the node's dim - 1 tangential values. */
-      double
-      friction_utilization(const unsigned int j,
-                           const double      *tangential) const;
 
       /**
        * The two recover()s once u = B'lambda: u = K^#(f - u), plus the
@@ -382,11 +352,8 @@ namespace dualcontact
       apply_Bt(const VectorType &lambda, dealii::Vector<double> &u) const;
 
       std::vector<const fem::ElasticBody<dim> *>             bodies_;
-      const ContactDiscretization<dim>                      &contact_;
       std::vector<std::unique_ptr<fem::RigidBodyModes<dim>>> modes_;
       std::vector<std::unique_ptr<fem::StiffnessSolver>>     solvers_;
-      std::vector<int>                                       frictional_index_;
-      std::vector<unsigned int>                              frictional_nodes_;
       /** Stacked load f and the columns of R over all dofs. */
       dealii::Vector<double>              load_;
       std::vector<dealii::Vector<double>> rigid_modes_;
@@ -401,7 +368,6 @@ namespace dualcontact
       /** Orthonormalized G and the correspondingly transformed e. */
       std::vector<VectorType> G_orthonormal_;
       VectorType              e_orthonormal_;
-      std::vector<double>     psi_first_, psi_second_;
       mutable unsigned long   n_stiffness_solves_ = 0;
       /** The assembled F, m x m column-major (empty if implicit). */
       std::vector<double>            F_dense_;

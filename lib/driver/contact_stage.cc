@@ -28,6 +28,7 @@ namespace dualcontact
       smalse_parameters_.parse_parameters(prm);
       coulomb_parameters_.parse_parameters(prm);
       dual_parameters_.parse_parameters(prm);
+      decomposition_parameters_.parse_parameters(prm);
       primal_parameters_.parse_parameters(prm);
     }
 
@@ -72,25 +73,44 @@ namespace dualcontact
     {
       const std::vector<const fem::ElasticBody<dim> *> bodies = scene_.bodies();
       dealii::ParameterHandler                        &prm    = prm_;
-      dual_ = std::make_unique<contact::DualProblem<dim>>(
-        bodies,
-        *contact_,
-        // one solver per body, in body order (a fem::TrilinosSolver gets
-        // the body's rows; a generalized inverse drops the fixing dofs and
-        // with them this partition: the solver then splits evenly)
-        [&prm, &bodies, b = 0u]() mutable
-        {
-          auto solver = fem::StiffnessSolver::create(prm);
-          if (b < bodies.size())
-            configure_solver(*solver, *bodies[b++]);
-          return solver;
-        },
-        dual_parameters_);
+      if (decomposed())
+      {
+        AssertThrow(dealii::Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD) ==
+                      1,
+                    dealii::ExcMessage(
+                      "TFETI runs on one process for now: `set Method = "
+                      "none' in `subsection Decomposition' under MPI."));
+        dual_ = std::make_unique<decomposition::TFETIDual<dim>>(
+          bodies,
+          *contact_,
+          decomposition_parameters_,
+          [&prm]() { return fem::StiffnessSolver::create(prm); });
+        describe_decomposition(details);
+      }
+      else
+        dual_ = std::make_unique<contact::DualProblem<dim>>(
+          bodies,
+          *contact_,
+          // one solver per body, in body order (a fem::TrilinosSolver gets
+          // the body's rows; a generalized inverse drops the fixing dofs
+          // and with them this partition: the solver then splits evenly)
+          [&prm, &bodies, b = 0u]() mutable
+          {
+            auto solver = fem::StiffnessSolver::create(prm);
+            if (b < bodies.size())
+              configure_solver(*solver, *bodies[b++]);
+            return solver;
+          },
+          dual_parameters_);
       std::ostringstream line;
       line << std::setprecision(4) << dual_->n_multipliers() << " multipliers ("
            << dual_->n_contact_nodes() << " normal, "
-           << dual_->n_multipliers() - dual_->n_contact_nodes()
-           << " tangential), " << dual_->n_rigid_body_modes()
+           << dual_->n_contact_multipliers() - dual_->n_contact_nodes()
+           << " tangential";
+      if (dual_->n_multipliers() > dual_->n_contact_multipliers())
+        line << ", " << dual_->n_multipliers() - dual_->n_contact_multipliers()
+             << " gluing and Dirichlet";
+      line << "), " << dual_->n_rigid_body_modes()
            << " rigid-body modes, lambda_max(F) " << dual_->scale() << " m/N";
       details.push_back(line.str());
       details.push_back("Dual operator: " + dual_->operator_description());
@@ -102,6 +122,47 @@ namespace dualcontact
         details.push_back("Multipliers distributed by contact node: " +
                           nodes.str() + " nodes per process");
       }
+    }
+
+
+    template <int dim>
+    bool
+    ContactStage<dim>::decomposed() const
+    {
+      using Method   = decomposition::DecompositionParameters::Method;
+      double largest = 0;
+      for (const auto *body : scene_.bodies())
+        largest = std::max<double>(largest, body->n_dofs());
+      return decomposition_parameters_.resolve(
+               dealii::Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD),
+               decomposition::DecompositionParameters::
+                 estimate_factor_megabytes(dim, largest)) == Method::tfeti;
+    }
+
+
+    template <int dim>
+    void
+    ContactStage<dim>::describe_decomposition(
+      std::vector<std::string> &details) const
+    {
+      const decomposition::TFETIDual<dim> &tfeti = *this->tfeti();
+      std::ostringstream                   line;
+      line << std::setprecision(4) << "Decomposition: TFETI, "
+           << tfeti.n_subdomains() << " subdomains (";
+      for (unsigned int b = 0; b < scene_.bodies().size(); ++b)
+        line << (b == 0 ? "" : ", ") << scene_.bodies()[b]->name() << ": "
+             << tfeti.n_subdomains_of_body(b);
+      line << "), " << tfeti.n_primal_dofs()
+           << " subdomain dofs (interface dofs once per subdomain), "
+           << tfeti.n_multipliers() << " multipliers ("
+           << tfeti.n_contact_multipliers() << " contact, "
+           << tfeti.n_gluing_multipliers() << " gluing, "
+           << tfeti.n_dirichlet_multipliers()
+           << " Dirichlet), coarse problem G G' of order "
+           << tfeti.n_rigid_body_modes() << "; partition and assembly "
+           << tfeti.decomposition_time() << " s, factorizations "
+           << tfeti.stiffness_setup_time() << " s";
+      details.push_back(line.str());
     }
 
 
@@ -204,6 +265,15 @@ namespace dualcontact
       details.push_back(
         (result_.converged ? "" : "NOT CONVERGED: ") + result_.reason + ", " +
         std::to_string(dual_->n_stiffness_solves()) + " stiffness solves");
+      if (tfeti() != nullptr)
+      {
+        std::ostringstream line;
+        line << std::setprecision(3)
+             << "Glued interfaces: largest jump between the copies of a dof "
+             << tfeti()->max_interface_jump() << " m ("
+             << tfeti()->relative_interface_jump() << " of the largest |u|)";
+        details.push_back(line.str());
+      }
     }
 
 

@@ -7,6 +7,8 @@
 #include <contact/contact_discretization.h>
 #include <contact/contact_solver.h>
 #include <contact/dual_problem.h>
+#include <decomposition/decomposition_parameters.h>
+#include <decomposition/tfeti_dual.h>
 #include <driver/scene.h>
 #include <io/contact_surface_writer.h>
 #include <primal/primal_parameters.h>
@@ -30,7 +32,8 @@ namespace dualcontact
      * per-pair sums and counts of results.txt (PairResults).
      *
      * Parameters: `QP solver', `QP solver/SMALSE-M', `Coulomb', `Dual
-     * problem', and in
+     * problem', `Decomposition' (which dual: contact::DualProblem, or
+     * decomposition::TFETIDual), and in
      * `Output' the `Write Coulomb iterates' switch and the `Contact status
      * tolerance'.  Each phase method appends console lines to @p details.
      */
@@ -98,10 +101,17 @@ namespace dualcontact
       {
         return result_;
       }
-      const contact::DualProblem<dim> &
+      /** The dual (undecomposed, or TFETI with `Decomposition/Method'). */
+      const contact::DualFormulation<dim> &
       dual() const
       {
         return *dual_;
+      }
+      /** The TFETI dual if the scene was decomposed, else null. */
+      const decomposition::TFETIDual<dim> *
+      tfeti() const
+      {
+        return dynamic_cast<const decomposition::TFETIDual<dim> *>(dual_.get());
       }
       const contact::ContactDiscretization<dim> &
       discretization() const
@@ -148,6 +158,13 @@ namespace dualcontact
       }
 
     private:
+      /** Whether `Decomposition/Method' resolves to tfeti for this scene. */
+      bool
+      decomposed() const;
+      /** The console line on the subdomains and multipliers of TFETI. */
+      void
+      describe_decomposition(std::vector<std::string> &details) const;
+
       /**
        * The contact-surface data of every pair for multipliers @p lambda and
        * displacements @p displacements, with the dual's current slip bounds.
@@ -163,6 +180,8 @@ namespace dualcontact
       qp::SMALSEMParameters          smalse_parameters_;
       contact::CoulombParameters     coulomb_parameters_;
       contact::DualProblemParameters dual_parameters_;
+      /** `Decomposition': the undecomposed dual or TFETI. */
+      decomposition::DecompositionParameters decomposition_parameters_;
       /** `Contact solver = primal': the report's Uzawa-CGC (lib/primal). */
       primal::PrimalParameters primal_parameters_;
       /** Its statistics (JSON object) when it ran. */
@@ -172,7 +191,7 @@ namespace dualcontact
       double status_tolerance_ = 1e-6;
 
       std::unique_ptr<contact::ContactDiscretization<dim>> contact_;
-      std::unique_ptr<contact::DualProblem<dim>>           dual_;
+      std::unique_ptr<contact::DualFormulation<dim>>       dual_;
       typename contact::ContactSolver<dim>::Result         result_;
       double                                               qp_wall_time_ = 0;
       Surfaces                                             surfaces_;

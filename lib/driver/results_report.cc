@@ -121,6 +121,8 @@ namespace dualcontact
             << contact_->result().qp_statistics.size() << "\n";
         out << "contact.n_multipliers = " << contact_->dual().n_multipliers()
             << "\n";
+        if (const auto *tfeti = contact_->tfeti())
+          out << "contact.n_subdomains = " << tfeti->n_subdomains() << "\n";
       }
       const std::vector<typename ContactStage<dim>::PairResults> pair_results =
         contact_ != nullptr ?
@@ -259,6 +261,26 @@ namespace dualcontact
         contact["contact_nodes_per_process"] =
           contact_->dual().contact_nodes_per_process();
         contact["coulomb_changes"] = contact_->result().coulomb_changes;
+        if (const auto *tfeti = contact_->tfeti())
+        {
+          std::vector<unsigned int> per_body;
+          for (unsigned int b = 0; b < scene_.elastic_bodies().size(); ++b)
+            per_body.push_back(tfeti->n_subdomains_of_body(b));
+          contact["decomposition"] = {
+            {"method", "tfeti"},
+            {"n_subdomains", tfeti->n_subdomains()},
+            {"subdomains_per_body", per_body},
+            {"n_subdomain_dofs", tfeti->n_primal_dofs()},
+            {"n_contact_multipliers", tfeti->n_contact_multipliers()},
+            {"n_gluing_multipliers", tfeti->n_gluing_multipliers()},
+            {"n_dirichlet_multipliers", tfeti->n_dirichlet_multipliers()},
+            {"coarse_problem_order", tfeti->n_rigid_body_modes()},
+            {"decomposition_time_s", tfeti->decomposition_time()},
+            {"max_interface_jump_m", tfeti->max_interface_jump()},
+            {"relative_interface_jump", tfeti->relative_interface_jump()}};
+        }
+        else
+          contact["decomposition"] = {{"method", "none"}};
         if (!contact_->primal_json().empty())
           contact["primal"] = nlohmann::json::parse(contact_->primal_json());
         nlohmann::json solves = nlohmann::json::array();
@@ -429,12 +451,18 @@ namespace dualcontact
         std::vector<const fem::ElasticBody<dim> *> bodies;
         for (const auto &body : scene_.elastic_bodies())
           bodies.push_back(body.get());
+        const auto *dual =
+          dynamic_cast<const contact::DualProblem<dim> *>(&contact_->dual());
+        AssertThrow(dual != nullptr,
+                    dealii::ExcMessage(
+                      "The FCLIB export needs the undecomposed dual "
+                      "(`set Method = none' in `subsection Decomposition')."));
         // the solution only if there is one
         fclib::write_scene_problem<dim>(folder,
                                         fclib::parse_export_form(form),
                                         bodies,
                                         contact_->discretization(),
-                                        contact_->dual(),
+                                        *dual,
                                         result.converged ?
                                           result.lambda :
                                           dealii::Vector<double>(),

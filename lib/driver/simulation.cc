@@ -44,7 +44,13 @@ namespace dualcontact
       scene_      = std::make_unique<Scene<dim>>(prm, parameter_file);
       refinement_ = std::make_unique<ContactRefinement<dim>>(
         prm, scene_->pair_parameters().size());
-      if (scene_->has_contact())
+      // scenes with contact go through a dual; so do scenes without
+      // contact that ask for TFETI (then the dual has only gluing and
+      // Dirichlet multipliers)
+      prm.enter_subsection("Decomposition");
+      const bool tfeti = prm.get("Method") == "tfeti";
+      prm.leave_subsection();
+      if (scene_->has_contact() || tfeti)
         contact_ = std::make_unique<ContactStage<dim>>(prm, *scene_);
     }
 
@@ -79,8 +85,9 @@ namespace dualcontact
     bool
     Simulation<dim>::run()
     {
-      Scene<dim>        &scene       = *scene_;
-      const bool         has_contact = scene.has_contact();
+      Scene<dim> &scene = *scene_;
+      // solved through a dual (ContactStage), with or without contact pairs
+      const bool         has_contact = contact_ != nullptr;
       const unsigned int n_pairs     = scene.pair_parameters().size();
       console_ << "Scene: " << dim << "D" << (dim == 2 ? " (plane strain)" : "")
                << ", " << scene.n_bodies() << " bod"

@@ -275,6 +275,56 @@ namespace dualcontact
 
     template <int dim>
     void
+    ElasticBody<dim>::assemble_cells(
+      const std::vector<typename DoFHandler<dim>::active_cell_iterator> &cells,
+      const std::vector<types::global_dof_index>                        &dofs,
+      SparsityPattern      &sparsity,
+      SparseMatrix<double> &matrix,
+      Vector<double>       &load) const
+    {
+      Assert(std::is_sorted(dofs.begin(), dofs.end()), ExcInternalError());
+      const unsigned int dofs_per_cell = fe_.n_dofs_per_cell();
+      // the local indices of each cell's dofs, once
+      std::vector<std::vector<types::global_dof_index>> local(cells.size());
+      std::vector<types::global_dof_index> cell_dofs(dofs_per_cell);
+      for (unsigned int c = 0; c < cells.size(); ++c)
+      {
+        cells[c]->get_dof_indices(cell_dofs);
+        local[c].resize(dofs_per_cell);
+        for (unsigned int i = 0; i < dofs_per_cell; ++i)
+        {
+          const auto it =
+            std::lower_bound(dofs.begin(), dofs.end(), cell_dofs[i]);
+          Assert(it != dofs.end() && *it == cell_dofs[i], ExcInternalError());
+          local[c][i] = it - dofs.begin();
+        }
+      }
+      DynamicSparsityPattern dsp(dofs.size());
+      for (const auto &indices : local)
+        for (const auto i : indices)
+          dsp.add_entries(i, indices.begin(), indices.end());
+      sparsity.copy_from(dsp);
+      matrix.reinit(sparsity);
+      load.reinit(dofs.size());
+
+      CellScratch        scratch(mapping_, fe_);
+      FullMatrix<double> cell_matrix;
+      Vector<double>     cell_rhs;
+      for (unsigned int c = 0; c < cells.size(); ++c)
+      {
+        cell_system(cells[c], scratch, cell_matrix, cell_rhs);
+        for (unsigned int i = 0; i < dofs_per_cell; ++i)
+        {
+          for (unsigned int j = 0; j < dofs_per_cell; ++j)
+            matrix.add(local[c][i], local[c][j], cell_matrix(i, j));
+          load(local[c][i]) += cell_rhs(i);
+        }
+      }
+    }
+
+
+    template <int dim>
+    void
     ElasticBody<dim>::solve(StiffnessSolver &solver,
                             Vector<double>  &displacement) const
     {

@@ -78,6 +78,23 @@ namespace dualcontact
       void
       assemble();
 
+      /**
+       * K_S and f_S of the cells @p cells alone, without any constraint (no
+       * Dirichlet condition, no hanging node): the stiffness matrix and
+       * load of a subdomain (decomposition::Subdomain), with the same cell
+       * integrals as assemble().  @p dofs lists the dofs of these cells,
+       * sorted; row i of the result belongs to dofs[i].  @p sparsity is
+       * built here, @p matrix and @p load are initialized on it.
+       */
+      void
+      assemble_cells(
+        const std::vector<
+          typename dealii::DoFHandler<dim>::active_cell_iterator> &cells,
+        const std::vector<dealii::types::global_dof_index>        &dofs,
+        dealii::SparsityPattern                                   &sparsity,
+        dealii::SparseMatrix<double>                              &matrix,
+        dealii::Vector<double>                                    &load) const;
+
       /** Solve K u = f with @p solver (factorizes K) and distribute. */
       void
       solve(StiffnessSolver        &solver,

@@ -30,6 +30,51 @@ namespace dualcontact
             component[dofs[i]] = body.fe().system_to_component_index(i).first;
         }
       }
+      std::vector<types::global_dof_index> all(n_dofs);
+      for (unsigned int i = 0; i < n_dofs; ++i)
+        all[i] = i;
+      build(points, component, all, &body.constraints(), body.name());
+    }
+
+
+    template <int dim>
+    RigidBodyModes<dim>::RigidBodyModes(
+      const std::vector<Point<dim>>              &support_points,
+      const std::vector<unsigned int>            &components,
+      const std::vector<types::global_dof_index> &dofs,
+      const std::string                          &name)
+    {
+      std::vector<Point<dim>>   points(dofs.size());
+      std::vector<unsigned int> component(dofs.size());
+      for (unsigned int i = 0; i < dofs.size(); ++i)
+      {
+        points[i]    = support_points[dofs[i]];
+        component[i] = components[dofs[i]];
+      }
+      build(points, component, dofs, nullptr, name);
+    }
+
+
+    template <int dim>
+    void
+    RigidBodyModes<dim>::build(const std::vector<Point<dim>>   &points,
+                               const std::vector<unsigned int> &component,
+                               const std::vector<types::global_dof_index> &dofs,
+                               const AffineConstraints<double> *constraints,
+                               const std::string               &name)
+    {
+      const unsigned int n_dofs = dofs.size();
+      // constrained by a Dirichlet condition (no constraint entries, as
+      // opposed to hanging nodes), and constrained at all
+      const auto is_dirichlet = [&](const unsigned int i)
+      {
+        return constraints != nullptr && constraints->is_constrained(dofs[i]) &&
+               (constraints->get_constraint_entries(dofs[i]) == nullptr ||
+                constraints->get_constraint_entries(dofs[i])->empty());
+      };
+      const auto is_constrained = [&](const unsigned int i) {
+        return constraints != nullptr && constraints->is_constrained(dofs[i]);
+      };
       Point<dim>   centroid;
       unsigned int n_nodes = 0;
       for (unsigned int i = 0; i < n_dofs; ++i)
@@ -61,9 +106,8 @@ namespace dualcontact
       };
 
       // Raw motions, each scaled to unit norm over all dofs.
-      const AffineConstraints<double> &constraints = body.constraints();
-      const unsigned int               n_rigid     = dim * (dim + 1) / 2;
-      std::vector<double>              scale(n_rigid, 0.);
+      const unsigned int  n_rigid = dim * (dim + 1) / 2;
+      std::vector<double> scale(n_rigid, 0.);
       for (unsigned int k = 0; k < n_rigid; ++k)
       {
         for (unsigned int i = 0; i < n_dofs; ++i)
@@ -77,9 +121,7 @@ namespace dualcontact
       FullMatrix<double> MtM(n_rigid, n_rigid);
       double             n_dirichlet = 0;
       for (unsigned int i = 0; i < n_dofs; ++i)
-        if (constraints.is_constrained(i) &&
-            (constraints.get_constraint_entries(i) == nullptr ||
-             constraints.get_constraint_entries(i)->empty()))
+        if (is_dirichlet(i))
         {
           ++n_dirichlet;
           for (unsigned int k = 0; k < n_rigid; ++k)
@@ -134,7 +176,7 @@ namespace dualcontact
         {
           Vector<double> mode(n_dofs);
           for (unsigned int i = 0; i < n_dofs; ++i)
-            if (!constraints.is_constrained(i))
+            if (!is_constrained(i))
               for (unsigned int k = 0; k < n_rigid; ++k)
                 mode(i) +=
                   V(k, j) * scale[k] * mode_value(k, points[i], component[i]);
@@ -150,7 +192,7 @@ namespace dualcontact
             modes_[k].add(-(modes_[k] * modes_[j]), modes_[j]);
           const double norm = modes_[k].l2_norm();
           AssertThrow(norm > 0,
-                      ExcMessage(body.name() +
+                      ExcMessage(name +
                                  ": the rigid-body modes are degenerate."));
           modes_[k] /= norm;
         }
@@ -161,7 +203,7 @@ namespace dualcontact
       // C (3D) farthest from the line AB; only unconstrained nodes.
       std::vector<unsigned int> node_dof0;
       for (unsigned int i = 0; i < n_dofs; ++i)
-        if (component[i] == 0 && !constraints.is_constrained(i))
+        if (component[i] == 0 && !is_constrained(i))
           node_dof0.push_back(i);
       const auto farthest = [&](const auto &distance)
       {
@@ -188,27 +230,18 @@ namespace dualcontact
           return (ax - (ax * ab) * ab).norm();
         });
 
-      // The dofs of a node: those with the same support point, found through
-      // the cells (dofs of one node are not consecutive in general).
+      // The dofs of a node: those with the same support point (dofs of one
+      // node are not consecutive in general), in component order.
       const auto dofs_of_node = [&](const unsigned int dof0)
       {
-        std::vector<types::global_dof_index> result(dim);
-        std::vector<types::global_dof_index> dofs(body.fe().n_dofs_per_cell());
-        for (const auto &cell : body.dof_handler().active_cell_iterators())
-        {
-          cell->get_dof_indices(dofs);
-          for (unsigned int i = 0; i < dofs.size(); ++i)
-            if (dofs[i] == dof0)
-            {
-              const unsigned int node =
-                body.fe().system_to_component_index(i).second;
-              for (unsigned int comp = 0; comp < dim; ++comp)
-                result[comp] =
-                  dofs[body.fe().component_to_system_index(comp, node)];
-              return result;
-            }
-        }
-        Assert(false, ExcInternalError());
+        std::vector<types::global_dof_index> result(dim, n_dofs);
+        for (unsigned int i = 0; i < n_dofs; ++i)
+          if (points[i] == points[dof0])
+            result[component[i]] = i;
+        for (const auto dof : result)
+          AssertThrow(dof < n_dofs,
+                      ExcMessage(name + ": a node without all " +
+                                 std::to_string(dim) + " components."));
         return result;
       };
 
@@ -237,9 +270,8 @@ namespace dualcontact
         }
       }
       AssertThrow(fixing_dofs_.size() == n_kernel,
-                  ExcMessage(body.name() +
-                             ": could not choose fixing nodes for the "
-                             "generalized inverse (degenerate mesh?)."));
+                  ExcMessage(name + ": could not choose fixing nodes for the "
+                                    "generalized inverse (degenerate mesh?)."));
     }
 
 

@@ -4,6 +4,7 @@
 
 #include <fem/elastic_body.h>
 
+#include <string>
 #include <vector>
 
 namespace dualcontact
@@ -35,6 +36,21 @@ namespace dualcontact
     public:
       explicit RigidBodyModes(const ElasticBody<dim> &body);
 
+      /**
+       * The modes of a subdomain: the dofs @p dofs of a body (indices into
+       * @p support_points and @p components, the body's dof support points
+       * and vector components, DoFTools::map_dofs_to_support_points), all
+       * floating, as for a stiffness matrix assembled from a set of cells
+       * without Dirichlet conditions: all dim (dim + 1) / 2 modes, about the
+       * subdomain's centroid, in the local numbering of @p dofs (mode(i)
+       * belongs to dofs[i], fixing_dofs() are local indices).  @p name is
+       * used in messages.
+       */
+      RigidBodyModes(const std::vector<dealii::Point<dim>> &support_points,
+                     const std::vector<unsigned int>       &components,
+                     const std::vector<dealii::types::global_dof_index> &dofs,
+                     const std::string                                  &name);
+
       /** Number of free rigid-body motions, at most dim (dim + 1) / 2. */
       unsigned int
       n_modes() const;
@@ -48,6 +64,18 @@ namespace dualcontact
       fixing_dofs() const;
 
     private:
+      /**
+       * The work of both constructors on the local dofs: @p points and
+       * @p component per local dof, @p constraints (null: all floating)
+       * indexed through @p dofs.
+       */
+      void
+      build(const std::vector<dealii::Point<dim>>              &points,
+            const std::vector<unsigned int>                    &component,
+            const std::vector<dealii::types::global_dof_index> &dofs,
+            const dealii::AffineConstraints<double>            *constraints,
+            const std::string                                  &name);
+
       std::vector<dealii::Vector<double>>          modes_;
       std::vector<dealii::types::global_dof_index> fixing_dofs_;
     };

@@ -1,0 +1,127 @@
+#include <deal.II/base/exceptions.h>
+#include <deal.II/base/utilities.h>
+
+#include <decomposition/decomposition_parameters.h>
+
+#include <cmath>
+
+namespace dualcontact
+{
+  namespace decomposition
+  {
+    using namespace dealii;
+
+    void
+    DecompositionParameters::declare_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Decomposition");
+      prm.declare_entry(
+        "Method",
+        "automatic",
+        Patterns::Selection("automatic|none|tfeti"),
+        "none: every body's stiffness matrix is factorized whole and the "
+        "dual has the contact multipliers only. tfeti: total FETI, every "
+        "body is cut into subdomains (METIS on the cells' face graph), each "
+        "factorized on its own and floating, glued to its neighbours, held "
+        "by its Dirichlet conditions and by contact through multipliers "
+        "(free gluing and Dirichlet multipliers, the coarse problem G G' "
+        "in SMALSE-M); one process only for now. automatic: tfeti on one "
+        "process when the estimated Cholesky factor of the largest body "
+        "exceeds `Memory limit', none otherwise (and under MPI).");
+      prm.declare_entry(
+        "Subdomains per body",
+        "",
+        Patterns::List(Patterns::Integer(1)),
+        "Method = tfeti: the number of subdomains of each body (one number "
+        "per body, or one for all bodies); empty: from `Cells per "
+        "subdomain'. A part that METIS leaves in pieces (cells joined by "
+        "an edge or a vertex only) becomes one subdomain per piece, so a "
+        "body may get a few more.");
+      prm.declare_entry("Cells per subdomain",
+                        "4096",
+                        Patterns::Integer(1),
+                        "Method = tfeti without `Subdomains per body': each "
+                        "body gets ceil(cells / this) subdomains.");
+      prm.declare_entry("Memory limit",
+                        "8192",
+                        Patterns::Double(0),
+                        "Method = automatic: the largest estimated size [MB] "
+                        "of the Cholesky factor of one body's stiffness "
+                        "matrix for which the scene is not decomposed.");
+      prm.leave_subsection();
+    }
+
+
+    void
+    DecompositionParameters::parse_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Decomposition");
+      const std::string name = prm.get("Method");
+      method                 = name == "none"  ? Method::none :
+                               name == "tfeti" ? Method::tfeti :
+                                                 Method::automatic;
+      subdomains_per_body.clear();
+      for (const std::string &entry :
+           Utilities::split_string_list(prm.get("Subdomains per body")))
+        subdomains_per_body.push_back(Utilities::string_to_int(entry));
+      cells_per_subdomain = prm.get_integer("Cells per subdomain");
+      memory_limit        = prm.get_double("Memory limit");
+      prm.leave_subsection();
+    }
+
+
+    unsigned int
+    DecompositionParameters::n_subdomains(const unsigned int body,
+                                          const unsigned int n_cells) const
+    {
+      const std::string where = "Body " + std::to_string(body + 1);
+      if (subdomains_per_body.empty())
+        return (n_cells + cells_per_subdomain - 1) / cells_per_subdomain;
+      AssertThrow(subdomains_per_body.size() == 1 ||
+                    body < subdomains_per_body.size(),
+                  ExcMessage("`Subdomains per body' in `subsection "
+                             "Decomposition' has " +
+                             std::to_string(subdomains_per_body.size()) +
+                             " entries, but there is a " + where +
+                             ": give one number per body or one for all."));
+      const unsigned int n = subdomains_per_body.size() == 1 ?
+                               subdomains_per_body[0] :
+                               subdomains_per_body[body];
+      AssertThrow(n <= n_cells,
+                  ExcMessage("`Subdomains per body' in `subsection "
+                             "Decomposition' asks for " +
+                             std::to_string(n) + " subdomains of " + where +
+                             ", which has only " + std::to_string(n_cells) +
+                             " cells."));
+      return n;
+    }
+
+
+    DecompositionParameters::Method
+    DecompositionParameters::resolve(const unsigned int n_processes,
+                                     const double       factor_megabytes) const
+    {
+      if (method != Method::automatic)
+        return method;
+      // TFETI runs on one process for now: under MPI the undecomposed dual
+      // (distributed QP vectors) stays
+      return n_processes == 1 && factor_megabytes > memory_limit ?
+               Method::tfeti :
+               Method::none;
+    }
+
+
+    double
+    DecompositionParameters::estimate_factor_megabytes(const unsigned int dim,
+                                                       const double n_dofs)
+    {
+      const double n_nodes = n_dofs / dim;
+      const double nodes_in_factor =
+        dim == 3 ? std::pow(n_nodes, 4. / 3.) :
+                   n_nodes * std::log2(std::max(n_nodes, 2.));
+      // fitted constant, see the declaration
+      const double constant = dim == 3 ? 2.5 : 1.;
+      return constant * nodes_in_factor * dim * dim * 8. / 1048576.;
+    }
+  } // namespace decomposition
+} // namespace dualcontact

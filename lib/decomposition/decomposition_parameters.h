@@ -1,0 +1,76 @@
+#pragma once
+
+#include <deal.II/base/parameter_handler.h>
+
+#include <string>
+#include <vector>
+
+namespace dualcontact
+{
+  namespace decomposition
+  {
+    /**
+     * Whether and how the bodies of a scene are cut into subdomains
+     * (subsection `Decomposition').
+     */
+    struct DecompositionParameters
+    {
+      enum class Method
+      {
+        /** tfeti on one process when the global factor exceeds the
+         *  memory limit, else none (see resolve()) */
+        automatic,
+        /** the undecomposed dual (contact::DualProblem) */
+        none,
+        /** total FETI (TFETIDual) */
+        tfeti
+      };
+      Method method = Method::automatic;
+      /**
+       * Subdomains of each body (one entry per body, or one for all);
+       * empty: from cells_per_subdomain.
+       */
+      std::vector<unsigned int> subdomains_per_body;
+      /** Target number of cells per subdomain when no count is given. */
+      unsigned int cells_per_subdomain = 4096;
+      /**
+       * Limit [MB] of the estimated Cholesky factor of the whole stiffness
+       * matrix for `automatic' (estimate_factor_megabytes()).
+       */
+      double memory_limit = 8192;
+
+      static void
+      declare_parameters(dealii::ParameterHandler &prm);
+      void
+      parse_parameters(dealii::ParameterHandler &prm);
+
+      /**
+       * The number of subdomains of body @p body (0-based) of @p n_cells
+       * active cells; throws, naming the parameter, when it exceeds the
+       * cells.
+       */
+      unsigned int
+      n_subdomains(const unsigned int body, const unsigned int n_cells) const;
+
+      /**
+       * The method `automatic' stands for: tfeti on one process when the
+       * estimated factor (@p factor_megabytes) exceeds memory_limit, else
+       * none (also under MPI, as long as TFETI runs on one process).
+       */
+      Method
+      resolve(const unsigned int n_processes,
+              const double       factor_megabytes) const;
+
+      /**
+       * An estimate [MB] of the nonzeros of the sparse Cholesky factor of a
+       * 3D (2D) stiffness matrix with @p n_dofs dofs and @p dofs_per_node
+       * components under nested dissection: 3D n^(4/3), 2D n log2 n
+       * (n the nodes), times dofs_per_node^2 entries of 8 bytes, with the
+       * constant fitted to CHOLMOD on the brick (see doc/benchmarks/
+       * tfeti.md).
+       */
+      static double
+      estimate_factor_megabytes(const unsigned int dim, const double n_dofs);
+    };
+  } // namespace decomposition
+} // namespace dualcontact

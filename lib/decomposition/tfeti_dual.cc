@@ -1,0 +1,714 @@
+#include <deal.II/base/exceptions.h>
+#include <deal.II/base/timer.h>
+#include <deal.II/dofs/dof_tools.h>
+
+#include <decomposition/cell_partition.h>
+#include <decomposition/tfeti_dual.h>
+#include <qp/power_iteration.h>
+#include <qp/separable_set.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+namespace dualcontact
+{
+  namespace decomposition
+  {
+    using namespace dealii;
+
+    namespace
+    {
+      const unsigned int invalid = std::numeric_limits<unsigned int>::max();
+
+      /**
+       * Cholesky factorization A = L L' in place (lower triangle; the
+       * upper one is zeroed) of a symmetric positive semidefinite matrix:
+       * a pivot below @p relative_tolerance times the largest diagonal
+       * entry marks a direction of the kernel, whose column is set to zero.
+       * Returns the number of such directions.
+       */
+      unsigned int
+      semidefinite_cholesky(FullMatrix<double> &A,
+                            const double        relative_tolerance)
+      {
+        const unsigned int n    = A.m();
+        double             diag = 0;
+        for (unsigned int k = 0; k < n; ++k)
+          diag = std::max(diag, A(k, k));
+        unsigned int n_zero = 0;
+        for (unsigned int j = 0; j < n; ++j)
+        {
+          double pivot = A(j, j);
+          for (unsigned int k = 0; k < j; ++k)
+            pivot -= A(j, k) * A(j, k);
+          if (!(pivot > relative_tolerance * diag))
+          {
+            ++n_zero;
+            for (unsigned int i = j; i < n; ++i)
+              A(i, j) = 0;
+            continue;
+          }
+          const double l = std::sqrt(pivot);
+          A(j, j)        = l;
+          for (unsigned int i = j + 1; i < n; ++i)
+          {
+            double sum = A(i, j);
+            for (unsigned int k = 0; k < j; ++k)
+              sum -= A(i, k) * A(j, k);
+            A(i, j) = sum / l;
+          }
+        }
+        for (unsigned int i = 0; i < n; ++i)
+          for (unsigned int j = i + 1; j < n; ++j)
+            A(i, j) = 0;
+        return n_zero;
+      }
+
+      /**
+       * x := L^{-1} x (or L^{-T} x) for the factor of
+       * semidefinite_cholesky(); kernel directions (zero pivots) get 0.
+       */
+      void
+      triangular_solve(const FullMatrix<double> &L,
+                       Vector<double>           &x,
+                       const bool                transpose)
+      {
+        const unsigned int n = L.m();
+        if (!transpose)
+          for (unsigned int i = 0; i < n; ++i)
+          {
+            double sum = x(i);
+            for (unsigned int k = 0; k < i; ++k)
+              sum -= L(i, k) * x(k);
+            x(i) = L(i, i) != 0 ? sum / L(i, i) : 0.;
+          }
+        else
+          for (unsigned int i = n; i-- > 0;)
+          {
+            double sum = x(i);
+            for (unsigned int k = i + 1; k < n; ++k)
+              sum -= L(k, i) * x(k);
+            x(i) = L(i, i) != 0 ? sum / L(i, i) : 0.;
+          }
+      }
+    } // namespace
+
+
+    template <int dim>
+    TFETIDual<dim>::TFETIDual(
+      const std::vector<const fem::ElasticBody<dim> *>             &bodies,
+      const contact::ContactDiscretization<dim>                    &contact,
+      const DecompositionParameters                                &parameters,
+      const std::function<std::unique_ptr<fem::StiffnessSolver>()> &make_solver)
+        : contact::DualFormulation<dim>(contact)
+        , bodies_(bodies)
+    {
+      for (const auto *body : bodies_)
+        for (const auto &line : body->constraints().get_lines())
+          AssertThrow(line.entries.empty(),
+                      ExcMessage(
+                        body->name() +
+                        " has hanging-node constraints (from `Contact "
+                        "refinement/Cycles' or `Mesh/Local refinements'), "
+                        "which TFETI does not glue yet: use `set Method = "
+                        "none' in `subsection Decomposition' for this "
+                        "scene."));
+      Timer timer;
+      decompose(parameters);
+      decomposition_time_ = timer.wall_time();
+
+      timer.restart();
+      for (auto &subdomain : subdomains_)
+        subdomain->factorize(make_solver());
+      setup_time_ = timer.wall_time();
+
+      build_constraint_rows();
+      build_coarse_problem();
+
+      // d = B K^# f - c
+      std::vector<VectorType> f(subdomains_.size()), u;
+      for (unsigned int s = 0; s < subdomains_.size(); ++s)
+        f[s] = subdomains_[s]->load();
+      apply_K_inverse(f, u);
+      d_.reinit(n_multipliers());
+      add_B(u, d_);
+      for (unsigned int r = 0; r < n_multipliers(); ++r)
+        d_(r) -= c_[r];
+
+      const qp::PowerIterationResult power = qp::power_iteration<VectorType>(
+        [this](VectorType &dst, const VectorType &src) { apply_F(dst, src); },
+        d_,
+        200,
+        1e-6,
+        1.0);
+      scale_ = power.estimate;
+      AssertThrow(scale_ > 0 && std::isfinite(scale_),
+                  ExcMessage("The TFETI dual operator F is zero or not "
+                             "finite."));
+
+      nodes_per_process_ = {this->n_contact_nodes()};
+      std::ostringstream description;
+      description << "TFETI, implicit: local solves with the factors of "
+                  << subdomains_.size() << " subdomains (K_s^# by "
+                  << subdomains_[0]->solver().name() << ")";
+      operator_description_ = description.str();
+    }
+
+
+    template <int dim>
+    void
+    TFETIDual<dim>::decompose(const DecompositionParameters &parameters)
+    {
+      first_copy_.resize(bodies_.size());
+      for (unsigned int b = 0; b < bodies_.size(); ++b)
+      {
+        const fem::ElasticBody<dim> &body = *bodies_[b];
+        const unsigned int           n_parts =
+          parameters.n_subdomains(b, body.triangulation().n_active_cells());
+        const std::vector<unsigned int> part =
+          partition_cells(body.triangulation(), n_parts, body.name());
+        const unsigned int n_pieces =
+          *std::max_element(part.begin(), part.end()) + 1;
+        std::vector<std::vector<typename Subdomain<dim>::CellIterator>> cells(
+          n_pieces);
+        for (const auto &cell : body.dof_handler().active_cell_iterators())
+          cells[part[cell->active_cell_index()]].push_back(cell);
+
+        std::vector<Point<dim>> points(body.n_dofs());
+        DoFTools::map_dofs_to_support_points(body.mapping(),
+                                             body.dof_handler(),
+                                             points);
+        std::vector<unsigned int>            components(body.n_dofs());
+        std::vector<types::global_dof_index> dofs(body.fe().n_dofs_per_cell());
+        for (const auto &cell : body.dof_handler().active_cell_iterators())
+        {
+          cell->get_dof_indices(dofs);
+          for (unsigned int i = 0; i < dofs.size(); ++i)
+            components[dofs[i]] = body.fe().system_to_component_index(i).first;
+        }
+
+        first_subdomain_.push_back(subdomains_.size());
+        first_copy_[b].assign(body.n_dofs(), {invalid, invalid});
+        for (unsigned int p = 0; p < n_pieces; ++p)
+        {
+          const unsigned int s = subdomains_.size();
+          subdomains_.push_back(
+            std::make_unique<Subdomain<dim>>(body,
+                                             b,
+                                             cells[p],
+                                             points,
+                                             components,
+                                             body.name() + ", subdomain " +
+                                               std::to_string(p + 1)));
+          const auto &local = subdomains_.back()->dofs();
+          for (unsigned int l = 0; l < local.size(); ++l)
+            if (first_copy_[b][local[l]].first == invalid)
+              first_copy_[b][local[l]] = {s, l};
+        }
+      }
+      first_subdomain_.push_back(subdomains_.size());
+    }
+
+
+    template <int dim>
+    unsigned int
+    TFETIDual<dim>::add_row(const double c)
+    {
+      c_.push_back(c);
+      return c_.size() - 1;
+    }
+
+
+    template <int dim>
+    void
+    TFETIDual<dim>::add_entry(const unsigned int s,
+                              const unsigned int row,
+                              const unsigned int local,
+                              const double       value)
+    {
+      entries_[s].push_back({row, local, value});
+    }
+
+
+    template <int dim>
+    void
+    TFETIDual<dim>::build_constraint_rows()
+    {
+      entries_.assign(subdomains_.size(), {});
+      // contact rows: the body dofs of ContactDiscretization's columns
+      // (stacked over the bodies) mapped to their first copy
+      const auto add_contact_row = [&](const SparseMatrix<double> &B,
+                                       const unsigned int          source,
+                                       const double                c)
+      {
+        const unsigned int row = add_row(c);
+        for (auto it = B.begin(source); it != B.end(source); ++it)
+        {
+          if (it->value() == 0.)
+            continue;
+          unsigned int b = bodies_.size() - 1;
+          while (contact_.body_offset(b) > it->column())
+            --b;
+          const auto [s, l] =
+            first_copy_[b][it->column() - contact_.body_offset(b)];
+          add_entry(s, row, l, it->value());
+        }
+      };
+      const unsigned int   n_nodes = contact_.n_nodes();
+      const Vector<double> gap     = contact_.normal_bound();
+      for (unsigned int i = 0; i < n_nodes; ++i)
+        add_contact_row(contact_.normal_matrix(), i, gap(i));
+      for (const unsigned int node : frictional_nodes_)
+        for (unsigned int k = 0; k + 1 < dim; ++k)
+        {
+          const unsigned int source = (dim - 1) * node + k;
+          add_contact_row(contact_.tangential_matrix(),
+                          source,
+                          -contact_.tangential_offset()(source));
+        }
+      AssertDimension(c_.size(), this->n_contact_multipliers());
+
+      // the copies of every dof of a body, in subdomain order
+      std::vector<
+        std::vector<std::vector<std::pair<unsigned int, unsigned int>>>>
+        copies(bodies_.size());
+      for (unsigned int b = 0; b < bodies_.size(); ++b)
+      {
+        copies[b].resize(bodies_[b]->n_dofs());
+        for (unsigned int s = first_subdomain_[b]; s < first_subdomain_[b + 1];
+             ++s)
+          for (unsigned int l = 0; l < subdomains_[s]->n_dofs(); ++l)
+            copies[b][subdomains_[s]->dofs()[l]].push_back({s, l});
+      }
+      // gluing rows: a chain through the copies of every free dof
+      for (unsigned int b = 0; b < bodies_.size(); ++b)
+        for (unsigned int i = 0; i < copies[b].size(); ++i)
+          if (!bodies_[b]->constraints().is_constrained(i))
+            for (unsigned int k = 0; k + 1 < copies[b][i].size(); ++k)
+            {
+              const unsigned int row = add_row(0.);
+              add_entry(copies[b][i][k].first, row, copies[b][i][k].second, 1.);
+              add_entry(copies[b][i][k + 1].first,
+                        row,
+                        copies[b][i][k + 1].second,
+                        -1.);
+              ++n_gluing_;
+            }
+      // Dirichlet rows: every copy of a dof under a Dirichlet condition
+      for (unsigned int b = 0; b < bodies_.size(); ++b)
+      {
+        const AffineConstraints<double> &constraints =
+          bodies_[b]->constraints();
+        for (unsigned int i = 0; i < copies[b].size(); ++i)
+          if (constraints.is_constrained(i))
+            for (const auto &[s, l] : copies[b][i])
+            {
+              add_entry(s, add_row(constraints.get_inhomogeneity(i)), l, 1.);
+              ++n_dirichlet_;
+            }
+      }
+    }
+
+
+    template <int dim>
+    void
+    TFETIDual<dim>::build_coarse_problem()
+    {
+      const unsigned int n_rigid = dim * (dim + 1) / 2;
+      n_modes_                   = subdomains_.size() * n_rigid;
+      G_columns_.assign(n_multipliers(), {});
+      e_.reinit(n_modes_);
+      for (unsigned int s = 0; s < subdomains_.size(); ++s)
+      {
+        const auto &modes = subdomains_[s]->modes();
+        AssertDimension(modes.size(), n_rigid);
+        for (unsigned int k = 0; k < n_rigid; ++k)
+          e_(s * n_rigid + k) = modes[k] * subdomains_[s]->load();
+        for (const Entry &entry : entries_[s])
+          for (unsigned int k = 0; k < n_rigid; ++k)
+            G_columns_[entry.row].emplace_back(s * n_rigid + k,
+                                               entry.value *
+                                                 modes[k](entry.local));
+      }
+      // merge the entries of a mode in a column (a contact row may touch
+      // several dofs of one subdomain)
+      for (auto &column : G_columns_)
+      {
+        std::sort(column.begin(),
+                  column.end(),
+                  [](const auto &a, const auto &b)
+                  { return a.first < b.first; });
+        unsigned int n = 0;
+        for (unsigned int q = 0; q < column.size(); ++q)
+          if (n > 0 && column[n - 1].first == column[q].first)
+            column[n - 1].second += column[q].second;
+          else
+            column[n++] = column[q];
+        column.resize(n);
+      }
+
+      coarse_factor_.reinit(n_modes_, n_modes_);
+      for (const auto &column : G_columns_)
+        for (const auto &[k, v] : column)
+          for (const auto &[l, w] : column)
+            coarse_factor_(k, l) += v * w;
+      AssertThrow(semidefinite_cholesky(coarse_factor_, 1e-12) == 0,
+                  ExcMessage(
+                    "A rigid-body motion of a body is not restrained by any "
+                    "contact constraint (G = R'B' is rank deficient): add a "
+                    "Dirichlet condition, a contact pair or friction that "
+                    "holds it."));
+      e_orthonormal_ = e_;
+      triangular_solve(coarse_factor_, e_orthonormal_, false);
+    }
+
+
+    template <int dim>
+    void
+    TFETIDual<dim>::coarse_solve(VectorType &x, const bool transpose) const
+    {
+      triangular_solve(coarse_factor_, x, transpose);
+    }
+
+
+    template <int dim>
+    void
+    TFETIDual<dim>::apply_Bt(const VectorType        &lambda,
+                             std::vector<VectorType> &w) const
+    {
+      w.resize(subdomains_.size());
+      for (unsigned int s = 0; s < subdomains_.size(); ++s)
+      {
+        w[s].reinit(subdomains_[s]->n_dofs());
+        for (const Entry &entry : entries_[s])
+          w[s](entry.local) += entry.value * lambda(entry.row);
+      }
+    }
+
+
+    template <int dim>
+    void
+    TFETIDual<dim>::add_B(const std::vector<VectorType> &u,
+                          VectorType                    &lambda) const
+    {
+      for (unsigned int s = 0; s < subdomains_.size(); ++s)
+        for (const Entry &entry : entries_[s])
+          lambda(entry.row) += entry.value * u[s](entry.local);
+    }
+
+
+    template <int dim>
+    void
+    TFETIDual<dim>::apply_K_inverse(const std::vector<VectorType> &w,
+                                    std::vector<VectorType>       &u) const
+    {
+      Timer timer;
+      u.resize(subdomains_.size());
+      for (unsigned int s = 0; s < subdomains_.size(); ++s)
+      {
+        u[s].reinit(subdomains_[s]->n_dofs());
+        subdomains_[s]->apply_generalized_inverse(u[s], w[s]);
+      }
+      ++n_stiffness_solves_;
+      solve_time_ += timer.wall_time();
+    }
+
+
+    template <int dim>
+    void
+    TFETIDual<dim>::apply_F(VectorType &dst, const VectorType &src) const
+    {
+      apply_Bt(src, work_);
+      apply_K_inverse(work_, work_x_);
+      dst.reinit(n_multipliers());
+      add_B(work_x_, dst);
+    }
+
+
+    template <int dim>
+    qp::Problem<typename TFETIDual<dim>::VectorType>
+    TFETIDual<dim>::make_problem() const
+    {
+      qp::Problem<VectorType> problem;
+      problem.hessian = [this](VectorType &dst, const VectorType &src)
+      {
+        apply_F(dst, src);
+        dst /= scale_;
+      };
+      problem.b = d_;
+      problem.b /= scale_;
+      // the power iteration's estimate approaches from below
+      problem.lambda_max = 1.05;
+
+      // the contact blocks; gluing and Dirichlet multipliers are in none:
+      // free
+      auto set = std::make_shared<qp::SeparableSet<VectorType>>();
+      this->add_contact_blocks(*set);
+      VectorType layout(n_multipliers());
+      set->finalize(layout);
+      problem.constraints = set;
+
+      auto equality   = std::make_shared<qp::EqualityConstraints<VectorType>>();
+      equality->vmult = [this](VectorType &dst, const VectorType &src)
+      {
+        dst.reinit(n_modes_);
+        for (unsigned int r = 0; r < G_columns_.size(); ++r)
+          for (const auto &[k, v] : G_columns_[r])
+            dst(k) += v * src(r);
+        coarse_solve(dst, false);
+      };
+      equality->Tvmult = [this](VectorType &dst, const VectorType &src)
+      {
+        VectorType y = src;
+        coarse_solve(y, true);
+        dst.reinit(n_multipliers());
+        for (unsigned int r = 0; r < G_columns_.size(); ++r)
+          for (const auto &[k, v] : G_columns_[r])
+            dst(r) += v * y(k);
+      };
+      equality->c             = e_orthonormal_;
+      equality->n_constraints = n_modes_;
+      equality->norm_sq       = 1.; // ||G~||^2 = lambda_max(G~ G~') = 1
+      problem.equality        = equality;
+      problem.semidefinite    = true;
+      return problem;
+    }
+
+
+    template <int dim>
+    bool
+    TFETIDual<dim>::recover(const VectorType            &lambda,
+                            std::vector<Vector<double>> &displacements,
+                            const bool require_determined) const
+    {
+      AssertDimension(lambda.size(), n_multipliers());
+      std::vector<VectorType> w, u;
+      apply_Bt(lambda, w);
+      for (unsigned int s = 0; s < subdomains_.size(); ++s)
+        w[s].sadd(-1., 1., subdomains_[s]->load());
+      apply_K_inverse(w, u);
+
+      // alpha: G_A' alpha = -(B u - c)_A in the least-squares sense over
+      // the rows that hold with equality (all but the inactive contact
+      // rows)
+      VectorType residual(n_multipliers());
+      add_B(u, residual);
+      const unsigned int n_contact = this->n_contact_multipliers();
+      double             scale     = 0;
+      for (unsigned int i = 0; i < this->n_contact_nodes(); ++i)
+        scale = std::max(scale, std::abs(lambda(i)));
+      FullMatrix<double> GGt(n_modes_, n_modes_);
+      VectorType         alpha(n_modes_);
+      for (unsigned int r = 0; r < n_multipliers(); ++r)
+      {
+        if (r < n_contact &&
+            !this->contact_row_is_active(lambda, r, 1e-8 * scale))
+          continue;
+        const double rr = residual(r) - c_[r];
+        for (const auto &[k, v] : G_columns_[r])
+        {
+          alpha(k) -= v * rr;
+          for (const auto &[l, g] : G_columns_[r])
+            GGt(k, l) += v * g;
+        }
+      }
+      const bool determined = semidefinite_cholesky(GGt, 1e-12) == 0;
+      AssertThrow(determined || !require_determined,
+                  ExcMessage("The rigid-body motion of a floating body is "
+                             "not determined: no active contact "
+                             "constraint holds it."));
+      triangular_solve(GGt, alpha, false);
+      triangular_solve(GGt, alpha, true);
+      const unsigned int n_rigid = dim * (dim + 1) / 2;
+      for (unsigned int s = 0; s < subdomains_.size(); ++s)
+        for (unsigned int k = 0; k < n_rigid; ++k)
+          u[s].add(alpha(s * n_rigid + k), subdomains_[s]->modes()[k]);
+
+      // the glued field: every dof from its first copy
+      displacements.resize(bodies_.size());
+      max_jump_    = 0;
+      double u_max = 0;
+      for (unsigned int b = 0; b < bodies_.size(); ++b)
+      {
+        displacements[b].reinit(bodies_[b]->n_dofs());
+        for (unsigned int i = 0; i < bodies_[b]->n_dofs(); ++i)
+        {
+          const auto [s, l]   = first_copy_[b][i];
+          displacements[b](i) = u[s](l);
+          u_max               = std::max(u_max, std::abs(u[s](l)));
+        }
+        for (unsigned int s = first_subdomain_[b]; s < first_subdomain_[b + 1];
+             ++s)
+          for (unsigned int l = 0; l < subdomains_[s]->n_dofs(); ++l)
+            max_jump_ =
+              std::max(max_jump_,
+                       std::abs(u[s](l) -
+                                displacements[b](subdomains_[s]->dofs()[l])));
+        bodies_[b]->distribute(displacements[b]);
+      }
+      relative_jump_ = u_max > 0 ? max_jump_ / u_max : 0.;
+      return determined;
+    }
+
+
+    template <int dim>
+    unsigned int
+    TFETIDual<dim>::n_multipliers() const
+    {
+      return c_.size();
+    }
+
+
+    template <int dim>
+    unsigned int
+    TFETIDual<dim>::n_rigid_body_modes() const
+    {
+      return n_modes_;
+    }
+
+
+    template <int dim>
+    const std::vector<unsigned int> &
+    TFETIDual<dim>::contact_nodes_per_process() const
+    {
+      return nodes_per_process_;
+    }
+
+
+    template <int dim>
+    double
+    TFETIDual<dim>::scale() const
+    {
+      return scale_;
+    }
+
+
+    template <int dim>
+    const std::string &
+    TFETIDual<dim>::operator_description() const
+    {
+      return operator_description_;
+    }
+
+
+    template <int dim>
+    unsigned long
+    TFETIDual<dim>::n_stiffness_solves() const
+    {
+      return n_stiffness_solves_;
+    }
+
+
+    template <int dim>
+    double
+    TFETIDual<dim>::stiffness_setup_time() const
+    {
+      return setup_time_;
+    }
+
+
+    template <int dim>
+    double
+    TFETIDual<dim>::stiffness_solve_time() const
+    {
+      return solve_time_;
+    }
+
+
+    template <int dim>
+    double
+    TFETIDual<dim>::assembly_time() const
+    {
+      return 0.;
+    }
+
+
+    template <int dim>
+    const typename TFETIDual<dim>::VectorType &
+    TFETIDual<dim>::d() const
+    {
+      return d_;
+    }
+
+
+    template <int dim>
+    unsigned int
+    TFETIDual<dim>::n_subdomains() const
+    {
+      return subdomains_.size();
+    }
+
+
+    template <int dim>
+    const Subdomain<dim> &
+    TFETIDual<dim>::subdomain(const unsigned int s) const
+    {
+      return *subdomains_[s];
+    }
+
+
+    template <int dim>
+    unsigned int
+    TFETIDual<dim>::n_subdomains_of_body(const unsigned int b) const
+    {
+      return first_subdomain_[b + 1] - first_subdomain_[b];
+    }
+
+
+    template <int dim>
+    unsigned int
+    TFETIDual<dim>::n_primal_dofs() const
+    {
+      unsigned int n = 0;
+      for (const auto &subdomain : subdomains_)
+        n += subdomain->n_dofs();
+      return n;
+    }
+
+
+    template <int dim>
+    unsigned int
+    TFETIDual<dim>::n_gluing_multipliers() const
+    {
+      return n_gluing_;
+    }
+
+
+    template <int dim>
+    unsigned int
+    TFETIDual<dim>::n_dirichlet_multipliers() const
+    {
+      return n_dirichlet_;
+    }
+
+
+    template <int dim>
+    double
+    TFETIDual<dim>::decomposition_time() const
+    {
+      return decomposition_time_;
+    }
+
+
+    template <int dim>
+    double
+    TFETIDual<dim>::max_interface_jump() const
+    {
+      return max_jump_;
+    }
+
+
+    template <int dim>
+    double
+    TFETIDual<dim>::relative_interface_jump() const
+    {
+      return relative_jump_;
+    }
+
+
+    template class TFETIDual<2>;
+    template class TFETIDual<3>;
+  } // namespace decomposition
+} // namespace dualcontact

@@ -1,0 +1,233 @@
+#pragma once
+
+#include <deal.II/lac/full_matrix.h>
+#include <deal.II/lac/vector.h>
+
+#include <contact/contact_discretization.h>
+#include <contact/dual_formulation.h>
+#include <decomposition/decomposition_parameters.h>
+#include <decomposition/subdomain.h>
+#include <fem/elastic_body.h>
+#include <fem/stiffness_solver.h>
+
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace dualcontact
+{
+  namespace decomposition
+  {
+    /**
+     * The TFETI (total FETI) dual of a contact scene on one process: every
+     * body is cut into subdomains (partition_cells()), each with its own
+     * copy of its dofs (Subdomain), and
+     *
+     *   K = diag(K_s), f = [f_s], R = diag(R_s),
+     *   B = [B_contact; B_gluing; B_dirichlet],
+     *   F = sum_s B_s K_s^# B_s',  d = B K^# f - c,  G = R'B',  e = R'f,
+     *
+     *   minimize 1/2 lambda'F lambda - lambda'd
+     *   subject to lambda_N >= 0, lambda_T,i in the friction set of node i,
+     *              G lambda = e,
+     *
+     * the gluing and Dirichlet multipliers free.  Every subdomain floats
+     * (K_s has the dim (dim + 1) / 2 rigid-body motions as kernel, K_s^#
+     * the fixing-dof generalized inverse), so G has that many rows per
+     * subdomain: the coarse problem.
+     *
+     * <b>Rows of B</b> (the multipliers in this order):
+     *  - contact rows: the rows of contact::ContactDiscretization (B_N, and
+     *    B_T of the frictional nodes), each body dof mapped to its copy in
+     *    the lowest-numbered subdomain that has it; c = [gap - B_N u_D;
+     *    -B_T u_D] as in the undecomposed dual (the contact matrices have
+     *    the Dirichlet dofs condensed out);
+     *  - gluing rows, non-redundant and not orthonormalized: a dof shared
+     *    by the subdomains s_1 < ... < s_k (not under a Dirichlet
+     *    condition) gets the k - 1 rows u_{s_j} - u_{s_j+1} = 0 (entries
+     *    +1, -1);
+     *  - Dirichlet rows: every copy of a dof under a Dirichlet condition
+     *    gets its own row u_s = u_D (entry 1; c = u_D), and no gluing row
+     *    (it would repeat the difference of two Dirichlet rows).
+     * B has full row rank wherever the undecomposed contact rows have.
+     *
+     * <b>The QP</b> has the contact multipliers first, in the layout of
+     * contact::DualFormulation, so the contact forces, friction sets, slip
+     * bounds and the Coulomb loop are those of the undecomposed dual.  It is
+     * scaled as the undecomposed one: Hessian F / s and d / s with s =
+     * lambda_max(F) (power iteration), and G with orthonormal rows: G~ =
+     * L^{-1} G, e~ = L^{-1} e with G G' = L L' (the coarse problem,
+     * factorized once by dense Cholesky; a singular G G' is a rigid-body
+     * motion nothing holds).
+     *
+     * <b>F</b> is applied by local solves: B_s' lambda, K_s^# (two
+     * triangular solves with the subdomain's factor), B_s.
+     *
+     * <b>Recovery</b>: u_s = K_s^#(f_s - B_s'lambda) + R_s alpha_s, alpha
+     * the least-squares solution of G_A' alpha = -(B u - c)_A over the rows
+     * A that must hold with equality (gluing, Dirichlet, active contact
+     * rows).  The field of a body takes every dof from its first copy;
+     * max_interface_jump() is the largest difference between two copies
+     * of a dof (the gluing residual).
+     *
+     * Hanging-node constraints (adaptive refinement) are refused.
+     */
+    template <int dim>
+    class TFETIDual : public contact::DualFormulation<dim>
+    {
+    public:
+      using VectorType = dealii::Vector<double>;
+      using contact::DualFormulation<dim>::recover;
+
+      /**
+       * Cuts the bodies (counts from @p parameters), assembles and
+       * factorizes the subdomains with solvers made by @p make_solver,
+       * builds B, d, G, e and the coarse problem.
+       */
+      TFETIDual(const std::vector<const fem::ElasticBody<dim> *> &bodies,
+                const contact::ContactDiscretization<dim>        &contact,
+                const DecompositionParameters                    &parameters,
+                const std::function<std::unique_ptr<fem::StiffnessSolver>()>
+                  &make_solver);
+
+      unsigned int
+      n_multipliers() const override;
+      unsigned int
+      n_rigid_body_modes() const override;
+      qp::Problem<VectorType>
+      make_problem() const override;
+      bool
+      recover(const VectorType                    &lambda,
+              std::vector<dealii::Vector<double>> &displacements,
+              const bool require_determined = true) const override;
+      const std::vector<unsigned int> &
+      contact_nodes_per_process() const override;
+      double
+      scale() const override;
+      const std::string &
+      operator_description() const override;
+      unsigned long
+      n_stiffness_solves() const override;
+      double
+      stiffness_setup_time() const override;
+      double
+      stiffness_solve_time() const override;
+      double
+      assembly_time() const override;
+
+      /** dst = F src. */
+      void
+      apply_F(VectorType &dst, const VectorType &src) const;
+      const VectorType &
+      d() const;
+
+      /** @name The decomposition */
+      /** @{ */
+      unsigned int
+      n_subdomains() const;
+      const Subdomain<dim> &
+      subdomain(const unsigned int s) const;
+      /** Subdomains of body @p b. */
+      unsigned int
+      n_subdomains_of_body(const unsigned int b) const;
+      /** Primal unknowns: the dofs of all subdomains (copies counted). */
+      unsigned int
+      n_primal_dofs() const;
+      unsigned int
+      n_gluing_multipliers() const;
+      unsigned int
+      n_dirichlet_multipliers() const;
+      /** Wall time [s] of partitioning and assembling the subdomains. */
+      double
+      decomposition_time() const;
+      /**
+       * Largest |u_s(i) - u_t(i)| over the copies of a dof at the last
+       * recover() [m], and relative to the largest |u| there.
+       */
+      double
+      max_interface_jump() const;
+      double
+      relative_interface_jump() const;
+      /** @} */
+
+    private:
+      using contact::DualFormulation<dim>::contact_;
+      using contact::DualFormulation<dim>::frictional_nodes_;
+
+      /** An entry of B: row, subdomain, local dof, value. */
+      struct Entry
+      {
+        unsigned int row;
+        unsigned int local;
+        double       value;
+      };
+
+      /** partition_cells() and the Subdomain objects of every body. */
+      void
+      decompose(const DecompositionParameters &parameters);
+      /** Contact, gluing and Dirichlet rows (entries_, c_). */
+      void
+      build_constraint_rows();
+      /** G = R'B' by columns, e, and the Cholesky factor of G G'. */
+      void
+      build_coarse_problem();
+
+      /** Adds a row of B; returns its index. */
+      unsigned int
+      add_row(const double c);
+      void
+      add_entry(const unsigned int s,
+                const unsigned int row,
+                const unsigned int local,
+                const double       value);
+
+      /** w_s = B_s' lambda for every subdomain. */
+      void
+      apply_Bt(const VectorType &lambda, std::vector<VectorType> &w) const;
+      /** lambda += B_s u_s over the subdomains. */
+      void
+      add_B(const std::vector<VectorType> &u, VectorType &lambda) const;
+      /** u_s = K_s^# w_s for every subdomain. */
+      void
+      apply_K_inverse(const std::vector<VectorType> &w,
+                      std::vector<VectorType>       &u) const;
+
+      /** y = L^{-1} x (@p transpose: L^{-T}), L the coarse factor. */
+      void
+      coarse_solve(VectorType &x, const bool transpose) const;
+
+      std::vector<const fem::ElasticBody<dim> *>   bodies_;
+      std::vector<std::unique_ptr<Subdomain<dim>>> subdomains_;
+      std::vector<unsigned int>                    first_subdomain_;
+      /** Per subdomain, the entries of B_s. */
+      std::vector<std::vector<Entry>> entries_;
+      /** Per multiplier, the right-hand side c of its row. */
+      std::vector<double> c_;
+      unsigned int        n_gluing_ = 0, n_dirichlet_ = 0;
+      /** Per body dof, its copy in the lowest subdomain (s, local). */
+      std::vector<std::vector<std::pair<unsigned int, unsigned int>>>
+        first_copy_;
+
+      /** G by columns: per multiplier, (mode, value); modes numbered
+       *  subdomain by subdomain. */
+      std::vector<std::vector<std::pair<unsigned int, double>>> G_columns_;
+      unsigned int                                              n_modes_ = 0;
+      VectorType                                                e_;
+      /** Cholesky factor of G G' (lower), and L^{-1} e. */
+      dealii::FullMatrix<double> coarse_factor_;
+      VectorType                 e_orthonormal_;
+
+      VectorType                d_;
+      double                    scale_ = 1;
+      std::string               operator_description_;
+      std::vector<unsigned int> nodes_per_process_;
+
+      double                          decomposition_time_ = 0, setup_time_ = 0;
+      mutable double                  solve_time_         = 0;
+      mutable unsigned long           n_stiffness_solves_ = 0;
+      mutable double                  max_jump_ = 0, relative_jump_ = 0;
+      mutable std::vector<VectorType> work_, work_x_;
+    };
+  } // namespace decomposition
+} // namespace dualcontact

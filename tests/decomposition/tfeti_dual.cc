@@ -1,0 +1,426 @@
+// TFETI (decomposition::TFETIDual) against the undecomposed dual
+// (contact::DualProblem) on the same scenes, with 1 to 16 subdomains per
+// body, every QP solved tightly (1e-10):
+//  A. brick (inputs/brick.prm at 4 x 8 x 4 cells): face y = 0 fixed,
+//     traction on the top, gravity, orthotropic Tresca on a rigid plane;
+//  B. 2D Coulomb block (8 x 8), pushed down and sideways by its top face;
+//  C. 2D floating block (no Dirichlet condition), pressure and shear on
+//     the top, Tresca: SMALSE-M with both duals;
+//  D. 3D cantilever without contact (clamped, end traction): the dual has
+//     only gluing and Dirichlet rows; against the direct solve;
+//  E. 3D two bodies: a block pressed onto a fixed block (non-matching
+//     meshes), frictionless, the master side cut too.
+// Checks: displacements to 1e-8 relative (largest nodal difference over
+// the largest displacement), contact forces (every multiplier, relative to
+// the largest) to 1e-6, the copies of every interface dof agree to 1e-8 of
+// the largest displacement, G G' is the coarse problem of 6 (3D) / 3 (2D)
+// modes per subdomain; the brick at 16 subdomains has a subdomain that
+// touches neither a support nor the contact zone, and the contact zone is
+// cut by subdomain boundaries; bad subdomain counts throw naming the
+// parameter.
+
+#include <deal.II/base/function.h>
+#include <deal.II/grid/grid_generator.h>
+#include <deal.II/grid/grid_tools.h>
+
+#include <contact/contact_solver.h>
+#include <contact/dual_problem.h>
+#include <decomposition/tfeti_dual.h>
+#include <fem/cholmod_solver.h>
+
+#include <test_tools.h>
+
+#include <iostream>
+#include <set>
+#include <sstream>
+
+using namespace dealii;
+using namespace dualcontact;
+
+using test_tools::check;
+
+namespace
+{
+  template <int dim>
+  std::unique_ptr<fem::ElasticBody<dim>>
+  make_body(const std::string                               &name,
+            const Point<dim>                                &lower,
+            const Point<dim>                                &upper,
+            const std::vector<unsigned int>                 &subdivisions,
+            const std::vector<fem::DirichletCondition<dim>> &dirichlet,
+            const std::vector<fem::TractionCondition<dim>>  &tractions,
+            const std::vector<double>                       &body_force = {})
+  {
+    auto tria = std::make_shared<Triangulation<dim>>();
+    GridGenerator::subdivided_hyper_rectangle(
+      *tria, subdivisions, lower, upper, true);
+    for (const auto &cell : tria->active_cell_iterators())
+      cell->set_material_id(0);
+    auto body = std::make_unique<fem::ElasticBody<dim>>(
+      name,
+      tria,
+      1,
+      std::map<types::material_id, fem::IsotropicMaterial>{
+        {0, fem::IsotropicMaterial(2e5, 0.33)}});
+    body->set_dirichlet_conditions(dirichlet);
+    body->set_traction_conditions(tractions);
+    if (!body_force.empty())
+      body->set_body_force(
+        std::make_shared<Functions::ConstantFunction<dim>>(body_force));
+    body->setup();
+    body->assemble();
+    return body;
+  }
+
+  template <int dim>
+  std::shared_ptr<Function<dim>>
+  constant(const std::vector<double> &values)
+  {
+    return std::make_shared<Functions::ConstantFunction<dim>>(values);
+  }
+
+  template <int dim>
+  ComponentMask
+  mask(const std::vector<unsigned int> &components)
+  {
+    ComponentMask m(dim, false);
+    for (const unsigned int c : components)
+      m.set(c, true);
+    return m;
+  }
+
+  std::function<std::unique_ptr<fem::StiffnessSolver>()>
+  cholmod()
+  {
+    return [] { return std::make_unique<fem::CholmodSolver>(); };
+  }
+
+  template <int dim>
+  typename contact::ContactSolver<dim>::Result
+  solve(contact::DualFormulation<dim> &dual, const std::string &solver)
+  {
+    qp::SolverParameters parameters;
+    parameters.solver         = solver;
+    parameters.tolerance      = 1e-10;
+    parameters.max_iterations = 20000;
+    qp::SMALSEMParameters      smalse;
+    contact::CoulombParameters coulomb;
+    coulomb.tolerance = 1e-10;
+    contact::ContactSolver<dim> contact_solver(dual,
+                                               parameters,
+                                               smalse,
+                                               coulomb);
+    return contact_solver.solve();
+  }
+
+  /** Largest difference over the largest value, over all bodies. */
+  double
+  relative_difference(const std::vector<Vector<double>> &a,
+                      const std::vector<Vector<double>> &b)
+  {
+    double difference = 0, size = 0;
+    for (unsigned int k = 0; k < a.size(); ++k)
+    {
+      Vector<double> d = a[k];
+      d -= b[k];
+      difference = std::max(difference, d.linfty_norm());
+      size       = std::max(size, b[k].linfty_norm());
+    }
+    return difference / size;
+  }
+
+  /**
+   * The scene of @p bodies and @p pairs solved undecomposed and with TFETI
+   * at each of @p counts subdomains per body.
+   */
+  template <int dim>
+  void
+  compare(const std::string                                &name,
+          const std::vector<const fem::ElasticBody<dim> *> &bodies,
+          const std::vector<contact::ContactPair<dim>>     &pairs,
+          const std::vector<unsigned int>                  &counts,
+          const std::string                                &solver,
+          const std::function<void(const decomposition::TFETIDual<dim> &)>
+            &inspect = {})
+  {
+    std::cout << name << std::endl;
+    const contact::ContactDiscretization<dim>    contact(bodies, pairs);
+    typename contact::ContactSolver<dim>::Result reference;
+    unsigned int                                 n_contact = 0;
+    if (pairs.empty())
+    {
+      // no contact: the direct solve of every body
+      for (const auto *body : bodies)
+      {
+        fem::CholmodSolver direct;
+        reference.displacements.emplace_back();
+        body->solve(direct, reference.displacements.back());
+      }
+    }
+    else
+    {
+      contact::DualProblem<dim> undecomposed(bodies, contact, cholmod());
+      reference = solve(undecomposed, solver);
+      check(reference.converged, "undecomposed: " + reference.reason, "");
+      n_contact = undecomposed.n_multipliers();
+    }
+    double largest = 0;
+    for (unsigned int r = 0; r < n_contact; ++r)
+      largest = std::max(largest, std::abs(reference.lambda(r)));
+
+    for (const unsigned int count : counts)
+    {
+      decomposition::DecompositionParameters parameters;
+      parameters.subdomains_per_body = {count};
+      decomposition::TFETIDual<dim> tfeti(bodies,
+                                          contact,
+                                          parameters,
+                                          cholmod());
+      const auto                    result = solve(tfeti, solver);
+      const std::string             label =
+        "  " + std::to_string(tfeti.n_subdomains()) + " subdomains (" +
+        std::to_string(tfeti.n_gluing_multipliers()) + " gluing, " +
+        std::to_string(tfeti.n_dirichlet_multipliers()) + " Dirichlet, " +
+        std::to_string(tfeti.n_contact_multipliers()) + " contact): ";
+      check(result.converged,
+            label + result.reason + ", QP iterations",
+            result.qp_statistics.back().iterations);
+      check(tfeti.n_subdomains() >= count * bodies.size() &&
+              tfeti.n_rigid_body_modes() ==
+                tfeti.n_subdomains() * dim * (dim + 1) / 2,
+            label + "coarse problem size",
+            tfeti.n_rigid_body_modes());
+      check(tfeti.n_contact_multipliers() == n_contact,
+            label + "contact multipliers as undecomposed",
+            tfeti.n_contact_multipliers());
+      const double displacement =
+        relative_difference(result.displacements, reference.displacements);
+      check(displacement < 1e-8,
+            label + "displacements against undecomposed",
+            displacement);
+      double force = 0;
+      for (unsigned int r = 0; r < n_contact; ++r)
+        force =
+          std::max(force, std::abs(result.lambda(r) - reference.lambda(r)));
+      if (n_contact > 0)
+        check(force <= 1e-6 * largest,
+              label + "contact multipliers against undecomposed",
+              force / largest);
+      check(tfeti.relative_interface_jump() < 1e-8,
+            label + "largest jump between copies / largest |u|",
+            tfeti.relative_interface_jump());
+      if (inspect)
+        inspect(tfeti);
+    }
+  }
+
+
+  /** A. The brick of inputs/brick.prm, 4 x 8 x 4. */
+  void
+  brick()
+  {
+    const auto body =
+      make_body<3>("brick",
+                   Point<3>(0, 0, 0),
+                   Point<3>(1, 2, 1),
+                   {4, 8, 4},
+                   {{2, mask<3>({0, 1, 2}), constant<3>({0, 0, 0})}},
+                   {{5, constant<3>({150, 300, 0})}},
+                   {0, 0, -9.81 * 7.85e-2});
+    contact::ContactPair<3> pair;
+    pair.name           = "brick-plane";
+    pair.slave_boundary = 4;
+    pair.obstacle =
+      std::make_shared<contact::PlaneObstacle<3>>(Point<3>(),
+                                                  Point<3>(0, 0, 1));
+    pair.friction.type   = contact::FrictionLaw::Type::tresca_orthotropic;
+    pair.friction.first  = 10;
+    pair.friction.second = 5;
+    pair.first_tangent_direction = Point<3>(1, 0, 0);
+    pair.search_distance         = 0.01;
+
+    // which subdomains touch a support / the contact zone, and whether a
+    // contact dof has copies in two subdomains
+    const auto inspect = [&](const decomposition::TFETIDual<3> &tfeti)
+    {
+      if (tfeti.n_subdomains() < 16)
+        return;
+      std::set<types::global_dof_index>       contact_dofs;
+      const contact::ContactDiscretization<3> contact({body.get()}, {pair});
+      const auto                             &B = contact.normal_matrix();
+      for (unsigned int r = 0; r < B.m(); ++r)
+        for (auto it = B.begin(r); it != B.end(r); ++it)
+          contact_dofs.insert(it->column());
+      unsigned int                                    n_isolated = 0;
+      std::map<types::global_dof_index, unsigned int> copies;
+      for (unsigned int s = 0; s < tfeti.n_subdomains(); ++s)
+      {
+        bool supported = false, in_contact = false;
+        for (const auto dof : tfeti.subdomain(s).dofs())
+        {
+          supported |= body->constraints().is_constrained(dof);
+          in_contact |= contact_dofs.count(dof) > 0;
+          if (contact_dofs.count(dof) > 0)
+            ++copies[dof];
+        }
+        n_isolated += !supported && !in_contact;
+      }
+      unsigned int n_shared = 0;
+      for (const auto &[dof, n] : copies)
+        n_shared += n > 1;
+      check(n_isolated > 0,
+            "  subdomains touching neither support nor contact",
+            n_isolated);
+      check(n_shared > 0,
+            "  contact dofs with copies in two subdomains",
+            n_shared);
+    };
+    compare<3>("A. brick 4 x 8 x 4, orthotropic Tresca",
+               {body.get()},
+               {pair},
+               {2, 16},
+               "auto",
+               inspect);
+  }
+
+
+  /** B. 2D Coulomb block pushed down and sideways. */
+  void
+  coulomb_block()
+  {
+    const auto body =
+      make_body<2>("block",
+                   Point<2>(0, 0),
+                   Point<2>(1, 1),
+                   {8, 8},
+                   {{3, mask<2>({0, 1}), constant<2>({2e-3, -1e-3})}},
+                   {});
+    contact::ContactPair<2> pair;
+    pair.name           = "block-plane";
+    pair.slave_boundary = 2;
+    pair.obstacle =
+      std::make_shared<contact::PlaneObstacle<2>>(Point<2>(), Point<2>(0, 1));
+    pair.friction.type  = contact::FrictionLaw::Type::coulomb_isotropic;
+    pair.friction.first = 0.3;
+    compare<2>("B. 2D Coulomb block", {body.get()}, {pair}, {1, 3, 7}, "mprgp");
+  }
+
+
+  /** C. 2D floating block: contact holds it. */
+  void
+  floating_block()
+  {
+    const auto              body = make_body<2>("floating block",
+                                   Point<2>(0, 0),
+                                   Point<2>(1, 1),
+                                   {8, 8},
+                                   {},
+                                   {{3, constant<2>({1e-2, -1})}});
+    contact::ContactPair<2> pair;
+    pair.name           = "block-plane";
+    pair.slave_boundary = 2;
+    pair.obstacle =
+      std::make_shared<contact::PlaneObstacle<2>>(Point<2>(), Point<2>(0, 1));
+    pair.friction.type  = contact::FrictionLaw::Type::tresca_isotropic;
+    pair.friction.first = 0.1;
+    compare<2>(
+      "C. 2D floating block, Tresca", {body.get()}, {pair}, {1, 4}, "mprgp");
+  }
+
+
+  /** D. 3D cantilever, no contact: against the direct solve too. */
+  void
+  cantilever()
+  {
+    const auto body =
+      make_body<3>("cantilever",
+                   Point<3>(0, 0, 0),
+                   Point<3>(4, 1, 1),
+                   {8, 2, 2},
+                   {{0, mask<3>({0, 1, 2}), constant<3>({0, 0, 0})}},
+                   {{1, constant<3>({0, 0, -100})}});
+    compare<3>(
+      "D. 3D cantilever, no contact", {body.get()}, {}, {1, 5, 16}, "mprgp");
+  }
+
+
+  /** E. 3D: a block pressed onto a fixed block, both cut. */
+  void
+  two_blocks()
+  {
+    const auto lower =
+      make_body<3>("lower block",
+                   Point<3>(0, 0, -1),
+                   Point<3>(1, 1, 0),
+                   {3, 3, 3},
+                   {{4, mask<3>({0, 1, 2}), constant<3>({0, 0, 0})}},
+                   {});
+    const auto upper =
+      make_body<3>("upper block",
+                   Point<3>(0.1, 0.1, 0),
+                   Point<3>(0.9, 0.9, 0.6),
+                   {4, 4, 3},
+                   {{5, mask<3>({0, 1, 2}), constant<3>({1e-4, 0, -1e-3})}},
+                   {});
+    contact::ContactPair<3> pair;
+    pair.name            = "upper-lower";
+    pair.slave_body      = 1;
+    pair.slave_boundary  = 4;
+    pair.master_body     = 0;
+    pair.master_boundary = 5;
+    compare<3>("E. 3D block on block, frictionless",
+               {lower.get(), upper.get()},
+               {pair},
+               {1, 3},
+               "mprgp");
+  }
+
+
+  /** Too many subdomains: the error names the parameter. */
+  void
+  bad_counts()
+  {
+    const auto                              body = make_body<2>("Body 1",
+                                   Point<2>(0, 0),
+                                   Point<2>(1, 1),
+                                   {2, 2},
+                                   {{0, mask<2>({0, 1}), constant<2>({0, 0})}},
+                                   {{1, constant<2>({0, -1})}});
+    const contact::ContactDiscretization<2> contact({body.get()}, {});
+    decomposition::DecompositionParameters  parameters;
+    parameters.subdomains_per_body = {5};
+    std::string message;
+    try
+    {
+      decomposition::TFETIDual<2> tfeti({body.get()},
+                                        contact,
+                                        parameters,
+                                        cholmod());
+    }
+    catch (const std::exception &e)
+    {
+      // deal.II wraps the message's lines: compare word by word
+      std::istringstream words(e.what());
+      for (std::string word; words >> word;)
+        message += word + " ";
+    }
+    check(message.find("`Subdomains per body' in `subsection "
+                       "Decomposition' asks for 5 subdomains of Body 1, "
+                       "which has only 4 cells") != std::string::npos,
+          "5 subdomains of 4 cells: error names the parameter",
+          message.empty() ? "no error" : "thrown");
+  }
+} // namespace
+
+
+int
+main()
+{
+  brick();
+  coulomb_block();
+  floating_block();
+  cantilever();
+  two_blocks();
+  bad_counts();
+  return test_tools::finish();
+}
