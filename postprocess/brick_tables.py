@@ -23,7 +23,10 @@ import json
 import math
 import os
 import re
-import xml.etree.ElementTree as ET
+import sys
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import contact_vtu  # noqa: E402
 
 NAMES = {"mpgp": "MPGP", "mpgp-bb": "MPGP-BB", "mwpgp": "MwPGP", "spg-qp": "SPG-QP",
          "pbbf": "PBBf", "apgd": "APGD", "mprgp": "MPRGP"}
@@ -71,14 +74,13 @@ def active_sets(case_dir):
         phi = [float(v) for v in read_prm(prm, "Slip bounds").split(",")]
     else:
         phi = [float(read_prm(prm, "Slip bound"))] * 2
-    piece = ET.parse(vtu).getroot().find("UnstructuredGrid/Piece")
-    fields = {a.get("Name"): [float(v) for v in a.text.split()] for a in piece.find("PointData")}
+    _, fields = contact_vtu.read_contact_nodes(vtu)
     pressure = fields["pressure_Pa"]
     t = fields["tangential_traction_Pa"]
     n = len(pressure)
     bound = sum(1 for p in pressure if p == 0.0)
     quadratic = sum(1 for i in range(n)
-                    if math.hypot(t[3 * i] / phi[0], t[3 * i + 1] / phi[1]) >= 1 - 1e-10)
+                    if math.hypot(t[i, 0] / phi[0], t[i, 1] / phi[1]) >= 1 - 1e-10)
     return 100.0 * bound / n, 100.0 * quadratic / n
 
 

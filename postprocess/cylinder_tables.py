@@ -22,7 +22,10 @@ import argparse
 import json
 import math
 import os
-import xml.etree.ElementTree as ET
+import sys
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import contact_vtu  # noqa: E402
 
 NAMES = {"mprgp": "MPRGP(S)", "mpgp": "MPGP", "mpgp-bb": "MPGP-BB", "mwpgp": "MwPGP",
          "spg-qp": "SPG-QP", "pbbf": "PBBf", "apgd": "APGD"}
@@ -96,11 +99,9 @@ def in_contact(out_dir):
     constraints lambda_N >= 0 that are NOT active."""
     count = 0
     for k in (1, 2):
-        piece = ET.parse(os.path.join(out_dir, "contact_%d.vtu" % k)).getroot().find(
-            "UnstructuredGrid/Piece")
-        for array in piece.find("PointData"):
-            if array.get("Name") == "pressure_Pa":
-                count += sum(1 for v in array.text.split() if float(v) > 0)
+        _, fields = contact_vtu.read_contact_nodes(
+            os.path.join(out_dir, "contact_%d.vtu" % k))
+        count += int((fields["pressure_Pa"] > 0).sum())
     return count
 
 

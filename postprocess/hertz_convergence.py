@@ -55,9 +55,9 @@ import math
 import os
 import re
 import sys
-import xml.etree.ElementTree as ET
-
 import numpy
+
+import contact_vtu
 
 
 def read_hertz_line(path):
@@ -109,20 +109,6 @@ class ClosedForm:
         if self.dim == 2:
             return p0 * math.sqrt(2 * a / 3)
         return p0 * a * math.sqrt(math.pi / 8)
-
-
-def read_vtu(path):
-    """Points (n x 3) and point fields {name: array} of an ASCII .vtu."""
-    root = ET.parse(path).getroot()
-    piece = root.find("UnstructuredGrid/Piece")
-    points = numpy.array(piece.find("Points/DataArray").text.split(),
-                         dtype=float).reshape(-1, 3)
-    fields = {}
-    for array in piece.find("PointData"):
-        values = numpy.array(array.text.split(), dtype=float)
-        n = int(array.get("NumberOfComponents", "1"))
-        fields[array.get("Name")] = values.reshape(-1, n) if n > 1 else values
-    return points, fields
 
 
 def read_results(path):
@@ -184,11 +170,13 @@ def evaluate(prm, workdir):
     force = results["pair_1.normal_force"][0]
     a, p0 = closed.a_p0(applied / closed.fraction)
 
-    points, fields = read_vtu(os.path.join(folder, "contact_1.vtu"))
-    if "weight" not in fields:
-        raise ValueError(f"{folder}/contact_1.vtu has no `weight' field")
+    points, fields = contact_vtu.read_contact_nodes(
+        os.path.join(folder, "contact_1.vtu"))
+    if "area_weight_m2" not in fields:
+        raise ValueError(f"{folder}/contact_1.vtu has no `area_weight_m2' "
+                         "field")
     pressure, status, weight = (fields["pressure_Pa"], fields["status"],
-                                fields["weight"])
+                                fields["area_weight_m2"])
     if closed.dim == 2:
         r = numpy.abs(points[:, 0])
     else:

@@ -1,174 +1,293 @@
-#!/usr/bin/env python3
-"""Renders a dualcontact output file (VTU, PVTU or PVD) to a PNG with ParaView.
+#!/usr/bin/python3
+"""The standard picture of a dualcontact result, rendered with VTK to a PNG.
 
-Usage (ParaView's Python; off-screen under a virtual X server):
-  xvfb-run -a /usr/bin/pvpython postprocess/render_vtu.py INPUT OUTPUT.png
-      [--field von_mises_stress_Pa] [--component -1] [--view iso]
-      [--warp 0] [--overlay FILE[:FIELD]] ... [--edges] [--title TEXT]
-      [--size 1200 800] [--range MIN MAX] [--log]
+Usage (off-screen under a virtual X server; scripts/setup --render installs
+xvfb):
+  xvfb-run -a /usr/bin/python3 postprocess/render_vtu.py RESULT OUTPUT.png
+      [--warp auto|S] [--view iso|+x|-x|+y|-y|+z|-z] [--title TEXT]
+      [--size 1600 800]
 
-INPUT: a .vtu / .pvtu (a body, all bodies, a contact surface) or a .pvd
-(its last time step).  FIELD: a point array, coloured by its magnitude
-(--component -1, default) or one component (0, 1, 2).  VIEW (write
---view=-z for a leading minus): +x, -x, +y, -y,
-+z, -z (looking along minus that axis, i.e. from the + side: "+z" looks down
-onto the x-y plane) or iso (from (1, -1.2, 0.8)).  --warp S: displace the
-points by S times displacement_m (Warp By Vector) to show the deformation.
---overlay FILE[:FIELD]: draw another file in the same view (e.g. the contact
-surface, as points coloured by FIELD, or plain grey without a field).
---edges: show the cell edges.  --points S: draw INPUT as points of S pixels
-(a contact surface file holds only its nodes).  The colour bar is titled by the field.
-Written to be reused by every benchmark report (doc/benchmarks/).
+RESULT: an output folder or its solution.pvd.  Two panels:
+  left:  the bodies (solution.pvtu), displaced by S times displacement_m
+         (auto: the largest displacement shown as 5 % of the scene's size;
+         0: undeformed), coloured by von_mises_stress_Pa; in 2D the contact
+         surfaces are drawn on them as thick lines coloured by pressure_Pa;
+  right: the contact surfaces (contact_N.vtu / .pvtu of solution.pvd) alone,
+         coloured by pressure_Pa, seen from the master side along their mean
+         normal (3D) or from +z (2D), cell edges drawn.
+A scene without contact pairs gets the left panel only.  --view: the left
+panel's camera ("+z" looks down onto the x-y plane; iso from (1, -1.2, 0.8);
+default iso in 3D, +z in 2D).
 
-Packages: Debian's paraview, python3-paraview, xvfb.  In Debian 12
-python3-paraview conflicts with python3-vtk9, which libvtk9-dev (a build
-dependency of dualcontact, scripts/setup) needs: installing one removes the
-other.  Render on a machine (or container) without libvtk9-dev, or swap the
-packages for the rendering and run scripts/setup afterwards (it puts
-libvtk9-dev back, and the VTK read-back test io/vtu_output needs it).
+Reads through VTK's Python module (Debian's python3-vtk9, under
+/usr/bin/python3; postprocess/contact_vtu.py), not ParaView: Debian 12's
+python3-paraview conflicts with python3-vtk9 (README.md, *Postprocessing*).
+postprocess/render_paraview.py is the ParaView counterpart with more options.
 """
 import argparse
 import os
+import re
 import sys
+import xml.etree.ElementTree as ET
 
-from paraview.simple import (ColorBy, CreateView, GetColorTransferFunction,
-                             GetScalarBar, OpenDataFile, Render, SaveScreenshot, Show,
-                             Text, UpdatePipeline, WarpByVector)
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import contact_vtu  # noqa: E402
+
+contact_vtu.require_vtk()
+import numpy  # noqa: E402
+import vtkmodules.vtkInteractionStyle  # noqa: E402,F401
+import vtkmodules.vtkRenderingFreeType  # noqa: E402,F401
+import vtkmodules.vtkRenderingOpenGL2  # noqa: E402,F401
+from vtkmodules.vtkFiltersCore import vtkProbeFilter, vtkTubeFilter  # noqa: E402
+from vtkmodules.vtkFiltersGeneral import vtkWarpVector  # noqa: E402
+from vtkmodules.vtkFiltersGeometry import vtkDataSetSurfaceFilter  # noqa: E402
+from vtkmodules.vtkIOImage import vtkPNGWriter  # noqa: E402
+from vtkmodules.vtkRenderingAnnotation import vtkScalarBarActor  # noqa: E402
+from vtkmodules.vtkRenderingCore import (  # noqa: E402
+    vtkActor, vtkColorTransferFunction, vtkDataSetMapper, vtkRenderer,
+    vtkRenderWindow, vtkTextActor, vtkWindowToImageFilter)
+
+# colour maps: (position in [0, 1], r, g, b)
+TURBO = [(0.0, 0.19, 0.07, 0.23), (0.25, 0.16, 0.67, 0.93),
+         (0.5, 0.45, 0.98, 0.37), (0.75, 0.98, 0.73, 0.22),
+         (1.0, 0.48, 0.02, 0.01)]
+INFERNO = [(0.0, 0.0, 0.0, 0.02), (0.25, 0.34, 0.06, 0.43),
+           (0.5, 0.73, 0.21, 0.33), (0.75, 0.98, 0.55, 0.04),
+           (1.0, 0.99, 1.0, 0.64)]
 
 
 def parse():
-    p = argparse.ArgumentParser()
-    p.add_argument("input")
+    p = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    p.add_argument("result")
     p.add_argument("output")
-    p.add_argument("--field", default="von_mises_stress_Pa")
-    p.add_argument("--component", type=int, default=-1)
-    p.add_argument("--view", default="iso")
-    p.add_argument("--warp", type=float, default=0.0)
-    p.add_argument("--overlay", action="append", default=[])
-    p.add_argument("--edges", action="store_true")
-    p.add_argument("--points", type=float, default=0.0)
+    p.add_argument("--warp", default="auto")
+    p.add_argument("--view")
     p.add_argument("--title", default="")
-    p.add_argument("--size", type=int, nargs=2, default=[1200, 800])
-    p.add_argument("--range", type=float, nargs=2)
-    p.add_argument("--log", action="store_true")
+    p.add_argument("--size", type=int, nargs=2, default=[1600, 800])
     return p.parse_args()
 
 
-def open_last_step(path):
-    source = OpenDataFile(os.path.abspath(path))
-    if source is None:
-        sys.exit("render_vtu: cannot open " + path)
-    times = list(getattr(source, "TimestepValues", None) or [])
-    if times:
-        source.UpdatePipeline(float(times[-1]))
+def record_files(result):
+    """(folder, body files, contact files) listed by solution.pvd; for a
+    folder without one (`Write VTU = false'), its contact_N.vtu / .pvtu."""
+    pvd = result if result.endswith(".pvd") else os.path.join(result,
+                                                              "solution.pvd")
+    folder = os.path.dirname(pvd)
+    if os.path.isfile(pvd):
+        files = [d.get("file") for d in
+                 ET.parse(pvd).getroot().findall("Collection/DataSet")]
+    elif os.path.isdir(folder):
+        files = sorted(f for f in os.listdir(folder)
+                       if re.fullmatch(r"contact_\d+\.p?vtu", f))
     else:
-        UpdatePipeline(proxy=source)
-    return source
+        sys.exit(f"render_vtu: {result} is no dualcontact output folder")
+    bodies = [f for f in files if not os.path.basename(f).startswith("contact_")]
+    contacts = [f for f in files if os.path.basename(f).startswith("contact_")]
+    if not bodies and not contacts:
+        sys.exit(f"render_vtu: {result}: no body or contact file")
+    return folder, bodies, contacts
 
 
-def colour(display, view, source, field, component, value_range, log):
-    arrays = source.PointData.keys()
-    if field not in arrays:
-        sys.exit("render_vtu: no point field `%s' in %s (fields: %s)"
-                 % (field, source.GetXMLName(), ", ".join(arrays)))
-    n_components = source.PointData[field].GetNumberOfComponents()
-    if n_components > 1 and component >= 0:
-        ColorBy(display, ("POINTS", field, "%d" % component))
-    elif n_components > 1:
-        ColorBy(display, ("POINTS", field, "Magnitude"))
+def colour_map(points, value_range):
+    function = vtkColorTransferFunction()
+    low, high = value_range
+    if high <= low:
+        high = low + 1.0
+    for t, r, g, b in points:
+        function.AddRGBPoint(low + t * (high - low), r, g, b)
+    return function
+
+
+def coloured_actor(data, field, lut, value_range):
+    mapper = vtkDataSetMapper()
+    mapper.SetInputData(data)
+    mapper.SetScalarModeToUsePointFieldData()
+    mapper.SelectColorArray(field)
+    mapper.SetLookupTable(lut)
+    mapper.SetScalarRange(*value_range)
+    mapper.ScalarVisibilityOn()
+    actor = vtkActor()
+    actor.SetMapper(mapper)
+    return actor
+
+
+def scalar_bar(lut, title, x):
+    bar = vtkScalarBarActor()
+    bar.SetLookupTable(lut)
+    bar.SetTitle(title)
+    bar.SetNumberOfLabels(5)
+    bar.SetLabelFormat("%-#.3g")
+    bar.SetOrientationToHorizontal()
+    bar.SetPosition(x, 0.02)
+    bar.SetWidth(0.36)
+    bar.SetHeight(0.11)
+    for prop in (bar.GetTitleTextProperty(), bar.GetLabelTextProperty()):
+        prop.SetColor(0, 0, 0)
+        prop.ShadowOff()
+        prop.ItalicOff()
+    return bar
+
+
+def field_range(grid, field):
+    array = grid.GetPointData().GetArray(field)
+    if array is None:
+        sys.exit(f"render_vtu: no point field `{field}'")
+    return array.GetRange(-1 if array.GetNumberOfComponents() > 1 else 0)
+
+
+def warped(grid, vectors, scale):
+    if scale == 0:
+        return grid
+    grid.GetPointData().SetActiveVectors(vectors)
+    warp = vtkWarpVector()
+    warp.SetInputData(grid)
+    warp.SetScaleFactor(scale)
+    warp.Update()
+    return warp.GetOutput()
+
+
+def camera(renderer, direction, up, parallel):
+    cam = renderer.GetActiveCamera()
+    cam.SetFocalPoint(0, 0, 0)
+    cam.SetPosition(*direction)
+    cam.SetViewUp(*up)
+    cam.SetParallelProjection(parallel)
+    renderer.ResetCamera()
+    cam.Zoom(0.9)
+
+
+def text(renderer, words, x, y):
+    actor = vtkTextActor()
+    actor.SetInput(words)
+    actor.GetTextProperty().SetColor(0, 0, 0)
+    actor.GetTextProperty().SetFontSize(18)
+    actor.SetPosition(x, y)
+    renderer.AddActor2D(actor)
+
+
+def bodies_panel(a, bodies, contacts, size):
+    """The deformed bodies by von Mises stress (2D: with the contact lines
+    on them): (renderer, displacement scale, dimension)."""
+    bounds = numpy.array(bodies.GetBounds()).reshape(3, 2)
+    dim = 2 if bounds[2, 1] - bounds[2, 0] == 0 else 3
+    u_max = field_range(bodies, "displacement_m")[1]
+    scale = (0.05 * size / u_max if u_max > 0 else 0.0) \
+        if a.warp == "auto" else float(a.warp)
+    surface = vtkDataSetSurfaceFilter()
+    surface.SetInputData(warped(bodies, "displacement_m", scale))
+    surface.Update()
+    stress_range = field_range(bodies, "von_mises_stress_Pa")
+    stress_lut = colour_map(TURBO, stress_range)
+    left = vtkRenderer()
+    left.SetBackground(1, 1, 1)
+    left.AddActor(coloured_actor(surface.GetOutput(), "von_mises_stress_Pa",
+                                 stress_lut, stress_range))
+    left.AddActor2D(scalar_bar(stress_lut, "von_mises_stress_Pa", 0.07))
+    if dim == 2 and contacts:
+        # the contact lines displaced as the slave (its displacement probed
+        # from the bodies), as tubes coloured by pressure
+        pressure_range, pressure_lut = pressure_colours(contacts)
+        for grid in contacts:
+            probe = vtkProbeFilter()
+            probe.SetInputData(grid)
+            probe.SetSourceData(bodies)
+            probe.Update()
+            tube = vtkTubeFilter()
+            tube.SetInputData(warped(probe.GetOutput(), "displacement_m",
+                                     scale))
+            tube.SetRadius(0.004 * size)
+            tube.SetNumberOfSides(12)
+            tube.Update()
+            left.AddActor(coloured_actor(tube.GetOutput(), "pressure_Pa",
+                                         pressure_lut, pressure_range))
+    views = {"+x": ((1, 0, 0), (0, 0, 1)), "-x": ((-1, 0, 0), (0, 0, 1)),
+             "+y": ((0, 1, 0), (0, 0, 1)), "-y": ((0, -1, 0), (0, 0, 1)),
+             "+z": ((0, 0, 1), (0, 1, 0)), "-z": ((0, 0, -1), (0, 1, 0)),
+             "iso": ((1, -1.2, 0.8), (0, 0, 1))}
+    view = a.view or ("iso" if dim == 3 else "+z")
+    if view not in views:
+        sys.exit("render_vtu: --view must be one of " + ", ".join(views))
+    camera(left, *views[view], view != "iso")
+    text(left, (a.title + "\n" if a.title else "")
+         + "von Mises stress, displacements x %.3g" % scale,
+         0.02 * a.size[0], 0.88 * a.size[1])
+    return left, scale, dim
+
+
+def pressure_colours(contacts):
+    value_range = (0.0, max(field_range(c, "pressure_Pa")[1]
+                            for c in contacts))
+    return value_range, colour_map(INFERNO, value_range)
+
+
+def contact_panel(a, contacts, dim, x0):
+    """The contact surfaces by pressure, seen from the master side."""
+    pressure_range, pressure_lut = pressure_colours(contacts)
+    right = vtkRenderer()
+    right.SetBackground(0.96, 0.96, 0.96)
+    normal = numpy.zeros(3)
+    for grid in contacts:
+        fields = contact_vtu.point_fields(grid)
+        normal += (fields["normal"] * fields["area_weight_m2"][:, None]
+                   ).sum(axis=0)
+        actor = coloured_actor(grid, "pressure_Pa", pressure_lut,
+                               pressure_range)
+        if dim == 3:
+            actor.GetProperty().EdgeVisibilityOn()
+            actor.GetProperty().SetEdgeColor(0.5, 0.5, 0.5)
+        else:
+            actor.GetProperty().SetLineWidth(8)
+        right.AddActor(actor)
+    right.AddActor2D(scalar_bar(pressure_lut, "pressure_Pa", x0 + 0.07))
+    if dim == 3 and numpy.linalg.norm(normal) > 0:
+        # from the master side, looking back at the slave surface
+        n = normal / numpy.linalg.norm(normal)
+        helper = numpy.array([0, 0, 1.0]) if abs(n[2]) < 0.9 \
+            else numpy.array([0, 1.0, 0])
+        camera(right, n, helper - (helper @ n) * n, 1)
     else:
-        ColorBy(display, ("POINTS", field))
-    lut = GetColorTransferFunction(field)
-    lut.ApplyPreset("Turbo" if "status" not in field else "Rainbow Uniform", True)
-    if value_range:
-        lut.RescaleTransferFunction(value_range[0], value_range[1])
-    else:
-        display.RescaleTransferFunctionToDataRange(False, True)
-    if log:
-        lut.UseLogScale = 1
-    display.SetScalarBarVisibility(view, True)
-    bar = GetScalarBar(lut, view)
-    bar.Title = field + ("" if n_components == 1 else
-                         (" [%d]" % component if component >= 0 else " (magnitude)"))
-    bar.ComponentTitle = ""
-    bar.TitleFontSize = 16
-    bar.LabelFontSize = 14
-    bar.TitleColor = [0, 0, 0]
-    bar.LabelColor = [0, 0, 0]
-    bar.ScalarBarLength = 0.5
-    bar.RangeLabelFormat = "%-#.3g"
-    bar.AddRangeLabels = 1
+        camera(right, (0, 0, 1), (0, 1, 0), 1)
+    text(right, ("" if x0 > 0 or not a.title else a.title + "\n")
+         + "contact surface%s by pressure, seen from the master side"
+         % ("s" if len(contacts) > 1 else ""),
+         (x0 + 0.02) * a.size[0], 0.88 * a.size[1])
+    return right
 
 
 def main():
     a = parse()
-    view = CreateView("RenderView")
-    view.ViewSize = a.size
-    view.Background = [1, 1, 1]
-    try:
-        view.UseColorPaletteForBackground = 0
-    except AttributeError:
-        pass
-    view.OrientationAxesVisibility = 1
+    folder, body_files, contact_files = record_files(a.result)
+    contacts = [contact_vtu.read_grid(os.path.join(folder, f))
+                for f in contact_files]
+    window = vtkRenderWindow()
+    window.SetOffScreenRendering(1)
+    window.SetSize(*a.size)
+    scale, dim = 0.0, 3
+    if body_files:
+        bodies = contact_vtu.read_grid(os.path.join(folder, body_files[0]))
+        bounds = numpy.array(bodies.GetBounds()).reshape(3, 2)
+        size = numpy.linalg.norm(bounds[:, 1] - bounds[:, 0])
+        left, scale, dim = bodies_panel(a, bodies, contacts, size)
+        left.SetViewport(0, 0, 0.5 if contacts else 1, 1)
+        window.AddRenderer(left)
+    elif contacts and contacts[0].GetNumberOfCells() > 0:
+        dim = 2 if contacts[0].GetCellType(0) == 3 else 3  # VTK_LINE
+    if contacts:
+        x0 = 0.5 if body_files else 0.0
+        right = contact_panel(a, contacts, dim, x0)
+        right.SetViewport(x0, 0, 1, 1)
+        window.AddRenderer(right)
 
-    source = open_last_step(a.input)
-    shown = source
-    if a.warp != 0.0:
-        shown = WarpByVector(Input=source)
-        shown.Vectors = ["POINTS", "displacement_m"]
-        shown.ScaleFactor = a.warp
-    display = Show(shown, view)
-    display.Representation = "Surface With Edges" if a.edges else "Surface"
-    if a.points > 0:
-        display.Representation = "Points"
-        display.PointSize = a.points
-        display.RenderPointsAsSpheres = 1
-    if a.edges:
-        display.EdgeColor = [0.3, 0.3, 0.3]
-    colour(display, view, source, a.field, a.component, a.range, a.log)
-
-    for overlay in a.overlay:
-        path, _, field = overlay.partition(":")
-        other = open_last_step(path)
-        shown_other = other
-        if a.warp != 0.0 and "displacement_m" in other.PointData.keys():
-            shown_other = WarpByVector(Input=other)
-            shown_other.Vectors = ["POINTS", "displacement_m"]
-            shown_other.ScaleFactor = a.warp
-        d = Show(shown_other, view)
-        d.Representation = "Points"
-        d.PointSize = 6
-        d.RenderPointsAsSpheres = 1
-        if field:
-            colour(d, view, other, field, -1, None, False)
-        else:
-            ColorBy(d, None)
-            d.AmbientColor = d.DiffuseColor = [0.2, 0.2, 0.2]
-
-    if a.title:
-        text = Text(Text=a.title)
-        td = Show(text, view)
-        td.FontSize = 14
-        td.Color = [0, 0, 0]
-        td.WindowLocation = "Upper Center"
-
-    directions = {"+x": ([1, 0, 0], [0, 0, 1]), "-x": ([-1, 0, 0], [0, 0, 1]),
-                  "+y": ([0, 1, 0], [0, 0, 1]), "-y": ([0, -1, 0], [0, 0, 1]),
-                  "+z": ([0, 0, 1], [0, 1, 0]), "-z": ([0, 0, -1], [0, 1, 0]),
-                  "iso": ([1, -1.2, 0.8], [0, 0, 1])}
-    if a.view not in directions:
-        sys.exit("render_vtu: --view must be one of " + ", ".join(directions))
-    position, up = directions[a.view]
-    view.CameraPosition = position
-    view.CameraFocalPoint = [0, 0, 0]
-    view.CameraViewUp = up
-    view.ResetCamera()
-    view.CameraParallelProjection = 1 if a.view != "iso" else 0
-    view.ResetCamera()
-    Render(view)
-    SaveScreenshot(os.path.abspath(a.output), view, ImageResolution=a.size,
-                   TransparentBackground=0)
-    print("render_vtu: wrote " + a.output)
+    window.Render()
+    image = vtkWindowToImageFilter()
+    image.SetInput(window)
+    image.Update()
+    writer = vtkPNGWriter()
+    writer.SetFileName(a.output)
+    writer.SetInputConnection(image.GetOutputPort())
+    writer.Write()
+    print(f"render_vtu: wrote {a.output}"
+          + (f" (displacements x {scale:.3g})" if body_files else ""))
 
 
 if __name__ == "__main__":

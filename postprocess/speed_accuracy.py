@@ -68,6 +68,7 @@ import numpy  # noqa: E402
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
+import contact_vtu  # noqa: E402
 import hertz_convergence  # noqa: E402
 import performance_profiles  # noqa: E402
 
@@ -322,14 +323,14 @@ def read_contact(folder):
     run's contact_1.vtu: the traction is [pressure, tangential traction],
     the displacement [slip, gap]."""
     out = hertz_convergence.output_folder(folder)
-    points, f = hertz_convergence.read_vtu(os.path.join(out, "contact_1.vtu"))
+    points, f = contact_vtu.read_contact_nodes(os.path.join(out, "contact_1.vtu"))
 
     def columns(name):
         v = f[name]
         return v.reshape(len(points), -1)
     traction = numpy.hstack([columns("pressure_Pa"), columns("tangential_traction_Pa")])
     displacement = numpy.hstack([columns("slip_m"), columns("gap_m")])
-    return points, traction, displacement, f["weight"]
+    return points, traction, displacement, f["area_weight_m2"]
 
 
 def contact_error(folder, reference_folder):

@@ -291,27 +291,19 @@ namespace dualcontact
       else
         scene_.displacements() = result_.displacements;
       surfaces_ = contact_surfaces(result_.lambda, scene_.displacements());
-      // the owner of each node: the process owning its first slave dof (a
-      // sum over processes of "mine": every node has exactly one owner)
-      surface_owners_.assign(scene_.pair_parameters().size(), {});
+      // the slave faces of every pair over its contact nodes (in the
+      // pair's node order, as in surfaces_)
+      surface_meshes_.clear();
+      for (unsigned int p = 0; p < scene_.pair_parameters().size(); ++p)
       {
-        const unsigned int rank =
-          dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD);
-        std::vector<unsigned int> owners;
+        const auto &pair = scene_.pair_parameters()[p].pair;
+        std::vector<dealii::types::global_dof_index> node_dofs;
         for (const auto &node : contact_->nodes())
-        {
-          const auto &pair = scene_.pair_parameters()[node.pair].pair;
-          owners.push_back(scene_.body(pair.slave_body)
-                               .dof_handler()
-                               .locally_owned_dofs()
-                               .is_element(node.dofs[0]) ?
-                             rank :
-                             0);
-        }
-        std::vector<unsigned int> total(owners.size());
-        dealii::Utilities::MPI::sum(owners, MPI_COMM_WORLD, total);
-        for (unsigned int i = 0; i < total.size(); ++i)
-          surface_owners_[contact_->nodes()[i].pair].push_back(total[i]);
+          if (node.pair == p)
+            node_dofs.push_back(node.dofs[0]);
+        surface_meshes_.emplace_back(scene_.body(pair.slave_body),
+                                     pair.slave_boundary,
+                                     node_dofs);
       }
 
       pair_results_.assign(scene_.pair_parameters().size(), PairResults());
@@ -365,7 +357,7 @@ namespace dualcontact
       primal_json_  = "";
       qp_wall_time_ = 0;
       surfaces_.clear();
-      surface_owners_.clear();
+      surface_meshes_.clear();
       coulomb_iterates_.clear();
       pair_results_.clear();
     }

@@ -10,6 +10,7 @@
 #include <decomposition/decomposition_parameters.h>
 #include <decomposition/tfeti_dual.h>
 #include <driver/scene.h>
+#include <io/contact_surface_mesh.h>
 #include <io/contact_surface_writer.h>
 #include <primal/primal_parameters.h>
 #include <qp/smalse_m.h>
@@ -78,7 +79,8 @@ namespace dualcontact
       solve(std::vector<std::string> &details);
       /**
        * Recovery phase: the displacements of the scene's bodies from the
-       * multipliers, the contact surfaces and the pair results.
+       * multipliers, the contact surfaces (values and cells) and the pair
+       * results.
        */
       void
       recover();
@@ -143,13 +145,13 @@ namespace dualcontact
         return coulomb_iterates_;
       }
       /**
-       * Per pair and node of surfaces(): the process that owns the node's
-       * first slave dof (0 on one process).
+       * Per pair: its slave faces as the cells of the contact-surface file,
+       * over the nodes of surfaces() (with the process owning each face).
        */
-      const std::vector<std::vector<unsigned int>> &
-      surface_owners() const
+      const std::vector<io::ContactSurfaceMesh<dim>> &
+      surface_meshes() const
       {
-        return surface_owners_;
+        return surface_meshes_;
       }
       const std::vector<PairResults> &
       pair_results() const
@@ -195,7 +197,7 @@ namespace dualcontact
       typename contact::ContactSolver<dim>::Result         result_;
       double                                               qp_wall_time_ = 0;
       Surfaces                                             surfaces_;
-      std::vector<std::vector<unsigned int>>               surface_owners_;
+      std::vector<io::ContactSurfaceMesh<dim>>             surface_meshes_;
       std::vector<Surfaces>                                coulomb_iterates_;
       std::vector<PairResults>                             pair_results_;
     };

@@ -381,8 +381,11 @@ namespace dualcontact
         contact_ != nullptr ? contact_->coulomb_iterates() : no_iterates;
 
       // The contact surfaces: one file per pair; under MPI one piece per
-      // pair and process (the nodes whose slave dofs the process owns), with
-      // contact_N.pvd as the master file of the pair's pieces.
+      // pair and process (the faces of the cells the process owns), with
+      // contact_N.pvtu as the record of the pair's pieces.
+      const std::vector<io::ContactSurfaceMesh<dim>> no_meshes;
+      const auto                                    &meshes =
+        contact_ != nullptr ? contact_->surface_meshes() : no_meshes;
       std::vector<std::string> contact_files;
       for (unsigned int p = 0; p < surfaces.size(); ++p)
       {
@@ -390,27 +393,29 @@ namespace dualcontact
         if (n_ranks == 1)
         {
           folder.write(stem + ".vtu",
-                       [&](std::ostream &out)
-                       { io::write_contact_surface<dim>(out, surfaces[p]); });
+                       [&](std::ostream &out) {
+                         io::write_contact_surface<dim>(out,
+                                                        meshes[p],
+                                                        surfaces[p]);
+                       });
           contact_files.push_back(stem + ".vtu");
           continue;
         }
-        std::vector<io::ContactSurfaceNode<dim>> own;
-        for (unsigned int i = 0; i < surfaces[p].size(); ++i)
-          if (contact_->surface_owners()[p][i] == rank)
-            own.push_back(surfaces[p][i]);
         folder.write(stem + "_rank_" + std::to_string(rank) + ".vtu",
-                     [&](std::ostream &out)
-                     { io::write_contact_surface<dim>(out, own); });
-        std::vector<std::pair<double, std::string>> pieces;
+                     [&](std::ostream &out) {
+                       io::write_contact_surface<dim>(out,
+                                                      meshes[p],
+                                                      surfaces[p],
+                                                      rank);
+                     });
+        std::vector<std::string> pieces;
         for (unsigned int r = 0; r < n_ranks; ++r)
-        {
-          pieces.emplace_back(0., stem + "_rank_" + std::to_string(r) + ".vtu");
-          contact_files.push_back(pieces.back().second);
-        }
+          pieces.push_back(stem + "_rank_" + std::to_string(r) + ".vtu");
         if (rank == 0)
-          folder.write(stem + ".pvd",
-                       [&](std::ostream &out) { io::write_pvd(out, pieces); });
+          folder.write(stem + ".pvtu",
+                       [&](std::ostream &out)
+                       { io::write_contact_surface_record(out, pieces); });
+        contact_files.push_back(stem + ".pvtu");
       }
       // Coulomb iterates (process 0, whole surfaces)
       if (rank == 0 && !iterates.empty())
@@ -424,7 +429,9 @@ namespace dualcontact
                                      ".vtu";
             folder.write(name,
                          [&](std::ostream &out) {
-                           io::write_contact_surface<dim>(out, iterates[k][p]);
+                           io::write_contact_surface<dim>(out,
+                                                          meshes[p],
+                                                          iterates[k][p]);
                          });
             series.emplace_back(k + 1, name);
           }

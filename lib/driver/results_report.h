@@ -35,10 +35,10 @@ namespace dualcontact
        * The VTU/PVTU/PVD files (bodies if @p write_vtu, contact always).
        * Under MPI every process calls this and writes its pieces: of every
        * body (io::write_solution) and of every contact surface
-       * (contact_N_rank_R.vtu, the nodes whose slave dofs it owns);
-       * process 0 also writes the master files (solution.pvtu,
-       * contact_N.pvd, solution.pvd listing every piece), the Coulomb
-       * iterates (whole) and the records.
+       * (contact_N_rank_R.vtu, the slave faces of the cells it owns);
+       * process 0 also writes the records (solution.pvtu, contact_N.pvtu,
+       * and solution.pvd listing solution.pvtu and the contact surfaces), the
+       * Coulomb iterates (whole) and the records.
        */
       void
       write_output(io::OutputFolder &folder, const bool write_vtu) const;

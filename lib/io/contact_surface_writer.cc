@@ -1,7 +1,20 @@
 #include <io/contact_surface_writer.h>
 
-#include <iomanip>
+#include <vtkCellArray.h>
+#include <vtkDoubleArray.h>
+#include <vtkIdList.h>
+#include <vtkIntArray.h>
+#include <vtkPointData.h>
+#include <vtkPoints.h>
+#include <vtkSmartPointer.h>
+#include <vtkUnstructuredGrid.h>
+#include <vtkXMLUnstructuredGridWriter.h>
+
+#include <array>
+#include <cmath>
+#include <limits>
 #include <map>
+#include <string>
 
 namespace dualcontact
 {
@@ -9,13 +22,93 @@ namespace dualcontact
   {
     namespace
     {
+      /** A point field of the contact-surface file. */
+      struct Field
+      {
+        const char  *name;
+        const char  *vtk_type;
+        unsigned int n_components;
+      };
+
+      /** The point fields, in the order of the file. */
+      constexpr std::array<Field, 8> fields = {
+        {{"pressure_Pa", "Float64", 1},
+         {"normal_force_N", "Float64", 1},
+         {"area_weight_m2", "Float64", 1},
+         {"gap_m", "Float64", 1},
+         {"tangential_traction_Pa", "Float64", 3},
+         {"slip_m", "Float64", 3},
+         {"status", "Int32", 1},
+         {"normal", "Float64", 3}}};
+
+      /** The values of one point of the file (3 components per vector). */
+      struct PointValues
+      {
+        double                pressure = 0, force = 0, weight = 0, gap = 0;
+        std::array<double, 3> traction{}, slip{}, normal{};
+        int                   status = contact_status::no_contact_node;
+      };
+
       template <int dim>
       void
-      write_vector(std::ostream &out, const dealii::Tensor<1, dim> &v)
+      add_scaled(std::array<double, 3>        &to,
+                 const double                  factor,
+                 const dealii::Tensor<1, dim> &tensor)
       {
-        for (unsigned int d = 0; d < 3; ++d)
-          out << (d == 0 ? "" : " ") << (d < dim ? v[d] : 0.);
-        out << "\n";
+        for (unsigned int d = 0; d < dim; ++d)
+          to[d] += factor * tensor[d];
+      }
+
+      /**
+       * A contact node's values, or the combination of the nodes'
+       * (hanging node; no weight or force of its own), or pressure 0 and
+       * gap NaN at a point that is no combination of contact nodes.
+       */
+      template <int dim>
+      PointValues
+      point_values(
+        const typename ContactSurfaceMesh<dim>::Combination &combination,
+        const std::vector<ContactSurfaceNode<dim>>          &nodes,
+        const bool                                           is_contact_node)
+      {
+        PointValues values;
+        if (combination.empty())
+        {
+          values.gap = std::numeric_limits<double>::quiet_NaN();
+          return values;
+        }
+        for (const auto &[i, coefficient] : combination)
+        {
+          const ContactSurfaceNode<dim> &node = nodes[i];
+          values.pressure += coefficient * node.pressure;
+          values.gap += coefficient * node.gap;
+          add_scaled<dim>(values.traction,
+                          coefficient,
+                          node.tangential_traction);
+          add_scaled<dim>(values.slip, coefficient, node.slip);
+          add_scaled<dim>(values.normal, coefficient, node.normal);
+        }
+        if (is_contact_node)
+        {
+          const ContactSurfaceNode<dim> &node = nodes[combination[0].first];
+          values.weight                       = node.weight;
+          values.force                        = node.pressure * node.weight;
+          values.status                       = node.status;
+        }
+        return values;
+      }
+
+      vtkSmartPointer<vtkDataArray>
+      make_array(const Field &field)
+      {
+        vtkSmartPointer<vtkDataArray> array;
+        if (std::string(field.vtk_type) == "Int32")
+          array = vtkSmartPointer<vtkIntArray>::New();
+        else
+          array = vtkSmartPointer<vtkDoubleArray>::New();
+        array->SetName(field.name);
+        array->SetNumberOfComponents(field.n_components);
+        return array;
       }
     } // namespace
 
@@ -23,64 +116,99 @@ namespace dualcontact
     template <int dim>
     void
     write_contact_surface(std::ostream                               &out,
-                          const std::vector<ContactSurfaceNode<dim>> &nodes)
+                          const ContactSurfaceMesh<dim>              &mesh,
+                          const std::vector<ContactSurfaceNode<dim>> &nodes,
+                          const unsigned int                          piece)
     {
-      const std::size_t n = nodes.size();
-      out << std::setprecision(12);
-      out << "<?xml version=\"1.0\"?>\n"
-          << "<VTKFile type=\"UnstructuredGrid\" version=\"0.1\" "
-             "byte_order=\"LittleEndian\">\n"
-          << "<UnstructuredGrid>\n"
-          << "<Piece NumberOfPoints=\"" << n << "\" NumberOfCells=\"" << n
-          << "\">\n";
-      out << "<Points>\n<DataArray type=\"Float64\" "
-             "NumberOfComponents=\"3\" format=\"ascii\">\n";
-      for (const auto &node : nodes)
-        write_vector<dim>(out, dealii::Tensor<1, dim>(node.position));
-      out << "</DataArray>\n</Points>\n";
-      out << "<Cells>\n<DataArray type=\"Int64\" Name=\"connectivity\" "
-             "format=\"ascii\">\n";
-      for (std::size_t i = 0; i < n; ++i)
-        out << i << "\n";
-      out << "</DataArray>\n<DataArray type=\"Int64\" Name=\"offsets\" "
-             "format=\"ascii\">\n";
-      for (std::size_t i = 0; i < n; ++i)
-        out << i + 1 << "\n";
-      out << "</DataArray>\n<DataArray type=\"UInt8\" Name=\"types\" "
-             "format=\"ascii\">\n";
-      for (std::size_t i = 0; i < n; ++i)
-        out << "1\n"; // VTK_VERTEX
-      out << "</DataArray>\n</Cells>\n";
+      // the cells of the piece and the points they use, numbered anew
+      std::map<unsigned int, vtkIdType> local_point;
+      std::vector<unsigned int>         used_points;
+      auto cells = vtkSmartPointer<vtkCellArray>::New();
+      for (unsigned int c = 0; c < mesh.n_cells(); ++c)
+      {
+        if (piece != dealii::numbers::invalid_unsigned_int &&
+            mesh.owner(c) != piece)
+          continue;
+        std::array<vtkIdType, 2 * (dim - 1)> ids;
+        for (unsigned int v = 0; v < ids.size(); ++v)
+        {
+          const unsigned int point = mesh.cell(c)[v];
+          const auto [it, inserted] =
+            local_point.emplace(point, used_points.size());
+          if (inserted)
+            used_points.push_back(point);
+          ids[v] = it->second;
+        }
+        cells->InsertNextCell(ids.size(), ids.data());
+      }
 
-      out << "<PointData Scalars=\"pressure_Pa\">\n";
-      const auto scalar = [&](const std::string &name, const auto &value)
+      auto points = vtkSmartPointer<vtkPoints>::New();
+      points->SetDataTypeToDouble();
+      std::vector<vtkSmartPointer<vtkDataArray>> arrays;
+      for (const Field &field : fields)
+        arrays.push_back(make_array(field));
+      for (const unsigned int point : used_points)
       {
-        out << "<DataArray type=\"Float64\" Name=\"" << name
-            << "\" format=\"ascii\">\n";
-        for (const auto &node : nodes)
-          out << value(node) << "\n";
-        out << "</DataArray>\n";
-      };
-      const auto vector = [&](const std::string &name, const auto &value)
-      {
-        out << "<DataArray type=\"Float64\" Name=\"" << name
-            << "\" NumberOfComponents=\"3\" format=\"ascii\">\n";
-        for (const auto &node : nodes)
-          write_vector<dim>(out, value(node));
-        out << "</DataArray>\n";
-      };
-      scalar("pressure_Pa", [](const auto &node) { return node.pressure; });
-      vector("tangential_traction_Pa",
-             [](const auto &node) { return node.tangential_traction; });
-      vector("slip_m", [](const auto &node) { return node.slip; });
-      scalar("gap_m", [](const auto &node) { return node.gap; });
-      scalar("weight", [](const auto &node) { return node.weight; });
-      out << "<DataArray type=\"Int32\" Name=\"status\" format=\"ascii\">\n";
-      for (const auto &node : nodes)
-        out << node.status << "\n";
-      out << "</DataArray>\n";
-      vector("normal", [](const auto &node) { return node.normal; });
-      out << "</PointData>\n</Piece>\n</UnstructuredGrid>\n</VTKFile>\n";
+        std::array<double, 3> x{};
+        for (unsigned int d = 0; d < dim; ++d)
+          x[d] = mesh.position(point)[d];
+        points->InsertNextPoint(x.data());
+        const PointValues v = point_values<dim>(mesh.combination(point),
+                                                nodes,
+                                                mesh.is_contact_node(point));
+        arrays[0]->InsertNextTuple1(v.pressure);
+        arrays[1]->InsertNextTuple1(v.force);
+        arrays[2]->InsertNextTuple1(v.weight);
+        arrays[3]->InsertNextTuple1(v.gap);
+        arrays[4]->InsertNextTuple(v.traction.data());
+        arrays[5]->InsertNextTuple(v.slip.data());
+        arrays[6]->InsertNextTuple1(v.status);
+        arrays[7]->InsertNextTuple(v.normal.data());
+      }
+
+      auto grid = vtkSmartPointer<vtkUnstructuredGrid>::New();
+      grid->SetPoints(points);
+      grid->SetCells(dim == 2 ? VTK_LINE : VTK_QUAD, cells);
+      for (const auto &array : arrays)
+        grid->GetPointData()->AddArray(array);
+      grid->GetPointData()->SetActiveScalars("pressure_Pa");
+
+      auto writer = vtkSmartPointer<vtkXMLUnstructuredGridWriter>::New();
+      writer->SetInputData(grid);
+      writer->SetWriteToOutputString(true);
+      writer->SetDataModeToBinary();
+      writer->SetCompressorTypeToZLib();
+      writer->SetHeaderTypeToUInt64();
+      AssertThrow(writer->Write() == 1,
+                  dealii::ExcMessage("VTK could not write a contact surface"));
+      out << writer->GetOutputString();
+    }
+
+
+    void
+    write_contact_surface_record(std::ostream                   &out,
+                                 const std::vector<std::string> &pieces)
+    {
+      out << "<?xml version=\"1.0\"?>\n"
+          << "<VTKFile type=\"PUnstructuredGrid\" version=\"1.0\" "
+             "byte_order=\"LittleEndian\" header_type=\"UInt64\">\n"
+          << "  <PUnstructuredGrid GhostLevel=\"0\">\n"
+          << "    <PPointData Scalars=\"pressure_Pa\">\n";
+      for (const Field &field : fields)
+        out << "      <PDataArray type=\"" << field.vtk_type << "\" Name=\""
+            << field.name << "\""
+            << (field.n_components > 1 ?
+                  " NumberOfComponents=\"" +
+                    std::to_string(field.n_components) + "\"" :
+                  std::string())
+            << "/>\n";
+      out << "    </PPointData>\n"
+          << "    <PPoints>\n"
+          << "      <PDataArray type=\"Float64\" NumberOfComponents=\"3\"/>\n"
+          << "    </PPoints>\n";
+      for (const auto &piece : pieces)
+        out << "    <Piece Source=\"" << piece << "\"/>\n";
+      out << "  </PUnstructuredGrid>\n</VTKFile>\n";
     }
 
 
@@ -102,9 +230,13 @@ namespace dualcontact
 
     template void
     write_contact_surface<2>(std::ostream &,
-                             const std::vector<ContactSurfaceNode<2>> &);
+                             const ContactSurfaceMesh<2> &,
+                             const std::vector<ContactSurfaceNode<2>> &,
+                             unsigned int);
     template void
     write_contact_surface<3>(std::ostream &,
-                             const std::vector<ContactSurfaceNode<3>> &);
+                             const ContactSurfaceMesh<3> &,
+                             const std::vector<ContactSurfaceNode<3>> &,
+                             unsigned int);
   } // namespace io
 } // namespace dualcontact

@@ -2,7 +2,11 @@
 
 #include <deal.II/base/point.h>
 #include <deal.II/base/tensor.h>
+#include <deal.II/base/types.h>
 
+#include <io/contact_surface_mesh.h>
+
+#include <array>
 #include <ostream>
 #include <string>
 #include <utility>
@@ -31,6 +35,12 @@ namespace dualcontact
       constexpr int slip = 2;
       /** In contact, frictionless pair (no tangential multiplier). */
       constexpr int frictionless_contact = 3;
+      /**
+       * A point of the written surface that is no contact node: a hanging
+       * node (values interpolated from its parents) or a node beyond the
+       * search distance.
+       */
+      constexpr int no_contact_node = -1;
     } // namespace contact_status
 
 
@@ -53,10 +63,10 @@ namespace dualcontact
       /** c - B_N u [m]: the gap after deformation (0 where in contact). */
       double gap = 0;
       /**
-       * Contact area weight w = int phi ds over the slave surface [m^2; m
-       * in 2D]: pressure * weight is the nodal force lambda_N, and the w
-       * are the weights of the nodal quadrature on the contact surface
-       * (e.g. for pressure errors against a closed form).
+       * Contact area weight w = int phi ds over the slave surface [m^2; 2D:
+       * m^2 per metre of thickness, i.e. m]: pressure * weight is the nodal
+       * force lambda_N, and the w are the weights of the nodal quadrature on
+       * the contact surface (e.g. for pressure errors against a closed form).
        */
       double weight = 0;
       /** A contact_status value: 0 separated, 1 stick, 2 slip, 3
@@ -66,20 +76,45 @@ namespace dualcontact
 
 
     /**
-     * Write the contact nodes of one pair as a VTK XML unstructured grid
-     * (ASCII .vtu, one vertex cell per node), with the point fields
-     * `pressure_Pa', `tangential_traction_Pa' (vector), `slip_m' (vector),
-     * `gap_m', `weight' (the area weight w: m^2 in 3D, m in 2D),
-     * `status' (contact_status: 0 separated, 1 stick, 2 slip, 3 in
-     * contact on a frictionless pair) and `normal' (vector).  Vectors have
-     * three components (z = 0 in 2D), as VTK expects.  Written by hand rather
-     * than through VTK so that the file is the same with or without VTK and
-     * needs no mesh object.
+     * Write the slave surface @p mesh of one contact pair, with the values of
+     * its contact @p nodes (in the pair's node order, as @p mesh refers to
+     * them), as a VTK XML unstructured grid (.vtu, binary and zlib-compressed
+     * like the body files, written by VTK's vtkXMLUnstructuredGridWriter):
+     * line cells (2D) or quadrilaterals (3D), and the point fields
+     *  - `pressure_Pa' p_i = lambda_N,i / w_i,
+     *  - `normal_force_N' lambda_N,i = p_i w_i (2D: N per metre of thickness),
+     *  - `area_weight_m2' w_i = int phi_i ds (2D: m^2 per metre, i.e. m),
+     *  - `gap_m', `tangential_traction_Pa' (vector), `slip_m' (vector),
+     *  - `status' (contact_status; -1 at a point that is no contact node),
+     *  - `normal' (unit vector, slave into master).
+     * Vectors have three components (z = 0 in 2D), as VTK expects.  The
+     * pressure is a nodal field: integrated over the cells with its linear
+     * (2D) / bilinear (3D) interpolant it gives sum_i p_i int phi_i ds =
+     * sum_i lambda_N,i for Q1 (lib/io/README.md: what ParaView's Integrate
+     * Variables gives).  Points that are no contact nodes (status -1): a
+     * hanging node gets its parents' values combined by the constraint
+     * (weight and force 0: they went to the parents); a node beyond the
+     * search distance gets pressure, traction, slip, weight and force 0 and
+     * gap NaN (not computed).
+     *
+     * @p piece: write only the cells owned by that process
+     * (ContactSurfaceMesh::owner()); numbers::invalid_unsigned_int: all.
      */
     template <int dim>
     void
-    write_contact_surface(std::ostream                               &out,
-                          const std::vector<ContactSurfaceNode<dim>> &nodes);
+    write_contact_surface(
+      std::ostream                               &out,
+      const ContactSurfaceMesh<dim>              &mesh,
+      const std::vector<ContactSurfaceNode<dim>> &nodes,
+      const unsigned int piece = dealii::numbers::invalid_unsigned_int);
+
+    /**
+     * The .pvtu record of the pieces @p pieces (file names) written by
+     * write_contact_surface(): the fields' names, types and components.
+     */
+    void
+    write_contact_surface_record(std::ostream                   &out,
+                                 const std::vector<std::string> &pieces);
 
     /**
      * A PVD collection: each entry (time, file name) becomes a data set;

@@ -42,7 +42,10 @@ import re
 import shutil
 import subprocess
 import sys
-import xml.etree.ElementTree as ET
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)),
+                                "..", "..", "postprocess"))
+import contact_vtu  # noqa: E402
 
 failures = []
 
@@ -72,14 +75,8 @@ def read_prm(path, name):
 
 
 def read_vtu(path):
-    root = ET.parse(path).getroot()
-    piece = root.find("UnstructuredGrid/Piece")
-    fields = {}
-    for array in piece.find("PointData"):
-        n = int(array.get("NumberOfComponents", "1"))
-        values = [float(v) for v in array.text.split()]
-        fields[array.get("Name")] = [values[i:i + n] for i in range(0, len(values), n)]
-    return fields
+    """The point fields of the contact nodes of a contact-surface file."""
+    return contact_vtu.read_contact_nodes(path)[1]
 
 
 def norm(v):
@@ -175,7 +172,7 @@ def main():
         check(abs(f1 - norm(applied) / math.sqrt(2)) <= balance * norm(applied),
               "each wall carries weight / sqrt(2) = %.10g" % (norm(applied) / math.sqrt(2)))
         in_contact = [sum(1 for p in read_vtu(os.path.join(folder, "contact_%d.vtu" % k))
-                          ["pressure_Pa"] if p[0] > 0) for k in (1, 2)]
+                          ["pressure_Pa"] if p > 0) for k in (1, 2)]
         separated = sum(p["n_separated"] for p in contact["pairs"])
         check(min(in_contact) >= 1 and sum(in_contact) == n_nodes - separated,
               "nodes in contact: %s (pressure > 0), %d (status)"

@@ -25,8 +25,11 @@ relative tolerance TOLERANCE (default 1e-8) for the reals:
     positive; a METIS subdomain may hold no contact node);
   - the N-process run wrote one piece of every body per process
     (body_N_rank_R.vtu) and solution.pvtu refers to all of them, and one
-    piece of every contact surface per process (contact_N_rank_R.vtu),
-    listed in contact_N.pvd, together holding all n_nodes nodes.
+    piece of every contact surface per process (contact_N_rank_R.vtu, the
+    slave faces of the cells the process owns), listed in contact_N.pvtu
+    (which solution.pvd lists), together holding all n_nodes contact nodes
+    and as many faces as the 1-process run's contact_N.vtu, with the same
+    integral of pressure_Pa (ParaView's Integrate Variables) to TOLERANCE.
 The input's QP tolerance must be well below TOLERANCE (the runs differ by
 round-off in the stiffness solves, and the QP stops at its tolerance).
 """
@@ -37,6 +40,10 @@ import shutil
 import subprocess
 import sys
 import time
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)),
+                                "..", "..", "postprocess"))
+import contact_vtu  # noqa: E402
 
 
 def read_results(path):
@@ -177,26 +184,40 @@ def compare(check, tolerance, ranks, first, second):
             check(os.path.isfile(os.path.join(out2, name)) and name in pvtu,
                   f"{ranks} processes: {name} written and in solution.pvtu")
 
+    with open(os.path.join(out2, "solution.pvd")) as f:
+        pvd = f.read()
     pair = 1
     while f"pair_{pair}.n_nodes" in r2:
-        n_nodes = 0
-        with open(os.path.join(out2, f"contact_{pair}.pvd")) as f:
+        record = f"contact_{pair}.pvtu"
+        path = os.path.join(out2, record)
+        check(os.path.isfile(path) and record in pvd,
+              f"{ranks} processes: {record} written and in solution.pvd")
+        if not os.path.isfile(path):
+            pair += 1
+            continue
+        with open(path) as f:
             master = f.read()
         for rank in range(ranks):
             name = f"contact_{pair}_rank_{rank}.vtu"
-            path = os.path.join(out2, name)
-            ok = os.path.isfile(path) and name in master
-            if ok:
-                with open(path) as f:
-                    n_nodes += int(re.search(r'NumberOfPoints="(\d+)"',
-                                             f.read()).group(1))
-            check(ok, f"{ranks} processes: {name} written and in "
-                  f"contact_{pair}.pvd")
-        check(n_nodes == r2[f"pair_{pair}.n_nodes"][0],
+            check(os.path.isfile(os.path.join(out2, name)) and name in master,
+                  f"{ranks} processes: {name} written and in {record}")
+        points, _ = contact_vtu.read_contact_nodes(path)
+        check(len(points) == r2[f"pair_{pair}.n_nodes"][0],
               f"{ranks} processes: the pieces of contact pair {pair} hold "
-              f"{n_nodes} nodes, n_nodes = {r2[f'pair_{pair}.n_nodes'][0]:g}")
+              f"{len(points)} contact nodes, n_nodes = "
+              f"{r2[f'pair_{pair}.n_nodes'][0]:g}")
+        pieces = contact_vtu.read_grid(path)
+        whole = contact_vtu.read_grid(os.path.join(out1, f"contact_{pair}.vtu"))
+        check(pieces.GetNumberOfCells() == whole.GetNumberOfCells(),
+              f"{ranks} processes: {pieces.GetNumberOfCells()} faces in the "
+              f"pieces, {whole.GetNumberOfCells()} on 1 process")
+        f1 = contact_vtu.integrate(whole)["pressure_Pa"]
+        f2 = contact_vtu.integrate(pieces)["pressure_Pa"]
+        diff = abs(f2 - f1) / abs(f1)
+        check(diff <= tolerance, f"{ranks} processes: integral of pressure_Pa"
+              f" {f2:.12e}, 1 process {f1:.12e}, relative difference "
+              f"{diff:.2e}")
         pair += 1
-
 
 if __name__ == "__main__":
     main()
