@@ -9,6 +9,7 @@
 
 #include <driver/scene_parameters.h>
 #include <driver/simulation.h>
+#include <io/output_folder.h>
 #include <io/parameter_file.h>
 
 #include <iostream>
@@ -125,6 +126,7 @@ main(int argc, char *argv[])
 
     console << "dualcontact " << DUALCONTACT_VERSION << ": " << argument
             << std::endl;
+    io::OutputFolder::install_signal_handlers();
     driver::SceneLayout layout;
     const auto          prm = driver::SceneParameters::read(argument, layout);
     // exit code 2: the contact solver did not converge (output written)

@@ -39,10 +39,14 @@ namespace dualcontact
       prm.declare_entry("Memory limit",
                         "4096",
                         Patterns::Double(0),
-                        "Largest memory [MB] the dense matrices of the "
+                        "Largest memory [MB] of the scene, the one limit "
+                        "of a run: before meshing, a lower-bound estimate of "
+                        "the meshes and stiffness matrices of all bodies "
+                        "(from subdivisions, refinements and degree) above "
+                        "it stops the run; the dense matrices of the "
                         "assembled operator (F, and per body L and W) may "
-                        "take; `automatic' falls back to implicit above it, "
-                        "`assembled' stops with an error.");
+                        "take this much: `automatic' falls back to implicit "
+                        "above it, `assembled' stops with an error.");
       prm.declare_entry(
         "QP vectors",
         "automatic",

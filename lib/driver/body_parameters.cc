@@ -45,6 +45,8 @@ namespace dualcontact
         prm.leave_subsection();
       }
 
+      constexpr double min_youngs_modulus = 1e-20;
+      constexpr double max_youngs_modulus = 1e20;
     } // namespace
 
 
@@ -108,7 +110,8 @@ namespace dualcontact
           prm.declare_entry("Young's modulus",
                             "210e9",
                             dealii::Patterns::Double(),
-                            "Young's modulus E [Pa], > 0.");
+                            "Young's modulus E [Pa], > 0 and within [1e-20, "
+                            "1e20].");
           prm.declare_entry("Poisson's ratio",
                             "0.3",
                             dealii::Patterns::Double(),
@@ -215,6 +218,21 @@ namespace dualcontact
             dealii::ExcMessage(
               "Young's modulus must be > 0, got " + youngs_modulus_text + " " +
               io::parameter_location(sub_path, "Young's modulus") + "."));
+          // stiffness entries are E h^(dim-2), displacements load / E and
+          // the dual's operator E^-1 times the gaps: outside this range
+          // they leave the range of doubles (1e+-308) for ordinary loads,
+          // in any consistent unit system (a gel of 1e3 Pa ... diamond of
+          // 1.2e12 Pa, or 1e-3 ... 1.2e6 in MPa)
+          AssertThrow(youngs_modulus >= min_youngs_modulus &&
+                        youngs_modulus <= max_youngs_modulus,
+                      dealii::ExcMessage(
+                        "Young's modulus " + youngs_modulus_text + " " +
+                        io::parameter_location(sub_path, "Young's modulus") +
+                        " is outside the range [1e-20, 1e20] in which "
+                        "dualcontact's stiffness and dual operators stay "
+                        "within the range of doubles: use a consistent unit "
+                        "system that brings it into the range (e.g. MPa, "
+                        "mm and N instead of Pa, m and N)."));
           AssertThrow(poisson_ratio > -1. && poisson_ratio < 0.5,
                       dealii::ExcMessage(
                         "Poisson's ratio must lie in (-1, 0.5), got " +

@@ -3,9 +3,11 @@
 #include <deal.II/base/utilities.h>
 
 #include <driver/contact_pair_parameters.h>
+
 #include <io/parameter_file.h>
 
 #include <algorithm>
+#include <iomanip>
 #include <limits>
 #include <sstream>
 
@@ -108,6 +110,17 @@ namespace dualcontact
                         "Slave nodes farther than this from the master [m] "
                         "are not contact nodes (in small displacements they "
                         "cannot touch); 0 means no limit. Must be >= 0.");
+      prm.declare_entry("Penetration tolerance",
+                        "0.25",
+                        dealii::Patterns::Double(0),
+                        "Deepest initial penetration of a slave node into "
+                        "the master (a negative initial gap) allowed, "
+                        "relative to the mesh size of the slave surface "
+                        "[-]: deeper nodes stop the run before solving "
+                        "(bodies that overlap, or a body behind its "
+                        "obstacle). Faceted curved surfaces overlap by "
+                        "about h^2 / (8 R), well below the default; raise "
+                        "it for an intended interference fit.");
     }
 
 
@@ -251,6 +264,41 @@ namespace dualcontact
                     io::parameter_location(path, "Search distance") + "."));
       pair.search_distance =
         search > 0 ? search : std::numeric_limits<double>::max();
+      penetration_tolerance = prm.get_double("Penetration tolerance");
+    }
+
+
+    template <int dim>
+    void
+    ContactPairParameters<dim>::check_initial_penetration(
+      const std::vector<contact::ContactNode<dim>> &nodes,
+      const unsigned int                            pair_index,
+      const double                                  mesh_size) const
+    {
+      const contact::ContactNode<dim> *deepest = nullptr;
+      for (const auto &node : nodes)
+        if (node.pair == pair_index &&
+            (deepest == nullptr || node.gap < deepest->gap))
+          deepest = &node;
+      const double allowed = penetration_tolerance * mesh_size;
+      if (deepest == nullptr || !(deepest->gap < -allowed))
+        return;
+      std::ostringstream message;
+      message << std::setprecision(4) << pair.name << ": the slave node at ("
+              << deepest->position << ") of Body " << pair.slave_body + 1
+              << " lies " << -deepest->gap << " m inside its master ("
+              << master_description << ", closest point ("
+              << deepest->master_point
+              << ")) before any load, deeper than the `Penetration "
+                 "tolerance' "
+              << penetration_tolerance << " times the slave mesh size "
+              << mesh_size << " m = " << allowed << " m "
+              << io::parameter_location(path_, "Penetration tolerance")
+              << ": the bodies overlap (a body placed inside another, or "
+                 "behind its obstacle). Move them apart (`subsection "
+                 "Placement'), or raise the tolerance for an intended "
+                 "interference fit.";
+      AssertThrow(false, dealii::ExcMessage(message.str()));
     }
 
 

@@ -3,6 +3,7 @@
 #include <deal.II/base/parameter_handler.h>
 #include <deal.II/grid/tria.h>
 
+#include <contact/contact_discretization.h>
 #include <contact/contact_pair.h>
 #include <driver/obstacle_parameters.h>
 
@@ -60,6 +61,26 @@ namespace dualcontact
       contact::ContactPair<dim> pair;
       /** "obstacle 1", "body 2": what the master is, for the log. */
       std::string master_description;
+      /**
+       * `Penetration tolerance' [-]: the deepest initial penetration of a
+       * slave node into the master allowed, relative to the slave surface's
+       * mesh size (check_initial_penetration()).
+       */
+      double penetration_tolerance = 0.25;
+
+      /**
+       * Throw, naming the pair, the node, its position and depth, if a slave
+       * node of @p nodes (the pair's nodes among all pairs' nodes) lies
+       * deeper inside the master than penetration_tolerance times the
+       * slave surface's mesh size @p mesh_size [m]: the bodies overlap
+       * before any load (a body placed inside another, or behind its
+       * obstacle), which the small-displacement contact cannot undo.
+       */
+      void
+      check_initial_penetration(
+        const std::vector<contact::ContactNode<dim>> &nodes,
+        const unsigned int                            pair_index,
+        const double                                  mesh_size) const;
 
     private:
       std::string path_;

@@ -49,6 +49,17 @@ namespace dualcontact
         std::make_unique<contact::ContactDiscretization<dim>>(bodies, pairs);
       for (unsigned int p = 0; p < scene_.pair_parameters().size(); ++p)
       {
+        // the slave surface's mesh size: its length (2D) or area (3D) per
+        // contact node
+        const auto &summary = contact_->pair_summaries()[p];
+        if (summary.n_nodes > 0)
+          scene_.pair_parameters()[p].check_initial_penetration(
+            contact_->nodes(),
+            p,
+            std::pow(summary.area / summary.n_nodes, 1. / (dim - 1)));
+      }
+      for (unsigned int p = 0; p < scene_.pair_parameters().size(); ++p)
+      {
         const auto        &summary = contact_->pair_summaries()[p];
         const auto        &pair    = scene_.pair_parameters()[p].pair;
         std::ostringstream line;

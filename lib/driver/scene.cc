@@ -5,6 +5,7 @@
 #include <fem/trilinos_solver.h>
 #include <io/file_locator.h>
 
+#include <cmath>
 #include <iomanip>
 #include <sstream>
 
@@ -69,6 +70,61 @@ namespace dualcontact
 
       for (unsigned int b = 0; b < n_bodies; ++b)
         solvers_.push_back(fem::StiffnessSolver::create(prm));
+
+      prm.enter_subsection("Dual problem");
+      const double memory_limit = prm.get_double("Memory limit");
+      prm.leave_subsection();
+      check_size_estimate(memory_limit);
+    }
+
+
+    template <int dim>
+    void
+    Scene<dim>::check_size_estimate(const double memory_limit) const
+    {
+      // A lower bound of the memory per cell: the triangulation and DoF
+      // handler (about 0.5 kB per cell in 2D, 1 kB in 3D) and one row of the
+      // stiffness matrix per dof (dim p^dim dofs per cell, dim (2p+1)^dim
+      // entries of 12 bytes per row); factors and solver vectors come on
+      // top.  What exceeds the limit even so cannot fit.
+      const double p              = fe_degree_;
+      const double mesh_bytes     = dim == 2 ? 500. : 1000.;
+      const double dofs_per_cell  = dim * std::pow(p, dim);
+      const double entries_in_row = dim * std::pow(2 * p + 1, dim);
+      const double bytes_per_cell =
+        mesh_bytes + dofs_per_cell * entries_in_row * 12.;
+
+      double       total_mb      = 0;
+      unsigned int largest       = 0;
+      double       largest_cells = 0;
+      for (unsigned int b = 0; b < body_parameters_.size(); ++b)
+      {
+        const double cells =
+          body_parameters_[b].mesh.estimated_cells(body_parameters_[b].name);
+        total_mb += cells * bytes_per_cell / 1048576.;
+        if (cells > largest_cells)
+        {
+          largest_cells = cells;
+          largest       = b;
+        }
+      }
+      if (total_mb <= memory_limit)
+        return;
+      std::ostringstream message;
+      message << std::setprecision(3) << "The scene's meshes would not fit "
+              << "the memory limit: " << body_parameters_[largest].name
+              << " alone would have about " << largest_cells << " cells "
+              << body_parameters_[largest].mesh.size_parameters()
+              << ", and the meshes and stiffness matrices of all bodies "
+                 "would take at least "
+              << std::llround(std::min(total_mb, 1e18))
+              << " MB (before any factorization), above the `set Memory "
+                 "limit' of "
+              << std::llround(memory_limit)
+              << " MB in `subsection Dual problem'. Lower the refinements or "
+                 "subdivisions, or raise the limit if the machine has the "
+                 "memory.";
+      AssertThrow(false, dealii::ExcMessage(message.str()));
     }
 
 

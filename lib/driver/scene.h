@@ -152,6 +152,17 @@ namespace dualcontact
       }
 
     private:
+      /**
+       * Throw before any mesh is made if the meshes and stiffness matrices
+       * of all bodies (estimated from their coarse cells, refinements and
+       * the element degree; a lower bound) would exceed @p memory_limit
+       * [MB] (`Memory limit' in `subsection Dual problem', the one limit of
+       * a scene): `Global refinements = 12' or huge subdivisions stop
+       * with a message naming the parameters, instead of std::bad_alloc.
+       */
+      void
+      check_size_estimate(const double memory_limit) const;
+
       unsigned int                            fe_degree_ = 1;
       std::vector<BodyParameters<dim>>        body_parameters_;
       std::vector<ObstacleParameters<dim>>    obstacle_parameters_;

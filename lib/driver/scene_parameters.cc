@@ -168,6 +168,64 @@ namespace dualcontact
     }
 
 
+    void
+    SceneParameters::check_numbered_subsections_written(
+      const std::string &file_name,
+      const SceneLayout &layout)
+    {
+      const io::ParameterFileOutline outline =
+        io::outline_parameter_file(file_name);
+      const auto require = [&](const std::string &path,
+                               const std::string &name,
+                               const unsigned int count,
+                               const std::string &count_entry)
+      {
+        // a count left at its default (one material, no conditions) asks
+        // for nothing: a body of the default material needs no `Material 1'
+        if (outline.entries.count({path, count_entry}) == 0)
+          return;
+        for (unsigned int k = 1; k <= count; ++k)
+        {
+          const std::string subsection =
+            io::join_path(path, name + " " + std::to_string(k));
+          AssertThrow(outline.subsections.count(subsection) == 1,
+                      dealii::ExcMessage(
+                        "The input file `" + file_name +
+                        "' has no `subsection " + subsection + "', but `" +
+                        count_entry + "' is " + std::to_string(count) + " " +
+                        io::parameter_location(path, count_entry) +
+                        ": write every numbered subsection up to its count "
+                        "(`subsection " +
+                        name + " " + std::to_string(k) +
+                        "' and `end' are enough if all its entries keep "
+                        "their defaults), or lower the count."));
+        }
+      };
+      require("", "Body", layout.bodies.size(), "Number of bodies");
+      for (unsigned int b = 0; b < layout.bodies.size(); ++b)
+      {
+        const std::string body = body_subsection(b);
+        require(body,
+                "Material",
+                layout.bodies[b].n_materials,
+                "Number of materials");
+        require(body,
+                "Dirichlet",
+                layout.bodies[b].n_dirichlet,
+                "Number of Dirichlet conditions");
+        require(body,
+                "Traction",
+                layout.bodies[b].n_tractions,
+                "Number of traction conditions");
+      }
+      require("", "Obstacle", layout.n_obstacles, "Number of obstacles");
+      require("",
+              "Contact pair",
+              layout.n_contact_pairs,
+              "Number of contact pairs");
+    }
+
+
     std::unique_ptr<dealii::ParameterHandler>
     SceneParameters::read(const std::string &file_name, SceneLayout &layout)
     {
@@ -203,6 +261,7 @@ namespace dualcontact
       auto prm = std::make_unique<dealii::ParameterHandler>();
       declare_parameters(*prm, layout);
       io::parse_parameter_file(*prm, file_name, false);
+      check_numbered_subsections_written(file_name, layout);
       return prm;
     }
   } // namespace driver

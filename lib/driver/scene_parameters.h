@@ -24,7 +24,8 @@ namespace dualcontact
      * passes: the first reads `Dimension' and `Number of bodies' (ignoring
      * everything else), the second the `Number of ...' entries of every
      * body, the third everything, with every entry declared and unknown
-     * entries rejected.
+     * entries rejected.  After the third pass every numbered
+     * subsection up to a count the file sets must be written in it.
      */
     class SceneParameters
     {
@@ -41,6 +42,21 @@ namespace dualcontact
     private:
       static void
       declare_top_level_entries(dealii::ParameterHandler &prm);
+
+      /**
+       * Throw unless @p file_name writes every numbered subsection (`Body
+       * N', `Body N/Material M', `Dirichlet M', `Traction M', `Obstacle N',
+       * `Contact pair N') up to its count in @p layout, for every count the
+       * file sets (`set Number of ...'; a count left at its default asks for
+       * nothing, so that a body of the default material needs no `Material
+       * 1').  "Written" is the subsection's header in the file, so that a
+       * subsection whose entries all keep their defaults is still one the
+       * user meant, while a count one too high no longer adds a default
+       * body, material or condition silently.
+       */
+      static void
+      check_numbered_subsections_written(const std::string &file_name,
+                                         const SceneLayout &layout);
     };
   } // namespace driver
 } // namespace dualcontact

@@ -6,6 +6,8 @@
 #include <driver/simulation.h>
 #include <io/parameter_file.h>
 
+#include <algorithm>
+#include <cmath>
 #include <iomanip>
 #include <sstream>
 
@@ -30,6 +32,9 @@ namespace dualcontact
       output_folder_ = std::make_unique<io::OutputFolder>(
         prm.get("Output folder"),
         io::parameter_location("Output", "Output folder"));
+      // one run per folder, taken before anything is computed
+      if (is_output_rank_)
+        output_folder_->lock();
       write_vtu_     = prm.get_bool("Write VTU");
       fclib_problem_ = prm.get("FCLIB problem");
       prm.leave_subsection();
@@ -78,6 +83,56 @@ namespace dualcontact
       console_ << line.str() << std::endl;
       for (const auto &detail : details_)
         console_ << "      " << detail << std::endl;
+    }
+
+
+    template <int dim>
+    void
+    Simulation<dim>::check_finite_results() const
+    {
+      const auto count_non_finite = [](const dealii::Vector<double> &values)
+      {
+        return static_cast<unsigned int>(
+          std::count_if(values.begin(),
+                        values.end(),
+                        [](const double value)
+                        { return !std::isfinite(value); }));
+      };
+      std::string what;
+      for (unsigned int b = 0; b < scene_->n_bodies(); ++b)
+      {
+        const unsigned int n = count_non_finite(scene_->displacements()[b]);
+        if (n > 0 || !std::isfinite(scene_->results()[b].strain_energy))
+          what += (what.empty() ? "" : "; ") + scene_->body(b).name() + ": " +
+                  std::to_string(n) + " of " +
+                  std::to_string(scene_->displacements()[b].size()) +
+                  " displacement values";
+      }
+      if (contact_)
+      {
+        const unsigned int n = count_non_finite(contact_->result().lambda);
+        if (n > 0)
+          what += (what.empty() ? "" : "; ") + std::string("the contact: ") +
+                  std::to_string(n) + " of " +
+                  std::to_string(contact_->result().lambda.size()) +
+                  " multipliers";
+        for (unsigned int p = 0; p < contact_->pair_results().size(); ++p)
+          if (!std::isfinite(contact_->pair_results()[p].normal_force) ||
+              !std::isfinite(contact_->pair_results()[p].max_pressure))
+            what += (what.empty() ? "" : "; ") +
+                    scene_->pair_parameters()[p].pair.name +
+                    ": the normal force or pressure";
+      }
+      const bool any =
+        dealii::Utilities::MPI::max(what.empty() ? 0 : 1, MPI_COMM_WORLD) > 0;
+      AssertThrow(!any,
+                  dealii::ExcMessage(
+                    "The solution is not finite (NaN or inf" +
+                    (what.empty() ? std::string(" on another process") :
+                                    " in " + what) +
+                    "): the scene's numbers overflow the range of doubles "
+                    "(extreme Young's moduli, loads, displacements or "
+                    "coordinates). Nothing was written."));
     }
 
 
@@ -170,6 +225,7 @@ namespace dualcontact
         }
       }
 
+      check_finite_results();
       console_ << "Results:" << std::endl;
       for (unsigned int b = 0; b < scene.n_bodies(); ++b)
       {

@@ -62,6 +62,16 @@ namespace dualcontact
       run();
 
     private:
+      /**
+       * Throw (on every process) if a displacement, a multiplier or a
+       * contact result is not finite (NaN or inf): such a result is an
+       * error with nothing written, never "Output written".  The loads are
+       * checked finite during assembly; this catches what overflows in the
+       * solve (extreme materials, loads or geometry).
+       */
+      void
+      check_finite_results() const;
+
       /** Run @p phase timed, then print its line and the details lines. */
       template <typename Phase>
       void

@@ -4,6 +4,10 @@
 
 #include <hdf5.h>
 
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <memory>
@@ -192,15 +196,89 @@ namespace dualcontact
       }
 
 
+      /**
+       * HDF5 prints its error stack (some 40 lines) for every failed call,
+       * also inside libfclib: silenced while an object of this class lives;
+       * the messages here name the file and what went wrong instead.
+       */
+      class SilentHdf5Errors
+      {
+      public:
+        SilentHdf5Errors()
+        {
+          H5Eget_auto2(H5E_DEFAULT, &old_function_, &old_data_);
+          H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
+        }
+        ~SilentHdf5Errors()
+        {
+          H5Eset_auto2(H5E_DEFAULT, old_function_, old_data_);
+        }
+        SilentHdf5Errors(const SilentHdf5Errors &) = delete;
+        SilentHdf5Errors &
+        operator=(const SilentHdf5Errors &) = delete;
+
+      private:
+        H5E_auto2_t old_function_ = nullptr;
+        void       *old_data_     = nullptr;
+      };
+
+
+      /**
+       * A file written under a temporary name beside @p path (with the
+       * process id, so that two writers do not meet) and renamed to @p path
+       * by commit(): the existing file stays intact until the new one is
+       * complete, and a failed write removes the temporary file.
+       */
+      class TemporaryFile
+      {
+      public:
+        explicit TemporaryFile(const std::string &path)
+            : path_(path)
+            , temporary_(path + "." + std::to_string(getpid()) + ".tmp")
+        {
+        }
+        ~TemporaryFile()
+        {
+          std::error_code error;
+          if (!committed_)
+            std::filesystem::remove(temporary_, error);
+        }
+        const std::string &
+        name() const
+        {
+          return temporary_;
+        }
+        void
+        commit()
+        {
+          std::error_code error;
+          std::filesystem::rename(temporary_, path_, error);
+          AssertThrow(!error,
+                      dealii::ExcMessage("Cannot rename `" + temporary_ +
+                                         "' to `" + path_ +
+                                         "': " + error.message()));
+          committed_ = true;
+        }
+
+      private:
+        std::string path_;
+        std::string temporary_;
+        bool        committed_ = false;
+      };
+
+
       void
       remove_existing(const std::string &path)
       {
         std::error_code error;
         std::filesystem::remove(path, error);
+        errno = 0;
         std::ofstream probe(path);
         AssertThrow(probe.good(),
-                    dealii::ExcMessage("Cannot write the FCLIB file `" + path +
-                                       "'"));
+                    dealii::ExcMessage(
+                      "Cannot write the FCLIB file `" + path + "': " +
+                      (errno != 0 ? std::string(std::strerror(errno)) :
+                                    std::string("cause unknown"))));
         probe.close();
         std::filesystem::remove(path, error);
       }
@@ -241,17 +319,16 @@ namespace dualcontact
                                      "'"));
       // HDF5 prints its error stack for failed calls: silence it, the
       // message here says what went wrong
-      H5E_auto2_t old_function;
-      void       *old_data;
-      H5Eget_auto2(H5E_DEFAULT, &old_function, &old_data);
-      H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
-      const htri_t is_hdf5 = H5Fis_hdf5(path.c_str());
-      int          found   = -1;
+      const SilentHdf5Errors silent;
+      const htri_t           is_hdf5 = H5Fis_hdf5(path.c_str());
+      int                    found   = -1;
+      bool                   opened  = false;
       if (is_hdf5 > 0)
       {
         const hid_t file = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
         if (file >= 0)
         {
+          opened = true;
           if (H5Lexists(file, "/fclib_local", H5P_DEFAULT) > 0)
             found = 0;
           else if (H5Lexists(file, "/fclib_global", H5P_DEFAULT) > 0)
@@ -259,9 +336,14 @@ namespace dualcontact
           H5Fclose(file);
         }
       }
-      H5Eset_auto2(H5E_DEFAULT, old_function, old_data);
       AssertThrow(is_hdf5 > 0,
                   dealii::ExcMessage("`" + path + "' is not an HDF5 file"));
+      // the signature is there but HDF5 cannot open it: a file cut short
+      // (an interrupted copy or write) or damaged
+      AssertThrow(opened,
+                  dealii::ExcMessage("`" + path +
+                                     "' is a truncated or corrupt HDF5 file "
+                                     "(HDF5 cannot open it)"));
       AssertThrow(found >= 0,
                   dealii::ExcMessage(
                     "`" + path +
@@ -275,6 +357,7 @@ namespace dualcontact
     read_local(const std::string &path, const Storage storage)
     {
       check_is_form(path, Form::local);
+      const SilentHdf5Errors                                silent;
       std::unique_ptr<fclib_local, void (*)(fclib_local *)> p(
         fclib_read_local(path.c_str()), fclib_delete_local);
       AssertThrow(p && p->W && p->q && p->mu,
@@ -310,6 +393,7 @@ namespace dualcontact
     read_global(const std::string &path)
     {
       check_is_form(path, Form::global);
+      const SilentHdf5Errors                                  silent;
       std::unique_ptr<fclib_global, void (*)(fclib_global *)> p(
         fclib_read_global(path.c_str()), fclib_delete_global);
       AssertThrow(p && p->M && p->H && p->f && p->w && p->mu,
@@ -359,7 +443,8 @@ namespace dualcontact
     {
       AssertThrow(r.size() == 0 || r.size() == problem.size(),
                   dealii::ExcMessage("FCLIB solution of wrong size"));
-      remove_existing(path);
+      TemporaryFile file(path);
+      remove_existing(file.name());
       CscMatrix           W(problem.W());
       std::vector<double> q(problem.q().begin(), problem.q().end());
       std::vector<double> mu(problem.mu());
@@ -372,13 +457,18 @@ namespace dualcontact
       local.q        = q.data();
       local.spacedim = problem.spacedim();
       local.info     = &info.info;
-      check_written(fclib_write_local(&local, path.c_str()), "`" + path + "'");
+      {
+        const SilentHdf5Errors silent;
+        check_written(fclib_write_local(&local, file.name().c_str()),
+                      "`" + file.name() + "'");
+      }
       if (r.size() > 0)
       {
         dealii::Vector<double> u;
         problem.velocity(u, r);
-        write_solution(path, r, u);
+        write_solution(file.name(), r, u);
       }
+      file.commit();
     }
 
 
@@ -390,7 +480,8 @@ namespace dualcontact
     {
       AssertThrow(r.size() == 0 || r.size() == problem.H().n(),
                   dealii::ExcMessage("FCLIB solution of wrong size"));
-      remove_existing(path);
+      TemporaryFile file(path);
+      remove_existing(file.name());
       // M in full (both triangles): the reader mirrors only upper-only data
       CscMatrix           M(problem.M()), H(problem.H());
       std::vector<double> f(problem.f().begin(), problem.f().end());
@@ -408,16 +499,20 @@ namespace dualcontact
       global.w        = w.data();
       global.spacedim = problem.spacedim();
       global.info     = &info.info;
-      check_written(fclib_write_global(&global, path.c_str()),
-                    "`" + path + "'");
+      {
+        const SilentHdf5Errors silent;
+        check_written(fclib_write_global(&global, file.name().c_str()),
+                      "`" + file.name() + "'");
+      }
       if (r.size() > 0)
       {
         dealii::Vector<double> v, u(r.size());
         problem.velocity(v, r);
         problem.H().Tvmult(u, v);
         u += problem.w();
-        write_solution(path, r, u, &v);
+        write_solution(file.name(), r, u, &v);
       }
+      file.commit();
     }
 
 
@@ -443,6 +538,7 @@ namespace dualcontact
       const unsigned int size = form == Form::local ? read_local(path).size() :
                                                       [&]()
       { return read_global(path).H().n(); }();
+      const SilentHdf5Errors                                      silent;
       std::unique_ptr<fclib_solution, void (*)(fclib_solution *)> s(
         fclib_read_solution(path.c_str()),
         [](fclib_solution *p) { fclib_delete_solutions(p, 1); });

@@ -17,6 +17,8 @@
 #include <cmath>
 #include <fstream>
 #include <iomanip>
+#include <limits>
+#include <optional>
 
 namespace dualcontact
 {
@@ -43,6 +45,39 @@ namespace dualcontact
         {
         }
         throw UsageError(option + ": '" + v + "' is not a number");
+      }
+
+      /** A positive finite number (a tolerance). */
+      double
+      to_positive_number(const std::string &option, const std::string &v)
+      {
+        const double x = to_number(option, v);
+        if (!(x > 0))
+          throw UsageError(option + " must be > 0 (got " + v + ")");
+        return x;
+      }
+
+      /** An iteration limit: an integer in [1, 2^31). */
+      long
+      to_iteration_limit(const std::string &option, const std::string &v)
+      {
+        long value = 0;
+        try
+        {
+          std::size_t used = 0;
+          value            = std::stol(v, &used);
+          if (used != v.size())
+            throw std::invalid_argument(v);
+        }
+        catch (const std::exception &)
+        {
+          throw UsageError(option + ": '" + v + "' is not an integer");
+        }
+        if (value < 1 || value > std::numeric_limits<int>::max())
+          throw UsageError(option + " must be an integer in [1, " +
+                           std::to_string(std::numeric_limits<int>::max()) +
+                           "] (got " + v + ")");
+        return value;
       }
 
 
@@ -122,9 +157,11 @@ namespace dualcontact
         first_name, storage_name;
       std::string prox;
       bool        fixed_rho = false, exact_qps = false;
-      double      tol = -1, coulomb_tol = -1;
-      long        max_iter = -1, coulomb_max_iter = -1;
-      bool        info_only = false;
+      // unset unless given: every given value is checked (no sentinel that
+      // a user could write, such as -1, is taken for "the default")
+      std::optional<double> tol, coulomb_tol;
+      std::optional<long>   max_iter, coulomb_max_iter;
+      bool                  info_only = false;
       try
       {
         for (std::size_t i = 0; i < args.size(); ++i)
@@ -158,13 +195,13 @@ namespace dualcontact
           else if (a == "--solver")
             solver = value();
           else if (a == "--tol")
-            tol = to_number(a, value());
+            tol = to_positive_number(a, value());
           else if (a == "--coulomb-tol")
-            coulomb_tol = to_number(a, value());
+            coulomb_tol = to_positive_number(a, value());
           else if (a == "--max-iter")
-            max_iter = static_cast<long>(to_number(a, value()));
+            max_iter = to_iteration_limit(a, value());
           else if (a == "--coulomb-max-iter")
-            coulomb_max_iter = static_cast<long>(to_number(a, value()));
+            coulomb_max_iter = to_iteration_limit(a, value());
           else if (a == "--json")
             json_file = value();
           else if (a == "--write")
@@ -181,13 +218,6 @@ namespace dualcontact
         }
         if (file.empty())
           throw UsageError("no FCLIB file given");
-        if (tol >= 0 && !(tol > 0))
-          throw UsageError("--tol must be > 0");
-        if (coulomb_tol >= 0 && !(coulomb_tol > 0))
-          throw UsageError("--coulomb-tol must be > 0");
-        if ((max_iter != -1 && max_iter < 1) ||
-            (coulomb_max_iter != -1 && coulomb_max_iter < 1))
-          throw UsageError("iteration limits must be >= 1");
       }
       catch (const UsageError &e)
       {
@@ -225,14 +255,14 @@ namespace dualcontact
           qp::create<dealii::Vector<double>>(solver, qp_parameters); // checks
           qp_parameters.solver = solver;
         }
-        if (tol > 0)
-          qp_parameters.tolerance = tol;
-        if (max_iter > 0)
-          qp_parameters.max_iterations = max_iter;
-        if (coulomb_tol > 0)
-          coulomb.tolerance = coulomb_tol;
-        if (coulomb_max_iter > 0)
-          coulomb.max_iterations = coulomb_max_iter;
+        if (tol)
+          qp_parameters.tolerance = *tol;
+        if (max_iter)
+          qp_parameters.max_iterations = *max_iter;
+        if (coulomb_tol)
+          coulomb.tolerance = *coulomb_tol;
+        if (coulomb_max_iter)
+          coulomb.max_iterations = *coulomb_max_iter;
         qp_parameters.check();
 
         Storage storage = parse_storage(prm.get("Storage of W"));

@@ -11,7 +11,9 @@
 #include <fem/stiffness_solver.h>
 
 #include <algorithm>
+#include <cmath>
 #include <set>
+#include <sstream>
 
 namespace dualcontact
 {
@@ -132,6 +134,15 @@ namespace dualcontact
                                                  constraints_,
                                                  condition.components);
       constraints_.close();
+      for (const auto &line : constraints_.get_lines())
+        AssertThrow(std::isfinite(line.inhomogeneity),
+                    ExcMessage(name_ +
+                               ": a prescribed displacement (`set "
+                               "Displacement' of a `Dirichlet N') is not "
+                               "finite at a boundary node: check its "
+                               "expression (a division by zero, the square "
+                               "root or logarithm of a negative number, an "
+                               "overflow)."));
 
       DynamicSparsityPattern dsp(dof_handler_.n_dofs());
       // every cell, also on a parallel::shared::Triangulation (where
@@ -183,6 +194,43 @@ namespace dualcontact
     };
 
 
+    namespace
+    {
+      bool
+      all_finite(const Vector<double> &values)
+      {
+        return std::all_of(values.begin(),
+                           values.end(),
+                           [](const double value)
+                           { return std::isfinite(value); });
+      }
+
+      /**
+       * Throw naming the body, the load and the point: a load evaluated at a
+       * quadrature point is not finite (an expression such as `1/0' or
+       * `sqrt(-1)' that muparser evaluates to inf or NaN).  Checked during
+       * assembly, where every load value passes, so that nothing
+       * non-finite is solved for.
+       */
+      template <int dim>
+      void
+      throw_non_finite_load(const Vector<double> &values,
+                            const Point<dim>     &point,
+                            const std::string    &body_name,
+                            const std::string    &load_name)
+      {
+        std::ostringstream message;
+        message << body_name << ": the " << load_name << " is not finite (";
+        for (unsigned int c = 0; c < values.size(); ++c)
+          message << (c == 0 ? "" : ", ") << values[c];
+        message << ") at the point (" << point
+                << "): check its expression (a division by zero, the square "
+                   "root or logarithm of a negative number, an overflow).";
+        AssertThrow(false, ExcMessage(message.str()));
+      }
+    } // namespace
+
+
     template <int dim>
     void
     ElasticBody<dim>::cell_system(
@@ -222,6 +270,11 @@ namespace dualcontact
         {
           body_force_->vector_value(fe_values.quadrature_point(q),
                                     scratch.force);
+          if (!all_finite(scratch.force))
+            throw_non_finite_load(scratch.force,
+                                  fe_values.quadrature_point(q),
+                                  name_,
+                                  "body force (`set Body force')");
           for (unsigned int i = 0; i < dofs_per_cell; ++i)
             cell_rhs(i) +=
               scratch.force(c[i]) * fe_values.shape_value(i, q) * JxW;
@@ -244,6 +297,14 @@ namespace dualcontact
                 {
                   condition.traction->vector_value(
                     fe_face_values.quadrature_point(q), scratch.force);
+                  if (!all_finite(scratch.force))
+                    throw_non_finite_load(scratch.force,
+                                          fe_face_values.quadrature_point(q),
+                                          name_,
+                                          "traction on boundary id " +
+                                            std::to_string(
+                                              condition.boundary_id) +
+                                            " (`set Traction')");
                   for (unsigned int i = 0; i < dofs_per_cell; ++i)
                     cell_rhs(i) += scratch.force(c[i]) *
                                    fe_face_values.shape_value(i, q) *

@@ -5,6 +5,7 @@
 #include <deal.II/lac/vector.h>
 
 #include <io/function_expression.h>
+#include <io/parameter_file.h>
 
 #include <map>
 #include <sstream>
@@ -35,7 +36,8 @@ namespace dualcontact
                   dealii::ExcMessage(
                     "Expected " + std::to_string(n_components) +
                     " expressions separated by `;' (one per component), got " +
-                    std::to_string(parts.size()) + ": `" + expressions + "' " +
+                    std::to_string(parts.size()) + ": `" +
+                    shorten_for_message(expressions) + "' " +
                     parameter_location + "."));
       const std::string variables = (dim == 2 ? "x,y" : "x,y,z");
       const std::map<std::string, double> constants{
@@ -53,12 +55,13 @@ namespace dualcontact
       {
         std::ostringstream info;
         exception.print_info(info);
-        AssertThrow(false,
-                    dealii::ExcMessage("Cannot parse the function `" +
-                                       expressions + "' " + parameter_location +
-                                       " (variables: " + variables +
-                                       "; constant: pi): " +
-                                       dealii::Utilities::trim(info.str())));
+        AssertThrow(
+          false,
+          dealii::ExcMessage(
+            "Cannot parse the function `" + shorten_for_message(expressions) +
+            "' " + parameter_location + " (variables: " + variables +
+            "; constant: pi): " +
+            shorten_for_message(dealii::Utilities::trim(info.str()), 400)));
       }
       return function;
     }

@@ -303,6 +303,34 @@ namespace dualcontact
 
 
     template <int dim>
+    double
+    MeshGenerator<dim>::estimated_cells(const std::string &mesh_name) const
+    {
+      double coarse_cells = 1;
+      if (kind_ == Kind::box)
+        for (const unsigned int n : subdivisions_)
+          coarse_cells *= n;
+      else
+      {
+        dealii::Triangulation<dim> coarse;
+        generate(coarse, mesh_name);
+        coarse_cells = coarse.n_active_cells();
+      }
+      return coarse_cells * std::pow(2., dim * double(n_refinements_));
+    }
+
+
+    template <int dim>
+    std::string
+    MeshGenerator<dim>::size_parameters() const
+    {
+      return "(" +
+             std::string(kind_ == Kind::box ? "`set Subdivisions' and " : "") +
+             "`set Global refinements' in `subsection " + path_ + "')";
+    }
+
+
+    template <int dim>
     void
     MeshGenerator<dim>::place(dealii::Triangulation<dim> &triangulation,
                               const Placement<dim>       &placement) const

@@ -87,6 +87,24 @@ namespace dualcontact
              const Placement<dim>       &placement,
              const std::string          &mesh_name) const;
 
+      /**
+       * The number of active cells create() will make, before making them:
+       * the coarse cells (a box's subdivisions; else the coarse mesh,
+       * generated or read once more) times 2^(dim * `Global
+       * refinements').  Local refinements are not counted (they refine a
+       * region only).  A double, so that hostile counts do not wrap.
+       */
+      double
+      estimated_cells(const std::string &mesh_name) const;
+
+      /**
+       * The parameters that make the mesh big, for a message: "(`set
+       * Subdivisions' and `set Global refinements' in `subsection Body
+       * 1/Mesh')".
+       */
+      std::string
+      size_parameters() const;
+
       /** One line: "box 8 x 2 x 2", "gmsh file meshes/plate.msh", ... */
       std::string
       description() const;

@@ -2,10 +2,19 @@
 
 #include <io/output_folder.h>
 
+#include <fcntl.h>
+#include <sys/file.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
+#include <atomic>
+#include <cerrno>
+#include <csignal>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <set>
+#include <system_error>
 
 namespace dualcontact
 {
@@ -20,7 +29,212 @@ namespace dualcontact
       {
         return "." + name + ".tmp";
       }
+
+      const std::string lock_file_name     = ".dualcontact.lock";
+      const std::string manifest_file_name = ".dualcontact_files";
+
+      /** The text of errno @p number ("No space left on device"). */
+      std::string
+      cause(const int number)
+      {
+        return number == 0 ?
+                 std::string("cause unknown") :
+                 std::error_code(number, std::generic_category()).message();
+      }
+
+      /**
+       * What the signal handler removes: files (temporaries, the lock file)
+       * and folders this process created.  The storage is reserved up front
+       * and only appended to, so that the handler reads it without
+       * allocating; an entry counts once the counter includes it.
+       */
+      struct CleanupList
+      {
+        static constexpr std::size_t capacity = 1 << 14;
+
+        CleanupList()
+        {
+          files.reserve(capacity);
+          folders.reserve(capacity);
+        }
+
+        void
+        add_file(const std::string &path)
+        {
+          if (files.size() < capacity)
+          {
+            files.push_back(path);
+            n_files = files.size();
+          }
+        }
+
+        void
+        add_folder(const std::string &path)
+        {
+          if (folders.size() < capacity)
+          {
+            folders.push_back(path);
+            n_folders = folders.size();
+          }
+        }
+
+        /** After a commit: nothing of it is temporary any more. */
+        void
+        clear()
+        {
+          n_files   = 0;
+          n_folders = 0;
+          files.clear();
+          folders.clear();
+        }
+
+        std::vector<std::string> files;
+        std::vector<std::string> folders;
+        std::atomic<std::size_t> n_files{0};
+        std::atomic<std::size_t> n_folders{0};
+      };
+
+      CleanupList &
+      cleanup_list()
+      {
+        static CleanupList list;
+        return list;
+      }
+
+      extern "C" void
+      remove_temporaries_and_exit(const int signal_number)
+      {
+        // only async-signal-safe calls here: unlink, rmdir, write, _exit
+        CleanupList &list = cleanup_list();
+        for (std::size_t i = 0; i < list.n_files; ++i)
+          (void)unlink(list.files[i].c_str());
+        for (std::size_t i = list.n_folders; i > 0; --i)
+          (void)rmdir(list.folders[i - 1].c_str());
+        const char message[] =
+          "\ndualcontact: interrupted; temporary files removed.\n";
+        [[maybe_unused]] const ssize_t written =
+          write(STDERR_FILENO, message, sizeof(message) - 1);
+        _exit(128 + signal_number);
+      }
     } // namespace
+
+
+    void
+    OutputFolder::install_signal_handlers()
+    {
+      (void)cleanup_list(); // reserve its storage now, not in the handler
+      struct sigaction action;
+      std::memset(&action, 0, sizeof(action));
+      action.sa_handler = remove_temporaries_and_exit;
+      sigemptyset(&action.sa_mask);
+      for (const int signal_number : {SIGINT, SIGTERM, SIGHUP})
+        sigaction(signal_number, &action, nullptr);
+    }
+
+
+    void
+    OutputFolder::lock()
+    {
+      create_folder();
+      const std::string lock_path = (fs::path(path_) / lock_file_name).string();
+      while (lock_fd_ < 0)
+      {
+        const int fd =
+          open(lock_path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+        AssertThrow(fd >= 0,
+                    dealii::ExcMessage(
+                      "Cannot create the lock file `" + lock_path +
+                      "' of the output folder: " + cause(errno) + "."));
+        if (flock(fd, LOCK_EX | LOCK_NB) != 0)
+        {
+          const int  error    = errno;
+          char       text[32] = {};
+          const auto n        = pread(fd, text, sizeof(text) - 1, 0);
+          close(fd);
+          const std::string holder =
+            n > 0 ? std::string(text, text + n) : std::string("unknown\n");
+          AssertThrow(error != EWOULDBLOCK,
+                      dealii::ExcMessage(
+                        "The output folder `" + path_ +
+                        "' is in use by another dualcontact run (process " +
+                        holder.substr(0, holder.find('\n')) +
+                        ", which holds `" + lock_path +
+                        "'): two runs into one folder would mix their "
+                        "files. Wait for it to finish, or choose another "
+                        "`Output folder'."));
+          AssertThrow(false,
+                      dealii::ExcMessage("Cannot lock `" + lock_path +
+                                         "': " + cause(error) + "."));
+        }
+        // the previous holder removes the file when it is done: if it did
+        // so after we opened it, our lock is on a file nobody else sees
+        struct stat ours, named;
+        if (fstat(fd, &ours) == 0 && stat(lock_path.c_str(), &named) == 0 &&
+            ours.st_ino == named.st_ino && ours.st_dev == named.st_dev)
+          lock_fd_ = fd;
+        else
+          close(fd);
+      }
+      const std::string pid = std::to_string(getpid()) + "\n";
+      if (ftruncate(lock_fd_, 0) != 0 ||
+          pwrite(lock_fd_, pid.data(), pid.size(), 0) !=
+            static_cast<ssize_t>(pid.size()))
+      {
+        // the lock holds all the same; only the message of a second run
+        // cannot name this process
+      }
+      cleanup_list().add_file(lock_path);
+    }
+
+
+    void
+    OutputFolder::unlock()
+    {
+      if (lock_fd_ < 0)
+        return;
+      // remove the file while still holding the lock (see lock())
+      (void)unlink((fs::path(path_) / lock_file_name).c_str());
+      close(lock_fd_);
+      lock_fd_ = -1;
+    }
+
+
+    void
+    OutputFolder::remove_stale_files() const
+    {
+      const fs::path manifest = fs::path(path_) / manifest_file_name;
+      std::ifstream  in(manifest);
+      const std::set<std::string> written(file_names_.begin(),
+                                          file_names_.end());
+      std::string                 name;
+      while (std::getline(in, name))
+        if (!name.empty() && name.find('/') == std::string::npos &&
+            name[0] != '.' && written.count(name) == 0)
+        {
+          std::error_code error;
+          if (fs::is_regular_file(fs::path(path_) / name, error))
+            fs::remove(fs::path(path_) / name, error);
+        }
+      in.close();
+      const fs::path temporary =
+        fs::path(path_) / temporary_name(manifest_file_name);
+      {
+        std::ofstream out(temporary);
+        for (const auto &file : file_names_)
+          out << file << "\n";
+        out.close();
+        AssertThrow(out,
+                    dealii::ExcMessage("Cannot write the file `" +
+                                       temporary.string() +
+                                       "': " + cause(errno) + "."));
+      }
+      std::error_code error;
+      fs::rename(temporary, manifest, error);
+      AssertThrow(!error,
+                  dealii::ExcMessage("Cannot rename `" + temporary.string() +
+                                     "' to `" + manifest.string() +
+                                     "': " + error.message() + "."));
+    }
 
 
     OutputFolder::OutputFolder(const std::string &path,
@@ -54,6 +268,7 @@ namespace dualcontact
     {
       if (!committed_)
         remove_uncommitted();
+      unlock();
     }
 
 
@@ -92,7 +307,10 @@ namespace dualcontact
                                        folder->string() +
                                        "': " + error.message()));
         if (created)
+        {
           created_folders_.push_back(folder->string());
+          cleanup_list().add_folder(folder->string());
+        }
       }
     }
 
@@ -106,15 +324,18 @@ namespace dualcontact
         create_folder();
       const fs::path temporary = fs::path(path_) / temporary_name(name);
       file_names_.push_back(name);
+      cleanup_list().add_file(temporary.string());
+      errno = 0;
       std::ofstream out(temporary);
       AssertThrow(out,
                   dealii::ExcMessage("Cannot write the file `" +
-                                     temporary.string() + "'."));
+                                     temporary.string() + "': " + cause(errno) +
+                                     "."));
       writer(out);
       out.close();
       AssertThrow(out,
                   dealii::ExcMessage("Writing the file `" + temporary.string() +
-                                     "' failed."));
+                                     "' failed: " + cause(errno) + "."));
     }
 
 
@@ -132,7 +353,10 @@ namespace dualcontact
                                        name + "' in `" + path_ +
                                        "': " + error.message()));
       }
+      if (lock_fd_ >= 0)
+        remove_stale_files();
       committed_ = true;
+      cleanup_list().clear();
     }
 
 
@@ -142,6 +366,7 @@ namespace dualcontact
       std::error_code error;
       for (const auto &name : file_names_)
         fs::remove(fs::path(path_) / temporary_name(name), error);
+      unlock();
       for (auto folder = created_folders_.rbegin();
            folder != created_folders_.rend();
            ++folder)

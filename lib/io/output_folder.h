@@ -17,6 +17,12 @@ namespace dualcontact
      * temporary files are removed, and so are the folders this object
      * created.
      *
+     * The files of a commit are listed in `.dualcontact_files'; the next
+     * commit into the same folder removes the files of that list that it
+     * does not write itself (a previous scene's contact_2.vtu), after its
+     * own files are renamed in, so that the folder holds one run's files.
+     * Errors name the file and the cause (no space left, permission).
+     *
      * The constructor only checks, and creates nothing: the folder must be
      * an existing writable directory, or creatable (every existing part of
      * the path is a directory, the deepest existing one is writable).  This
@@ -57,16 +63,45 @@ namespace dualcontact
       const std::vector<std::string> &
       file_names() const;
 
+      /**
+       * Take the folder for this run, before any computation: create it (a
+       * failed run removes it again), and hold an exclusive lock (flock) on
+       * its file `.dualcontact.lock', which records the process id.  A
+       * second run into the same folder is refused at once with a message
+       * naming the folder and the process that holds it: waiting would
+       * only delay a mistake (two scenes writing one folder overwrite each
+       * other's results) while holding the memory of a meshed scene.  The
+       * lock file is removed when this object goes away.  Under MPI, only
+       * one process calls this.
+       */
+      void
+      lock();
+
+      /**
+       * Remove the temporary files, the lock file and the folders this
+       * process created, and end the process with 128 + the signal's
+       * number on SIGINT and SIGTERM (and SIGHUP): an interrupted run
+       * leaves no hidden `.name.tmp' files and no partial output.  Called
+       * once by the application.
+       */
+      static void
+      install_signal_handlers();
+
     private:
       void
       create_folder();
       void
       remove_uncommitted();
+      void
+      remove_stale_files() const;
+      void
+      unlock();
 
       std::string              path_;
       std::vector<std::string> created_folders_;
       std::vector<std::string> file_names_;
       bool                     committed_ = false;
+      int                      lock_fd_   = -1;
     };
   } // namespace io
 } // namespace dualcontact

@@ -5,8 +5,14 @@
 
 #include <nlohmann/json.hpp>
 
+#include <cctype>
+#include <cerrno>
+#include <cfloat>
+#include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <regex>
 #include <sstream>
 #include <vector>
@@ -33,6 +39,269 @@ namespace dualcontact
 
 
     std::string
+    shorten_for_message(const std::string &text, const std::size_t max_bytes)
+    {
+      if (text.size() <= max_bytes)
+        return text;
+      return text.substr(0, max_bytes) + "... (" + std::to_string(text.size()) +
+             " bytes)";
+    }
+
+
+    namespace
+    {
+      const std::string utf8_byte_order_mark = "\xEF\xBB\xBF";
+
+      std::string
+      without_byte_order_mark(const std::string &line)
+      {
+        return line.rfind(utf8_byte_order_mark, 0) == 0 ?
+                 line.substr(utf8_byte_order_mark.size()) :
+                 line;
+      }
+
+      /** deal.II's comment rule: `#' starts one unless written `\#'. */
+      std::string
+      without_comment(const std::string &line)
+      {
+        for (std::size_t i = 0; i < line.size(); ++i)
+          if (line[i] == '#' && (i == 0 || line[i - 1] != '\\'))
+            return line.substr(0, i);
+        return line;
+      }
+
+      /**
+       * deal.II's message with every word (the values it echoes) longer than
+       * 200 bytes cut by shorten_for_message(), and the whole cut to 4000
+       * bytes, before the regular expressions below see it (std::regex
+       * recurses per character: a 10 MB value would overflow the stack).
+       */
+      std::string
+      with_short_values(const std::string &text)
+      {
+        std::string result;
+        std::size_t position = 0;
+        while (position < text.size())
+        {
+          const std::size_t end =
+            std::min(text.find_first_of(" \t\n", position), text.size());
+          result += shorten_for_message(text.substr(position, end - position));
+          if (end < text.size())
+            result += text[end];
+          position = end + 1;
+        }
+        return shorten_for_message(result, 4000);
+      }
+
+      /** deal.II's keywords: `set ' or `SET ', `subsection ' or ... */
+      bool
+      starts_with_keyword(const std::string &text, const std::string &keyword)
+      {
+        std::string upper = keyword;
+        for (auto &c : upper)
+          c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+        return text.rfind(keyword, 0) == 0 || text.rfind(upper, 0) == 0;
+      }
+
+      /** Where an entry was set: file and line, for the duplicate message. */
+      struct EntrySite
+      {
+        std::string  file;
+        unsigned int line;
+      };
+
+      /**
+       * The state of outline_parameter_file(): the outline so far, the
+       * entries set per subsection path and the chain of files being read.
+       */
+      struct OutlineReader
+      {
+        ParameterFileOutline                                     outline;
+        std::map<std::pair<std::string, std::string>, EntrySite> entries;
+        std::vector<std::string>                                 chain;
+
+        std::string
+        chain_text() const
+        {
+          std::string text;
+          for (const auto &file : chain)
+            text += (text.empty() ? "`" : " includes `") + file + "'";
+          return text;
+        }
+
+        void
+        read(const std::string &file_name, std::vector<std::string> &stack);
+      };
+
+
+      void
+      OutlineReader::read(const std::string        &file_name,
+                          std::vector<std::string> &stack)
+      {
+        std::error_code   error;
+        const std::string canonical =
+          std::filesystem::weakly_canonical(file_name, error).string();
+        for (const auto &outer : chain)
+          AssertThrow(outer != canonical,
+                      dealii::ExcMessage("The input file `" + file_name +
+                                         "' includes itself: " + chain_text() +
+                                         " includes `" + file_name +
+                                         "'. Remove the `include' that closes "
+                                         "the cycle."));
+        AssertThrow(chain.size() < max_include_depth,
+                    dealii::ExcMessage("`include' is nested deeper than " +
+                                       std::to_string(max_include_depth) +
+                                       " files: " + chain_text() +
+                                       " includes `" + file_name + "'."));
+        std::ifstream in(file_name);
+        if (!in)
+          return; // deal.II names the missing file in its own message
+        chain.push_back(canonical);
+
+        std::string  line;
+        std::string  logical_line;
+        unsigned int line_number = 0;
+        unsigned int first_line  = 1;
+        while (std::getline(in, line))
+        {
+          ++line_number;
+          if (line_number == 1)
+            line = without_byte_order_mark(line);
+          if (logical_line.empty())
+            first_line = line_number;
+          // a line ending in a backslash continues on the next one
+          const std::string trimmed = dealii::Utilities::trim(line);
+          if (!trimmed.empty() && trimmed.back() == '\\')
+          {
+            logical_line += trimmed.substr(0, trimmed.size() - 1);
+            continue;
+          }
+          logical_line += line;
+          const std::string text =
+            dealii::Utilities::trim(without_comment(logical_line));
+          logical_line.clear();
+
+          std::string path;
+          for (const auto &name : stack)
+            path = join_path(path, name);
+          if (starts_with_keyword(text, "subsection "))
+          {
+            stack.push_back(dealii::Utilities::trim(text.substr(11)));
+            outline.subsections.insert(join_path(path, stack.back()));
+          }
+          else if ((text == "end" || text == "END") && !stack.empty())
+            stack.pop_back();
+          else if (starts_with_keyword(text, "include "))
+            read(dealii::Utilities::trim(text.substr(8)), stack);
+          else if (starts_with_keyword(text, "set ") &&
+                   text.find('=') != std::string::npos)
+          {
+            const std::string entry =
+              dealii::Utilities::trim(text.substr(4, text.find('=') - 4));
+            const auto [site, inserted] =
+              entries.emplace(std::make_pair(path, entry),
+                              EntrySite{file_name, first_line});
+            // a file may override what a file it includes sets
+            AssertThrow(inserted || site->second.file != file_name,
+                        dealii::ExcMessage(
+                          "The parameter " + parameter_location(path, entry) +
+                          " is set twice in the input file `" + file_name +
+                          "', in line " + std::to_string(site->second.line) +
+                          " and in line " + std::to_string(first_line) +
+                          ": only one value can hold; remove one of them."));
+            site->second = EntrySite{file_name, first_line};
+            outline.entries.emplace(path, entry);
+          }
+        }
+        chain.pop_back();
+      }
+
+
+      /**
+       * Call @p action(path, entry name, value, pattern description) for
+       * every entry of the JSON tree of a ParameterHandler.
+       */
+      void
+      for_each_entry(const nlohmann::json                           &level,
+                     const std::string                              &path,
+                     const std::function<void(const std::string &,
+                                              const std::string &,
+                                              const std::string &,
+                                              const std::string &)> &action)
+      {
+        for (const auto &[name, entry] : level.items())
+        {
+          const std::string demangled = dealii::Utilities::trim(name);
+          if (entry.contains("value"))
+            action(path,
+                   demangled,
+                   entry.value("value", std::string()),
+                   entry.value("pattern_description", std::string()));
+          else if (entry.is_object())
+            for_each_entry(entry, join_path(path, demangled), action);
+        }
+      }
+
+
+      /** Throw naming the entry unless @p text is a normal finite double. */
+      void
+      check_double(const std::string &text,
+                   const std::string &path,
+                   const std::string &entry)
+      {
+        const std::string trimmed = dealii::Utilities::trim(text);
+        char             *end     = nullptr;
+        errno                     = 0;
+        const double number       = std::strtod(trimmed.c_str(), &end);
+        AssertThrow(!trimmed.empty() && *end == '\0' && std::isfinite(number),
+                    dealii::ExcMessage("The value `" +
+                                       shorten_for_message(trimmed) +
+                                       "' is not a finite number " +
+                                       parameter_location(path, entry) + "."));
+        AssertThrow(errno != ERANGE || number == 0.,
+                    dealii::ExcMessage(
+                      "The value `" + shorten_for_message(trimmed) + "' " +
+                      parameter_location(path, entry) +
+                      " is too small for a double (its magnitude is below " +
+                      dealii::Utilities::to_string(DBL_MIN) +
+                      "): write 0 or a value of larger magnitude."));
+      }
+    } // namespace
+
+
+    ParameterFileOutline
+    outline_parameter_file(const std::string &file_name)
+    {
+      OutlineReader            reader;
+      std::vector<std::string> stack;
+      reader.read(file_name, stack);
+      return reader.outline;
+    }
+
+
+    void
+    check_double_entries(const dealii::ParameterHandler &prm)
+    {
+      std::stringstream json_text;
+      prm.print_parameters(json_text, dealii::ParameterHandler::JSON);
+      for_each_entry(nlohmann::json::parse(json_text.str()),
+                     "",
+                     [](const std::string &path,
+                        const std::string &entry,
+                        const std::string &value,
+                        const std::string &pattern)
+                     {
+                       if (pattern.rfind("[Double", 0) == 0)
+                         check_double(value, path, entry);
+                       else if (pattern.rfind("[List of <[Double", 0) == 0)
+                         for (const auto &item :
+                              dealii::Utilities::split_string_list(value))
+                           check_double(item, path, entry);
+                     });
+    }
+
+
+    std::string
     subsection_path_at_line(const std::string &file_name,
                             const unsigned int line_number)
     {
@@ -41,6 +310,8 @@ namespace dualcontact
       std::string              line;
       for (unsigned int n = 1; n < line_number && std::getline(in, line); ++n)
       {
+        if (n == 1)
+          line = without_byte_order_mark(line);
         // strip comments and surrounding blanks, as ParameterHandler does
         const auto comment = line.find('#');
         if (comment != std::string::npos)
@@ -118,15 +389,27 @@ namespace dualcontact
                     dealii::ExcMessage("Cannot open the input file `" +
                                        file_name + "'."));
       }
+      (void)outline_parameter_file(file_name);
       try
       {
-        prm.parse_input(file_name, "", skip_undefined);
+        std::ifstream in(file_name);
+        std::string   first_line;
+        std::getline(in, first_line);
+        if (first_line.rfind(utf8_byte_order_mark, 0) == 0)
+        {
+          // deal.II would take the mark for part of line 1
+          std::stringstream text;
+          text << without_byte_order_mark(first_line) << '\n' << in.rdbuf();
+          prm.parse_input(text, file_name, "", skip_undefined);
+        }
+        else
+          prm.parse_input(file_name, "", skip_undefined);
       }
       catch (const dealii::ExceptionBase &exception)
       {
         std::ostringstream info;
         exception.print_info(info);
-        std::string text = info.str();
+        std::string text = with_short_values(info.str());
         // deal.II indents its messages; make them one tidy block
         text = std::regex_replace(text, std::regex("[ \t]*\n[ \t]*"), " ");
         text = dealii::Utilities::trim(text);
@@ -168,17 +451,26 @@ namespace dualcontact
               text,
               match,
               std::regex("There is no such subsection to be entered: (.*)")))
+        {
+          // deal.II names it with the enclosing path, joined by `.'
+          std::string       name = dealii::Utilities::trim(match[1].str());
+          const std::string dotted =
+            std::regex_replace(path, std::regex("/"), ".");
+          if (!dotted.empty() && name.rfind(dotted + ".", 0) == 0)
+            name = name.substr(dotted.size() + 1);
           throw dealii::ExcMessage(
-            "Unknown subsection `subsection " +
-            join_path(path, dealii::Utilities::trim(match[1].str())) + "' " +
+            "Unknown subsection `subsection " + join_path(path, name) + "' " +
             where +
             ". (Numbered subsections `Body N', `Material N', `Dirichlet "
             "N', `Traction N' exist for N up to the corresponding `Number "
             "of ...' parameter.)");
+        }
         if (!path.empty())
           where += " (in `subsection " + path + "')";
-        throw dealii::ExcMessage("Error " + where + ": " + text);
+        throw dealii::ExcMessage("Error " + where + ": " +
+                                 shorten_for_message(text, 400));
       }
+      check_double_entries(prm);
     }
 
     void

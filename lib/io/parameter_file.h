@@ -2,9 +2,12 @@
 
 #include <deal.II/base/parameter_handler.h>
 
+#include <cstddef>
 #include <functional>
 #include <ostream>
+#include <set>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace dualcontact
@@ -63,12 +66,72 @@ namespace dualcontact
      * A missing file and every parse error of deal.II's ParameterHandler
      * (unknown entry or subsection, value outside its pattern, unbalanced
      * `end') are rethrown as an ExcMessage that names the file, the line and
-     * the subsection the line is in.
+     * the subsection the line is in.  Before deal.II reads it, the file is
+     * checked by outline_parameter_file() (duplicate entries, include
+     * cycles); a UTF-8 byte-order mark is skipped; afterwards
+     * check_double_entries() rejects values no double holds.  Values echoed
+     * in messages are cut by shorten_for_message().
      */
     void
     parse_parameter_file(dealii::ParameterHandler &prm,
                          const std::string        &file_name,
                          const bool                skip_undefined);
+
+    /**
+     * What a parameter file writes, found by reading its lines (and those of
+     * the files it includes) independently of deal.II's ParameterHandler,
+     * which only keeps the values and not whether a subsection or an entry
+     * appeared in the file at all.
+     */
+    struct ParameterFileOutline
+    {
+      /** Every subsection path the file opens ("Body 1", "Body 1/Mesh"). */
+      std::set<std::string> subsections;
+      /** Every entry the file sets: (subsection path, entry name). */
+      std::set<std::pair<std::string, std::string>> entries;
+    };
+
+    /**
+     * The deepest chain of `include' lines a parameter file may have: a
+     * deeper one is an error (it is an include cycle in practice, but also
+     * catches those that go through differently spelled paths).
+     */
+    constexpr unsigned int max_include_depth = 16;
+
+    /**
+     * Read @p file_name line by line, following `include' (relative to the
+     * working directory, as deal.II does), and throw an ExcMessage on what
+     * deal.II's ParameterHandler would otherwise accept silently or not
+     * survive:
+     * - an entry set twice in the same subsection of the same file (the
+     *   last value would win unnoticed); an entry of an included file may be
+     *   set again by the including file (that is what including a base
+     *   file is for);
+     * - a file that includes itself, directly or through others (deal.II
+     *   recurses until the stack overflows), or includes deeper than
+     *   max_include_depth: the message lists the chain of files.
+     * A UTF-8 byte-order mark at the start of a file is skipped.
+     */
+    ParameterFileOutline
+    outline_parameter_file(const std::string &file_name);
+
+    /**
+     * Throw an ExcMessage naming the parameter if the value of an entry whose
+     * pattern is a Double does not convert to a normal finite double:
+     * deal.II's pattern accepts a subnormal such as 1e-320, whose conversion
+     * later fails with "Can't convert <1e-320> to a double." and no name.
+     */
+    void
+    check_double_entries(const dealii::ParameterHandler &prm);
+
+    /**
+     * @p text for an error message: at most @p max_bytes bytes of it, and
+     * when it was longer, "... (N bytes)" after them, so that a huge value
+     * is not echoed whole.
+     */
+    std::string
+    shorten_for_message(const std::string &text,
+                        const std::size_t  max_bytes = 200);
 
     /**
      * Print every entry of @p prm as a parameter file: per entry its

@@ -7,6 +7,8 @@
 #include <io/parameter_file.h>
 #include <io/placement.h>
 
+#include <cmath>
+
 namespace dualcontact
 {
   namespace io
@@ -28,7 +30,7 @@ namespace dualcontact
                         dealii::Patterns::Double(),
                         "Rotation angle [degrees] about the rotation axis "
                         "through the origin, counter-clockwise (2D: about "
-                        "the z axis).");
+                        "the z axis); within [-360, 360].");
       prm.declare_entry("Rotation axis",
                         "0, 0, 1",
                         dealii::Patterns::List(dealii::Patterns::Double(),
@@ -53,8 +55,14 @@ namespace dualcontact
       for (unsigned int d = 0; d < dim; ++d)
         translation_[d] = translation[d];
 
-      const double angle =
-        prm.get_double("Rotation angle") * dealii::numbers::PI / 180.;
+      const double degrees = prm.get_double("Rotation angle");
+      // also keeps angle * pi from overflowing (1e308 degrees gave NaN)
+      AssertThrow(std::abs(degrees) <= 360.,
+                  dealii::ExcMessage(
+                    "The rotation angle " + prm.get("Rotation angle") + " " +
+                    parameter_location(path, "Rotation angle") +
+                    " is outside [-360, 360] degrees."));
+      const double angle = degrees * dealii::numbers::PI / 180.;
       if constexpr (dim == 2)
         rotation_ =
           dealii::Physics::Transformations::Rotations::rotation_matrix_2d(

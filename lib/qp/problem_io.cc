@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <iomanip>
 #include <numeric>
 #include <sstream>
 
@@ -256,6 +257,37 @@ namespace dualcontact
             r, col_index.size(), col_index.data(), row_values.data(), false);
         }
       }
+
+      /**
+       * The first entry (r, c) of @p matrix (square) whose mirror (c, r)
+       * differs by more than 1e-10 times the largest magnitude, as a message
+       * ("" if symmetric).  The QP solvers assume a symmetric Hessian: a
+       * `general' file holding only one triangle would be solved as a
+       * different problem and reported converged.
+       */
+      std::string
+      asymmetry(const dealii::SparseMatrix<double> &matrix)
+      {
+        double largest = 0;
+        for (const auto &entry : matrix)
+          largest = std::max(largest, std::abs(entry.value()));
+        const double tolerance = 1e-10 * largest;
+        for (const auto &entry : matrix)
+        {
+          const auto   r      = entry.row();
+          const auto   c      = entry.column();
+          const double mirror = matrix.el(c, r);
+          if (std::abs(entry.value() - mirror) > tolerance)
+          {
+            std::ostringstream text;
+            text << std::setprecision(17) << "A(" << r + 1 << ", " << c + 1
+                 << ") = " << entry.value() << " but A(" << c + 1 << ", "
+                 << r + 1 << ") = " << mirror;
+            return text.str();
+          }
+        }
+        return "";
+      }
     } // namespace
 
 
@@ -270,10 +302,10 @@ namespace dualcontact
     }
 
 
-    unsigned int
+    std::size_t
     ProblemData::ConstraintBlock::n_unknowns() const
     {
-      return count * block_size();
+      return std::size_t(count) * block_size();
     }
 
 
@@ -336,6 +368,16 @@ namespace dualcontact
       if (symmetric && n_rows != n_cols)
         cursor.fail("a symmetric matrix must be square");
       cursor.next_line();
+      // an entry line takes at least 6 bytes ("1 1 1\n"): check the
+      // announced count against the file before reserving memory for it
+      const auto bytes_left = static_cast<std::size_t>(cursor.end - cursor.pos);
+      if (static_cast<std::size_t>(n_entries) > bytes_left / 6 + 1)
+        cursor.fail("the size line announces " + std::to_string(n_entries) +
+                    " entries, but the remaining " +
+                    std::to_string(bytes_left) +
+                    " bytes of the file hold at most " +
+                    std::to_string(bytes_left / 6 + 1) +
+                    " (truncated file or wrong size line)");
 
       const std::size_t reserve =
         static_cast<std::size_t>(n_entries) * (symmetric ? 2 : 1);
@@ -691,6 +733,12 @@ namespace dualcontact
                          std::to_string(problem->hessian.m()) + " x " +
                          std::to_string(problem->hessian.n()) +
                          ", the Hessian must be square");
+        const std::string asymmetric = asymmetry(problem->hessian);
+        if (!asymmetric.empty())
+          context.fail("hessian",
+                       "'" + file + "' is not symmetric: " + asymmetric +
+                         " (a file holding one triangle must say "
+                         "'symmetric' in its header, not 'general')");
       }
       const std::size_t n = problem->hessian.m();
 

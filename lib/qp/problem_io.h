@@ -75,8 +75,10 @@ namespace dualcontact
         /// unknowns per block of this type (1, 1, 2, 2, 3)
         unsigned int
         block_size() const;
-        /// number of unknowns covered
-        unsigned int
+        /// number of unknowns covered (64-bit: count * 3 of a cone block
+        /// may exceed 2^32 in a hostile file; the reader checks it
+        /// against the problem size)
+        std::size_t
         n_unknowns() const;
       };
 

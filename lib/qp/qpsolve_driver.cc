@@ -329,6 +329,20 @@ namespace dualcontact
         MembraneGenerator::Parameters prm;
         std::string                   directory;
         bool                          scale_given = false;
+        const auto number = [](const std::string &a, const std::string &v)
+        {
+          try
+          {
+            std::size_t  used = 0;
+            const double x    = std::stod(v, &used);
+            if (used == v.size() && std::isfinite(x))
+              return x;
+          }
+          catch (const std::exception &)
+          {
+          }
+          throw UsageError(a + ": '" + v + "' is not a finite number");
+        };
         for (std::size_t i = 1; i < arguments.size(); ++i)
         {
           const std::string &a = arguments[i];
@@ -340,12 +354,24 @@ namespace dualcontact
           else if (a == "--variant")
             prm.variant = MembraneGenerator::parse_variant(v);
           else if (a == "--h")
-            prm.h = std::stoul(v);
+          {
+            // n = h^2 unknowns (and a dense-free CSR of ~5 n entries):
+            // 10^4 keeps it far below any memory limit
+            const double h = number(a, v);
+            if (!(h >= 1 && h <= 10000 && h == std::floor(h)))
+              throw UsageError("--h must be an integer in [1, 10000] (got " +
+                               v + ")");
+            prm.h = static_cast<unsigned int>(h);
+          }
           else if (a == "--p")
-            prm.p = std::stod(v);
+          {
+            prm.p = number(a, v);
+            if (!(prm.p > 0. && prm.p < 1.))
+              throw UsageError("--p must lie in (0, 1) (got " + v + ")");
+          }
           else if (a == "--load-scale")
           {
-            prm.load_scale = std::stod(v);
+            prm.load_scale = number(a, v);
             scale_given    = true;
           }
           else
@@ -613,7 +639,7 @@ namespace dualcontact
       nlohmann::json blocks = nlohmann::json::object();
       for (const char *type : {"bound", "box", "disc", "ellipse", "cone"})
         blocks[type] = 0;
-      unsigned int n_constrained = 0;
+      std::size_t n_constrained = 0;
       for (const auto &block : data->constraints)
       {
         blocks[block.type] =

@@ -6,7 +6,9 @@
 //    diagonal/off-diagonal entries and ||b|| = 0.2499 at n = 2500;
 //  - symmetric Matrix Market files are mirrored, duplicates summed;
 //  - malformed files are rejected with a message naming the file and the
-//    field or line.
+//    field or line; a non-symmetric Hessian (a lower triangle under a
+//    `general' header), an entry count larger than the file can hold and a
+//    cone count whose unknowns overflow 32 bits are errors (issue 15).
 #include "test_tools.h"
 
 #include <qp/membrane_generator.h>
@@ -194,6 +196,35 @@ main()
   expect_error(dir + "/bad10.json",
                {"constraints[1]", "already constrained"},
                "overlapping blocks");
+
+  // issue 15: a lower triangle under a `general' header is not the
+  // symmetric matrix (it was read as the whole matrix and solved to a wrong
+  // x reported as converged)
+  write(dir + "/lower.mtx",
+        "%%MatrixMarket matrix coordinate real general\n"
+        "3 3 4\n1 1 2\n2 1 -1\n2 2 2\n3 3 1\n");
+  write(dir + "/bad11.json", R"({"hessian": "lower.mtx", "rhs": "b.txt"})");
+  expect_error(dir + "/bad11.json",
+               {"lower.mtx", "not symmetric", "A(2, 1) = -1 but A(1, 2) = 0",
+                "'symmetric' in its header"},
+               "lower triangle under a general header");
+  // a size line claiming 1e15 entries is refused before reserving memory
+  write(dir + "/claim.mtx",
+        "%%MatrixMarket matrix coordinate real general\n"
+        "3 3 1000000000000000\n1 1 2\n");
+  write(dir + "/bad12.json", R"({"hessian": "claim.mtx", "rhs": "b.txt"})");
+  expect_error(dir + "/bad12.json",
+               {"claim.mtx", "announces 1000000000000000 entries",
+                "hold at most"},
+               "a huge entry count is checked against the file");
+  // a cone count whose product with 3 wraps around in 32 bits
+  write(dir + "/bad13.json",
+        R"({"hessian": "s.mtx", "rhs": "b.txt",
+            "constraints": [{"type": "cone", "first": 0,
+                             "count": 1431655766, "mu": 0.5}]})");
+  expect_error(dir + "/bad13.json",
+               {"constraints[0]", "4294967298", "exceed the problem size 3"},
+               "a cone count * 3 beyond 2^32 does not wrap");
 
   std::filesystem::remove_all(dir);
   return qptest::checker().finish("qp/qpsolve_problem_io");
