@@ -10,8 +10,7 @@ xvfb):
 RESULT: an output folder or its solution.pvd.  Two panels:
   left:  the bodies (solution.pvtu), displaced by S times displacement_m
          (auto: the largest displacement shown as 5 % of the scene's size;
-         0: undeformed), coloured by von_mises_stress_Pa; in 2D the contact
-         surfaces are drawn on them as thick lines coloured by pressure_Pa;
+         0: undeformed), coloured by von_mises_stress_Pa;
   right: the contact surfaces (contact_N.vtu / .pvtu of solution.pvd) alone,
          coloured by pressure_Pa, seen from the master side along their mean
          normal (3D) or from +z (2D), cell edges drawn.
@@ -38,7 +37,6 @@ import numpy  # noqa: E402
 import vtkmodules.vtkInteractionStyle  # noqa: E402,F401
 import vtkmodules.vtkRenderingFreeType  # noqa: E402,F401
 import vtkmodules.vtkRenderingOpenGL2  # noqa: E402,F401
-from vtkmodules.vtkFiltersCore import vtkProbeFilter, vtkTubeFilter  # noqa: E402
 from vtkmodules.vtkFiltersGeneral import vtkWarpVector  # noqa: E402
 from vtkmodules.vtkFiltersGeometry import vtkDataSetSurfaceFilter  # noqa: E402
 from vtkmodules.vtkIOImage import vtkPNGWriter  # noqa: E402
@@ -115,7 +113,7 @@ def scalar_bar(lut, title, x):
     bar = vtkScalarBarActor()
     bar.SetLookupTable(lut)
     bar.SetTitle(title)
-    bar.SetNumberOfLabels(5)
+    bar.SetNumberOfLabels(3)
     bar.SetLabelFormat("%-#.3g")
     bar.SetOrientationToHorizontal()
     bar.SetPosition(x, 0.02)
@@ -166,8 +164,8 @@ def text(renderer, words, x, y):
 
 
 def bodies_panel(a, bodies, contacts, size):
-    """The deformed bodies by von Mises stress (2D: with the contact lines
-    on them): (renderer, displacement scale, dimension)."""
+    """The deformed bodies by von Mises stress: (renderer, displacement
+    scale, dimension)."""
     bounds = numpy.array(bodies.GetBounds()).reshape(3, 2)
     dim = 2 if bounds[2, 1] - bounds[2, 0] == 0 else 3
     u_max = field_range(bodies, "displacement_m")[1]
@@ -183,23 +181,6 @@ def bodies_panel(a, bodies, contacts, size):
     left.AddActor(coloured_actor(surface.GetOutput(), "von_mises_stress_Pa",
                                  stress_lut, stress_range))
     left.AddActor2D(scalar_bar(stress_lut, "von_mises_stress_Pa", 0.07))
-    if dim == 2 and contacts:
-        # the contact lines displaced as the slave (its displacement probed
-        # from the bodies), as tubes coloured by pressure
-        pressure_range, pressure_lut = pressure_colours(contacts)
-        for grid in contacts:
-            probe = vtkProbeFilter()
-            probe.SetInputData(grid)
-            probe.SetSourceData(bodies)
-            probe.Update()
-            tube = vtkTubeFilter()
-            tube.SetInputData(warped(probe.GetOutput(), "displacement_m",
-                                     scale))
-            tube.SetRadius(0.004 * size)
-            tube.SetNumberOfSides(12)
-            tube.Update()
-            left.AddActor(coloured_actor(tube.GetOutput(), "pressure_Pa",
-                                         pressure_lut, pressure_range))
     views = {"+x": ((1, 0, 0), (0, 0, 1)), "-x": ((-1, 0, 0), (0, 0, 1)),
              "+y": ((0, 1, 0), (0, 0, 1)), "-y": ((0, -1, 0), (0, 0, 1)),
              "+z": ((0, 0, 1), (0, 1, 0)), "-z": ((0, 0, -1), (0, 1, 0)),
