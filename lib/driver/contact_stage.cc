@@ -1,5 +1,6 @@
 #include <deal.II/base/mpi.h>
 
+#include <contact/contact_extent.h>
 #include <driver/contact_stage.h>
 #include <primal/uzawa_cgc.h>
 
@@ -354,6 +355,29 @@ namespace dualcontact
           else
             ++r.n_contact;
         }
+      }
+      // the contact zone with its edge between the nodes, from the pressure
+      std::vector<std::vector<typename contact::ContactExtent<dim>::Node>>
+        extent_nodes(surfaces_.size());
+      for (unsigned int i = 0; i < n; ++i)
+      {
+        const auto &node = contact_->nodes()[i];
+        const auto &surface =
+          surfaces_[node.pair][extent_nodes[node.pair].size()];
+        extent_nodes[node.pair].push_back(
+          {node.dofs[0],
+           node.position,
+           surface.pressure,
+           surface.status != io::contact_status::separated});
+      }
+      for (unsigned int p = 0; p < surfaces_.size(); ++p)
+      {
+        const auto &pair = scene_.pair_parameters()[p].pair;
+        pair_results_[p].contact_measure =
+          contact::ContactExtent<dim>(scene_.body(pair.slave_body),
+                                      pair.slave_boundary,
+                                      extent_nodes[p])
+            .measure();
       }
     }
 

@@ -56,6 +56,11 @@ namespace dualcontact
         double                 min_gap      = 0;
         double                 max_gap      = 0;
         double                 area         = 0;
+        /**
+         * Length (2D) [m] or area (3D) [m^2] of the contact zone, its edge
+         * located below the node spacing (contact::ContactExtent).
+         */
+        double contact_measure = 0;
       };
 
       /** Contact surfaces of every pair (one vector of nodes per pair). */

@@ -108,6 +108,24 @@ namespace dualcontact
         for (const auto &[id, force] : r.reaction_forces)
           out << prefix << "reaction_force.boundary_" << id << " = "
               << format_vector<dim>(force, force_scale) << "\n";
+        // per traction condition: the resultant on the exact surface and
+        // the one the load vector carries (ElasticBody::TractionResultant)
+        for (unsigned int t = 0; t < r.traction_resultants.size(); ++t)
+        {
+          const auto       &resultant = r.traction_resultants[t];
+          const std::string traction =
+            prefix + "traction_" + std::to_string(t + 1) + ".";
+          out << traction << "boundary_id = " << resultant.boundary_id << "\n";
+          out << traction << "nominal_force = "
+              << format_vector<dim>(resultant.nominal, force_scale) << "\n";
+          out << traction << "applied_force = "
+              << format_vector<dim>(resultant.applied, force_scale) << "\n";
+          out << traction << "relative_difference = "
+              << format_number(resultant.relative_difference() < 1e-12 ?
+                                 0. :
+                                 resultant.relative_difference())
+              << "\n";
+        }
         total_energy += r.strain_energy;
         total_work += r.external_work;
       }
@@ -150,6 +168,8 @@ namespace dualcontact
             << format_vector<dim>(r.tangential_force, scale) << "\n";
         out << prefix << "max_pressure = " << format_number(r.max_pressure)
             << "\n";
+        out << prefix << (dim == 2 ? "contact_length = " : "contact_area = ")
+            << format_number(r.contact_measure) << "\n";
       }
       if (cycles_ != nullptr && !cycles_->empty())
       {
@@ -233,6 +253,15 @@ namespace dualcontact
                             scene_.displacements()[b].l2_norm()},
                            {"applied_force", to_vector<dim>(r.applied_force)},
                            {"reaction_force_by_boundary_id", reactions}};
+
+        nlohmann::json tractions = nlohmann::json::array();
+        for (const auto &resultant : r.traction_resultants)
+          tractions.push_back(
+            {{"boundary_id", resultant.boundary_id},
+             {"nominal_force", to_vector<dim>(resultant.nominal)},
+             {"applied_force", to_vector<dim>(resultant.applied)},
+             {"relative_difference", resultant.relative_difference()}});
+        body["results"]["traction_resultants"] = tractions;
         bodies.push_back(body);
       }
       json["bodies"] = bodies;
@@ -308,7 +337,9 @@ namespace dualcontact
              {"max_initial_gap_m", r.max_gap},
              {"normal_force", r.normal_force},
              {"tangential_force", to_vector<dim>(r.tangential_force)},
-             {"max_pressure_Pa", r.max_pressure}});
+             {"max_pressure_Pa", r.max_pressure},
+             {dim == 2 ? "contact_length_m" : "contact_area_m2",
+              r.contact_measure}});
         }
         contact["pairs"] = pairs;
         json["contact"]  = contact;

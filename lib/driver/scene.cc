@@ -33,6 +33,8 @@ namespace dualcontact
     {
       prm.enter_subsection("Discretization");
       fe_degree_ = prm.get_integer("Finite element degree");
+      curved_load_mapping_degree_ =
+        prm.get_integer("Curved load mapping degree");
       prm.leave_subsection();
 
       const std::string  folder   = io::folder_of(parameter_file);
@@ -193,7 +195,8 @@ namespace dualcontact
           std::make_unique<fem::ElasticBody<dim>>(parameters.name,
                                                   triangulations_[b],
                                                   fe_degree_,
-                                                  parameters.materials);
+                                                  parameters.materials,
+                                                  curved_load_mapping_degree_);
         body->set_dirichlet_conditions(parameters.dirichlet);
         body->set_traction_conditions(parameters.tractions);
         if (parameters.has_body_force)

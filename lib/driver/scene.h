@@ -164,6 +164,8 @@ namespace dualcontact
       check_size_estimate(const double memory_limit) const;
 
       unsigned int                            fe_degree_ = 1;
+      /** Mapping degree of tractions on curved faces (ElasticBody). */
+      unsigned int                            curved_load_mapping_degree_ = 4;
       std::vector<BodyParameters<dim>>        body_parameters_;
       std::vector<ObstacleParameters<dim>>    obstacle_parameters_;
       std::vector<ContactPairParameters<dim>> pair_parameters_;

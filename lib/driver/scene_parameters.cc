@@ -98,6 +98,17 @@ namespace dualcontact
                         "Polynomial degree p of the FE_Q(p) displacement "
                         "elements of all bodies (1 or 2); the geometry is "
                         "mapped with the same degree.");
+      prm.declare_entry(
+        "Curved load mapping degree",
+        "4",
+        dealii::Patterns::Integer(1, 10),
+        "Degree of the mapping (on the manifolds of the generated meshes) "
+        "with which tractions are integrated on faces that touch a curved "
+        "boundary (their own surface or, in 3D, an edge, e.g. the flat top "
+        "of a half ball), so that the load follows the true geometry and not "
+        "the chords of the elements; used where it exceeds the finite "
+        "element degree.  results.txt compares each traction's resultant "
+        "with the one on the exact surface.");
       prm.leave_subsection();
 
       prm.enter_subsection("Output");

@@ -137,6 +137,37 @@ namespace dualcontact
 
 
     template <int dim>
+    void
+    Simulation<dim>::report_traction_resultants(const Scene<dim> &scene)
+    {
+      for (unsigned int b = 0; b < scene.n_bodies(); ++b)
+      {
+        const auto &resultants = scene.results()[b].traction_resultants;
+        for (unsigned int t = 0; t < resultants.size(); ++t)
+        {
+          const auto        &r = resultants[t];
+          std::ostringstream line;
+          line << scene.body(b).name() << ", traction " << t + 1
+               << " (boundary id " << r.boundary_id << "): resultant nominal "
+               << std::setprecision(6) << r.nominal << ", applied " << r.applied
+               << " (difference " << std::setprecision(2)
+               << 100 * r.relative_difference() << " %)";
+          details_.push_back(line.str());
+          if (r.relative_difference() > traction_warning_threshold)
+            details_.push_back(
+              "Warning: the load of " + scene.body(b).name() + ", traction " +
+              std::to_string(t + 1) +
+              " differs from the load on the exact "
+              "surface by more than " +
+              std::to_string(100 * traction_warning_threshold).substr(0, 3) +
+              " %: the loaded surface is not followed by the mesh (raise "
+              "`Curved load mapping degree' or refine the mesh).");
+        }
+      }
+    }
+
+
+    template <int dim>
     bool
     Simulation<dim>::run()
     {
@@ -191,7 +222,12 @@ namespace dualcontact
         }
         else
           run_phase("Solve", [&]() { scene.solve(details_); });
-        run_phase("Postprocessing", [&]() { scene.postprocess(); });
+        run_phase("Postprocessing",
+                  [&]()
+                  {
+                    scene.postprocess();
+                    report_traction_resultants(scene);
+                  });
         if (n_cycles == 0)
           break;
 

@@ -76,6 +76,17 @@ namespace dualcontact
       template <typename Phase>
       void
       run_phase(const std::string &name, const Phase &phase);
+      /**
+       * Console lines (details of the current phase) with the nominal and
+       * the applied resultant of every traction condition, and a warning
+       * where they differ by more than traction_warning_threshold.
+       */
+      void
+      report_traction_resultants(const Scene<dim> &scene);
+
+      /** Relative difference of applied and nominal traction resultant
+       * above which the console warns [-]. */
+      static constexpr double traction_warning_threshold = 1e-3;
 
       dealii::ParameterHandler   &prm_;
       const std::string           parameter_file_;

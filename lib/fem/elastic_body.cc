@@ -26,11 +26,13 @@ namespace dualcontact
       const std::string                                     &name,
       std::shared_ptr<Triangulation<dim>>                    triangulation,
       const unsigned int                                     fe_degree,
-      const std::map<types::material_id, IsotropicMaterial> &materials)
+      const std::map<types::material_id, IsotropicMaterial> &materials,
+      const unsigned int curved_mapping_degree)
         : name_(name)
         , triangulation_(std::move(triangulation))
         , fe_(FE_Q<dim>(fe_degree), dim)
         , mapping_(fe_degree)
+        , curved_mapping_(std::max(curved_mapping_degree, 1u))
         , dof_handler_(*triangulation_)
         , materials_(materials)
     {
@@ -39,6 +41,10 @@ namespace dualcontact
                              ": the finite element degree must be 1 or "
                              "2 (got " +
                              std::to_string(fe_degree) + ")."));
+      AssertThrow(curved_mapping_degree >= 1,
+                  ExcMessage(name +
+                             ": the mapping degree of curved loaded faces "
+                             "must be at least 1 (got 0)."));
     }
 
 
@@ -163,9 +169,14 @@ namespace dualcontact
     template <int dim>
     struct ElasticBody<dim>::CellScratch
     {
-      CellScratch(const Mapping<dim> &mapping, const FiniteElement<dim> &fe)
+      CellScratch(const Mapping<dim>       &mapping,
+                  const MappingQ<dim>      &curved_mapping,
+                  const FiniteElement<dim> &fe)
           : quadrature(fe.degree + 1)
           , face_quadrature(fe.degree + 1)
+          // the integrand on a curved face is phi_i t |J| with |J| of the
+          // degree of the curved mapping: Gauss exact for phi_i |J| in 2D
+          , curved_face_quadrature(fe.degree + curved_mapping.get_degree())
           , fe_values(mapping,
                       fe,
                       quadrature,
@@ -176,6 +187,11 @@ namespace dualcontact
                            face_quadrature,
                            update_values | update_quadrature_points |
                              update_JxW_values)
+          , curved_fe_face_values(curved_mapping,
+                                  fe,
+                                  curved_face_quadrature,
+                                  update_values | update_quadrature_points |
+                                    update_JxW_values)
           , gradients(fe.n_dofs_per_cell())
           , component(fe.n_dofs_per_cell())
           , force(dim)
@@ -186,8 +202,10 @@ namespace dualcontact
 
       const QGauss<dim>           quadrature;
       const QGauss<dim - 1>       face_quadrature;
+      const QGauss<dim - 1>       curved_face_quadrature;
       FEValues<dim>               fe_values;
       FEFaceValues<dim>           fe_face_values;
+      FEFaceValues<dim>           curved_fe_face_values;
       std::vector<Tensor<1, dim>> gradients;
       std::vector<unsigned int>   component;
       Vector<double>              force;
@@ -229,6 +247,38 @@ namespace dualcontact
         AssertThrow(false, ExcMessage(message.str()));
       }
     } // namespace
+
+
+    template <int dim>
+    bool
+    ElasticBody<dim>::touches_curved_manifold(
+      const typename Triangulation<dim>::face_iterator &face)
+    {
+      if (face->manifold_id() != numbers::flat_manifold_id)
+        return true;
+      if constexpr (dim == 3)
+        for (unsigned int l = 0; l < face->n_lines(); ++l)
+          if (face->line(l)->manifold_id() != numbers::flat_manifold_id)
+            return true;
+      return false;
+    }
+
+
+    template <int dim>
+    const FEFaceValues<dim> &
+    ElasticBody<dim>::traction_face_values(
+      const typename DoFHandler<dim>::active_cell_iterator &cell,
+      const unsigned int                                    f,
+      CellScratch                                          &scratch) const
+    {
+      FEFaceValues<dim> &values =
+        curved_mapping_.get_degree() > mapping_.get_degree() &&
+            touches_curved_manifold(cell->face(f)) ?
+          scratch.curved_fe_face_values :
+          scratch.fe_face_values;
+      values.reinit(cell, f);
+      return values;
+    }
 
 
     template <int dim>
@@ -290,10 +340,10 @@ namespace dualcontact
             for (const auto &condition : tractions_)
               if (cell->face(f)->boundary_id() == condition.boundary_id)
               {
-                FEFaceValues<dim> &fe_face_values = scratch.fe_face_values;
-                fe_face_values.reinit(cell, f);
-                for (unsigned int q = 0; q < scratch.face_quadrature.size();
-                     ++q)
+                const FEFaceValues<dim> &fe_face_values =
+                  traction_face_values(cell, f, scratch);
+                for (const unsigned int q :
+                     fe_face_values.quadrature_point_indices())
                 {
                   condition.traction->vector_value(
                     fe_face_values.quadrature_point(q), scratch.force);
@@ -320,9 +370,9 @@ namespace dualcontact
     {
       stiffness_ = 0;
       load_      = 0;
-      CellScratch                          scratch(mapping_, fe_);
-      FullMatrix<double>                   cell_matrix;
-      Vector<double>                       cell_rhs;
+      CellScratch        scratch(mapping_, curved_mapping_, fe_);
+      FullMatrix<double> cell_matrix;
+      Vector<double>     cell_rhs;
       std::vector<types::global_dof_index> dof_indices(fe_.n_dofs_per_cell());
       for (const auto &cell : dof_handler_.active_cell_iterators())
       {
@@ -413,7 +463,7 @@ namespace dualcontact
       // f was assembled with the constraints condensed, so the load and the
       // residual K_full u - f_full are rebuilt from the unconstrained cell
       // systems.
-      CellScratch        scratch(mapping_, fe_);
+      CellScratch        scratch(mapping_, curved_mapping_, fe_);
       FullMatrix<double> cell_matrix;
       Vector<double>     cell_rhs;
       const unsigned int dofs_per_cell = fe_.n_dofs_per_cell();
@@ -450,7 +500,8 @@ namespace dualcontact
           max_norm2 = std::max(max_norm2, norm2);
         }
       }
-      summary.max_displacement = std::sqrt(max_norm2);
+      summary.max_displacement    = std::sqrt(max_norm2);
+      summary.traction_resultants = traction_resultants();
 
       // A dof on two supports is counted once, for the first condition that
       // names it (the one that won in setup()).
@@ -511,6 +562,69 @@ namespace dualcontact
     ElasticBody<dim>::applied_force() const
     {
       return summarize(Vector<double>(n_dofs())).applied_force;
+    }
+
+
+    template <int dim>
+    std::vector<typename ElasticBody<dim>::TractionResultant>
+    ElasticBody<dim>::traction_resultants() const
+    {
+      std::vector<TractionResultant> resultants(tractions_.size());
+      if (tractions_.empty())
+        return resultants;
+      CellScratch           scratch(mapping_, curved_mapping_, fe_);
+      const MappingQ<dim>   nominal_mapping(nominal_mapping_degree);
+      const QGauss<dim - 1> nominal_quadrature(nominal_mapping_degree + 2);
+      // faces without a curved manifold are exact with the isoparametric
+      // mapping (and much cheaper with it)
+      FEFaceValues<dim> nominal_curved_values(nominal_mapping,
+                                              fe_,
+                                              nominal_quadrature,
+                                              update_quadrature_points |
+                                                update_JxW_values);
+      FEFaceValues<dim> nominal_flat_values(mapping_,
+                                            fe_,
+                                            nominal_quadrature,
+                                            update_quadrature_points |
+                                              update_JxW_values);
+      Vector<double>    force(dim);
+      // the integral of t over the faces of @p values; shape functions of one
+      // component sum to one, so for the assembly's face values this is the
+      // sum of the traction's load entries
+      const auto integrate = [&](const TractionCondition<dim> &condition,
+                                 const FEFaceValues<dim>      &values,
+                                 Tensor<1, dim>               &sum)
+      {
+        for (const unsigned int q : values.quadrature_point_indices())
+        {
+          condition.traction->vector_value(values.quadrature_point(q), force);
+          for (unsigned int d = 0; d < dim; ++d)
+            sum[d] += force(d) * values.JxW(q);
+        }
+      };
+      for (unsigned int t = 0; t < tractions_.size(); ++t)
+      {
+        const TractionCondition<dim> &condition = tractions_[t];
+        TractionResultant            &resultant = resultants[t];
+        resultant.boundary_id                   = condition.boundary_id;
+        for (const auto &cell : dof_handler_.active_cell_iterators())
+          if (cell->at_boundary())
+            for (const unsigned int f : cell->face_indices())
+              if (cell->face(f)->at_boundary() &&
+                  cell->face(f)->boundary_id() == condition.boundary_id)
+              {
+                integrate(condition,
+                          traction_face_values(cell, f, scratch),
+                          resultant.applied);
+                FEFaceValues<dim> &nominal =
+                  touches_curved_manifold(cell->face(f)) ?
+                    nominal_curved_values :
+                    nominal_flat_values;
+                nominal.reinit(cell, f);
+                integrate(condition, nominal, resultant.nominal);
+              }
+      }
+      return resultants;
     }
 
 

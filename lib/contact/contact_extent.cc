@@ -1,0 +1,219 @@
+#include <deal.II/base/quadrature_lib.h>
+#include <deal.II/fe/fe_values.h>
+
+#include <contact/contact_extent.h>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+
+namespace dualcontact
+{
+  namespace contact
+  {
+    using namespace dealii;
+
+    namespace
+    {
+      /**
+       * The component-0 dofs of @p cell that have support on its face @p f
+       * (the face's nodes), as cell-local indices.
+       */
+      template <int dim>
+      std::vector<unsigned int>
+      face_nodes(const FiniteElement<dim> &fe, const unsigned int f)
+      {
+        std::vector<unsigned int> local;
+        for (unsigned int i = 0; i < fe.n_dofs_per_cell(); ++i)
+          if (fe.system_to_component_index(i).first == 0 &&
+              fe.has_support_on_face(i, f))
+            local.push_back(i);
+        return local;
+      }
+    } // namespace
+
+
+    template <int dim>
+    ContactExtent<dim>::ContactExtent(const fem::ElasticBody<dim> &slave,
+                                      const types::boundary_id slave_boundary,
+                                      const std::vector<Node> &nodes)
+    {
+      std::map<types::global_dof_index, unsigned int> index;
+      for (unsigned int i = 0; i < nodes.size(); ++i)
+        index[nodes[i].dof] = i;
+      // neighbours: the nodes that share a slave face
+      neighbours_.assign(nodes.size(), {});
+      const FiniteElement<dim>            &fe = slave.fe();
+      std::vector<types::global_dof_index> cell_dofs(fe.n_dofs_per_cell());
+      for (const auto &cell : slave.dof_handler().active_cell_iterators())
+        if (cell->at_boundary())
+          for (const unsigned int f : cell->face_indices())
+            if (cell->face(f)->at_boundary() &&
+                cell->face(f)->boundary_id() == slave_boundary)
+            {
+              cell->get_dof_indices(cell_dofs);
+              std::vector<unsigned int> on_face;
+              for (const unsigned int i : face_nodes(fe, f))
+              {
+                const auto it = index.find(cell_dofs[i]);
+                if (it != index.end())
+                  on_face.push_back(it->second);
+              }
+              for (const unsigned int a : on_face)
+                for (const unsigned int b : on_face)
+                  if (a != b)
+                    neighbours_[a].push_back(b);
+            }
+      for (auto &list : neighbours_)
+      {
+        std::sort(list.begin(), list.end());
+        list.erase(std::unique(list.begin(), list.end()), list.end());
+      }
+      compute_level_function(nodes);
+      integrate_zone(slave, slave_boundary, nodes);
+    }
+
+
+    template <int dim>
+    void
+    ContactExtent<dim>::compute_level_function(const std::vector<Node> &nodes)
+    {
+      const unsigned int n = nodes.size();
+      psi_.assign(n, 0.);
+      double max_psi = 0;
+      for (unsigned int i = 0; i < n; ++i)
+        if (nodes[i].in_contact)
+        {
+          psi_[i] = nodes[i].pressure * nodes[i].pressure;
+          max_psi = std::max(max_psi, psi_[i]);
+        }
+      // the far-side neighbour must lie within 45 degrees of the line
+      const double cos_limit = -std::sqrt(0.5);
+      for (unsigned int j = 0; j < n; ++j)
+        if (!nodes[j].in_contact)
+        {
+          double       sum   = 0;
+          unsigned int count = 0;
+          for (const unsigned int c : neighbours_[j])
+            if (nodes[c].in_contact)
+            {
+              const Tensor<1, dim> to_j = nodes[j].position - nodes[c].position;
+              double               best_cos = cos_limit;
+              int                  far      = -1;
+              for (const unsigned int k : neighbours_[c])
+                if (nodes[k].in_contact)
+                {
+                  const Tensor<1, dim> to_k =
+                    nodes[k].position - nodes[c].position;
+                  const double cos = to_k * to_j / (to_k.norm() * to_j.norm());
+                  if (cos < best_cos)
+                  {
+                    best_cos = cos;
+                    far      = k;
+                  }
+                }
+              sum +=
+                far >= 0 ?
+                  psi_[c] + (psi_[c] - psi_[far]) * to_j.norm() /
+                              (nodes[far].position - nodes[c].position).norm() :
+                  -psi_[c];
+              ++count;
+            }
+          psi_[j] =
+            count > 0 ? std::min(sum / count, -1e-12 * max_psi) : -max_psi;
+        }
+    }
+
+
+    template <int dim>
+    void
+    ContactExtent<dim>::integrate_zone(const fem::ElasticBody<dim> &slave,
+                                       const types::boundary_id slave_boundary,
+                                       const std::vector<Node> &nodes)
+    {
+      measure_ = 0;
+      if (std::none_of(nodes.begin(),
+                       nodes.end(),
+                       [](const Node &node) { return node.in_contact; }))
+        return;
+      const double max_psi = *std::max_element(psi_.begin(), psi_.end());
+      std::map<types::global_dof_index, unsigned int> index;
+      for (unsigned int i = 0; i < nodes.size(); ++i)
+        index[nodes[i].dof] = i;
+      const AffineConstraints<double> &constraints = slave.constraints();
+      // psi of a dof of the slave surface: a node's, a hanging node's from
+      // its parents, anything else is no contact node (separated)
+      const auto nodal_psi = [&](const types::global_dof_index dof)
+      {
+        const auto it = index.find(dof);
+        if (it != index.end())
+          return psi_[it->second];
+        if (const auto *entries = constraints.get_constraint_entries(dof))
+          if (!entries->empty())
+          {
+            double value = 0;
+            for (const auto &[parent, weight] : *entries)
+            {
+              const auto p = index.find(parent);
+              if (p == index.end())
+                return -max_psi;
+              value += weight * psi_[p->second];
+            }
+            return value;
+          }
+        return -max_psi;
+      };
+
+      const FiniteElement<dim> &fe = slave.fe();
+      const QIterated<dim - 1>  cut_rule(QMidpoint<1>(), cut_face_subdivisions);
+      const QGauss<dim - 1>     whole_rule(fe.degree + 1);
+      FEFaceValues<dim>         cut(slave.mapping(),
+                            fe,
+                            cut_rule,
+                            update_values | update_JxW_values);
+      FEFaceValues<dim>         whole(slave.mapping(),
+                              fe,
+                              whole_rule,
+                              update_JxW_values);
+      std::vector<types::global_dof_index> cell_dofs(fe.n_dofs_per_cell());
+      for (const auto &cell : slave.dof_handler().active_cell_iterators())
+        if (cell->at_boundary())
+          for (const unsigned int f : cell->face_indices())
+            if (cell->face(f)->at_boundary() &&
+                cell->face(f)->boundary_id() == slave_boundary)
+            {
+              cell->get_dof_indices(cell_dofs);
+              const std::vector<unsigned int> local = face_nodes(fe, f);
+              std::vector<double>             values;
+              for (const unsigned int i : local)
+                values.push_back(nodal_psi(cell_dofs[i]));
+              if (std::none_of(values.begin(),
+                               values.end(),
+                               [](const double v) { return v > 0; }))
+                continue;
+              if (std::all_of(values.begin(),
+                              values.end(),
+                              [](const double v) { return v >= 0; }))
+              {
+                whole.reinit(cell, f);
+                for (const unsigned int q : whole.quadrature_point_indices())
+                  measure_ += whole.JxW(q);
+                continue;
+              }
+              cut.reinit(cell, f);
+              for (const unsigned int q : cut.quadrature_point_indices())
+              {
+                double psi_h = 0;
+                for (unsigned int k = 0; k < local.size(); ++k)
+                  psi_h += values[k] * cut.shape_value(local[k], q);
+                if (psi_h > 0)
+                  measure_ += cut.JxW(q);
+              }
+            }
+    }
+
+
+    template class ContactExtent<2>;
+    template class ContactExtent<3>;
+  } // namespace contact
+} // namespace dualcontact
