@@ -119,7 +119,7 @@ namespace dualcontact
       const double nodes_in_factor =
         dim == 3 ? std::pow(n_nodes, 4. / 3.) :
                    n_nodes * std::log2(std::max(n_nodes, 2.));
-      // fitted constant, see the declaration
+      // a guess, not yet fitted (see the declaration)
       const double constant = dim == 3 ? 2.5 : 1.;
       return constant * nodes_in_factor * dim * dim * 8. / 1048576.;
     }

@@ -65,9 +65,9 @@ namespace dualcontact
        * An estimate [MB] of the nonzeros of the sparse Cholesky factor of a
        * 3D (2D) stiffness matrix with @p n_dofs dofs and @p dofs_per_node
        * components under nested dissection: 3D n^(4/3), 2D n log2 n
-       * (n the nodes), times dofs_per_node^2 entries of 8 bytes, with the
-       * constant fitted to CHOLMOD on the brick (see doc/benchmarks/
-       * tfeti.md).
+       * (n the nodes), times dofs_per_node^2 entries of 8 bytes, times a
+       * constant (2.5 in 3D, 1 in 2D) that is a guess, not yet fitted to
+       * CHOLMOD's measured factor sizes.
        */
       static double
       estimate_factor_megabytes(const unsigned int dim, const double n_dofs);
