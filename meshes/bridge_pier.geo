@@ -8,31 +8,24 @@
 //   body = 1  bedrock (region 1): x in [0,60], from y = 0 up to the ground
 //             line (0,8)-(32,8)-(60,22)
 //   body = 2  slope mass (region 2): a 4 m thick layer (vertically) on the
-//             incline, the pentagon (34,9)-(56,20)-(56,24)-(32,12)-(32,10):
-//             its slip surface starts at (34,9), 2.2 m up the incline from
-//             the bedrock's corner, and its lower end face is x = 32, y in
-//             [10,12]; the bevel (32,10)-(34,9) touches nothing
+//             incline between x = 32 and x = 56
 //   body = 3  foundation (region 3) [24,32]x[8,12], pier (region 4)
 //             [26,30]x[12,30], deck (region 5) [10,50]x[30,32], glued
 //             (one conforming mesh, three material regions)
-// The three contact lines are separate, with six distinct end points (the
-// report: lines 10-15, 16-11 and 14-17): (24,8)-(32,8) under the
-// foundation, (34,9)-(56,20) under the slope mass, (32,10)-(32,12) between
-// the slope's end face and the foundation.
 //
 // Physical tags: cells get the region number as material id (1..5); the
 // boundary lines get these boundary ids (distinct over all bodies):
 //   bedrock:  1 bottom y = 0 (fixed), 2 flat ground under the foundation
 //             x in [24,32] (slave of contact 2), 3 incline under the slope
-//             mass x in [34,56] (master of contact 1), 4 the other (free)
+//             mass x in [32,56] (master of contact 1), 4 the other (free)
 //             lines
-//   slope:    5 slip surface (slave of contact 1), 6 lower end face x = 32,
-//             y in [10,12] (slave of contact 3), 7 up-slope end face x = 56
-//             (prescribed displacement u0), 8 top and bevel (free)
+//   slope:    5 slip surface (slave of contact 1), 6 lower end face x = 32
+//             (slave of contact 3), 7 up-slope end face x = 56 (prescribed
+//             displacement u0), 8 top (free)
 //   pier:     9 foundation bottom (master of contact 2), 10 foundation right
-//             face x = 32, y in [10,12] (master of contact 3), 11 deck top
-//             (load P), 12 deck left end x = 10 (pinned), 13 deck right end
-//             x = 50 (roller), 14 the other (free) lines
+//             face x = 32 (master of contact 3), 11 deck top (load P),
+//             12 deck left end x = 10 (pinned), 13 deck right end x = 50
+//             (roller), 14 the other (free) lines
 //
 // The app needs quadrilaterals (deal.II): the bedrock is meshed with
 // triangles recombined into quads (Blossom), the slope mass and the pier
@@ -41,10 +34,8 @@
 // lines, even totals so that Blossom leaves no triangle).  The slave lines
 // are coarse so that the coarse level has the report's 10 contact nodes
 // (5 on the slip surface, 3 under the foundation, 2 on the slope's lower end
-// face), and every slave node is a node of the master surface (the master
-// lines are divided as finely or a multiple of it): the contact rows are
-// node-to-node with 4 entries each, as the report's (LJA = 40 for NCP = 10),
-// and mutually orthogonal.  Coarse level: 375 vertices, 274 quadrilaterals
+// face); the master surfaces of the pier body are finer (1 m cells; the
+// meshes need not match).  Coarse level: 360 vertices, 261 quadrilaterals
 // (report: 380 vertices, 551 triangles).
 //
 // Generate (meshes/make_bridge_pier regenerates all nine files):
@@ -79,64 +70,53 @@ If (body == 1)
   Point(2) = {60, 0, 0, lc_rock / f};
   Point(3) = {60, 22, 0, lc_rock / f};
   Point(4) = {56, 20, 0, lc_slope / f};
-  Point(5) = {34, 9, 0, lc_found / f};
-  Point(6) = {32, 8, 0, lc_found / f};
-  Point(7) = {24, 8, 0, lc_found / f};
-  Point(8) = {0, 8, 0, lc_rock / f};
+  Point(5) = {32, 8, 0, lc_found / f};
+  Point(6) = {24, 8, 0, lc_found / f};
+  Point(7) = {0, 8, 0, lc_rock / f};
   Line(1) = {1, 2};
   Line(2) = {2, 3};
   Line(3) = {3, 4};
-  Line(4) = {4, 5};   // incline under the slope mass (contact 1)
-  Line(5) = {5, 6};   // incline between the two contact lines (free)
-  Line(6) = {6, 7};   // flat ground under the foundation (contact 2)
-  Line(7) = {7, 8};
-  Line(8) = {8, 1};
+  Line(4) = {4, 5};   // incline under the slope mass
+  Line(5) = {5, 6};   // flat ground under the foundation
+  Line(6) = {6, 7};
+  Line(7) = {7, 1};
   Transfinite Line{4} = n_incline + 1;
-  Transfinite Line{6} = n_flat + 1;
+  Transfinite Line{5} = n_flat + 1;
   // every line's division fixed, with an even total, so that Blossom
   // recombines into quadrilaterals only
   Transfinite Line{1} = 20 * f + 1;
   Transfinite Line{2} = 8 * f + 1;
   Transfinite Line{3} = 1 * f + 1;
-  Transfinite Line{5} = 1 * f + 1;
-  Transfinite Line{7} = 8 * f + 1;
-  Transfinite Line{8} = 4 * f + 1;
-  Curve Loop(1) = {1, 2, 3, 4, 5, 6, 7, 8};
+  Transfinite Line{6} = 8 * f + 1;
+  Transfinite Line{7} = 3 * f + 1;
+  Curve Loop(1) = {1, 2, 3, 4, 5, 6, 7};
   Plane Surface(1) = {1};
   Physical Surface(1) = {1};
   Physical Line(1) = {1};
-  Physical Line(2) = {6};
+  Physical Line(2) = {5};
   Physical Line(3) = {4};
-  Physical Line(4) = {2, 3, 5, 7, 8};
+  Physical Line(4) = {2, 3, 6, 7};
 EndIf
 
 If (body == 2)
-  // a pentagon: the slip surface starts at (34, 9), 2.2 m up the incline
-  // from the bedrock's corner (32, 8), and the lower end face against the
-  // foundation is x = 32, y in [10, 12]; the bevel (32,10)-(34,9) between
-  // them touches nothing, so the three contact lines have six distinct
-  // end points (report: lines 10-15, 16-11 and 14-17)
-  Point(1) = {34, 9, 0, lc_slope / f};
+  Point(1) = {32, 8, 0, lc_slope / f};
   Point(2) = {56, 20, 0, lc_slope / f};
   Point(3) = {56, 24, 0, lc_slope / f};
   Point(4) = {32, 12, 0, lc_slope / f};
-  Point(5) = {32, 10, 0, lc_slope / f};
   Line(1) = {1, 2};   // slip surface
   Line(2) = {2, 3};   // up-slope end face
   Line(3) = {3, 4};   // top
-  Line(4) = {4, 5};   // lower end face (against the foundation)
-  Line(5) = {5, 1};   // bevel (free)
+  Line(4) = {4, 1};   // lower end face (against the foundation)
   Transfinite Line{1, 3} = n_incline + 1;
-  Transfinite Line{2} = 2 * n_end + 1;
-  Transfinite Line{4, 5} = n_end + 1;
-  Curve Loop(1) = {1, 2, 3, 4, 5};
+  Transfinite Line{2, 4} = n_end + 1;
+  Curve Loop(1) = {1, 2, 3, 4};
   Plane Surface(1) = {1};
-  Transfinite Surface{1} = {1, 2, 3, 4};
+  Transfinite Surface{1};
   Physical Surface(2) = {1};
   Physical Line(5) = {1};
   Physical Line(6) = {4};
   Physical Line(7) = {2};
-  Physical Line(8) = {3, 5};
+  Physical Line(8) = {3};
 EndIf
 
 If (body == 3)
@@ -155,9 +135,8 @@ If (body == 3)
   Point(10) = {50, 32, 0, lc_pier / f};
   Point(11) = {10, 32, 0, lc_pier / f};
   Point(12) = {10, 30, 0, lc_pier / f};
-  Point(13) = {32, 10, 0, lc_pier / f};
   Line(1) = {1, 2};    // foundation bottom
-  Line(2) = {13, 3};   // foundation right face, contact part y in [10,12]
+  Line(2) = {2, 3};    // foundation right face
   Line(3) = {3, 4};
   Line(4) = {4, 5};    // foundation / pier
   Line(5) = {5, 6};
@@ -170,12 +149,10 @@ If (body == 3)
   Line(12) = {10, 11}; // deck top
   Line(13) = {11, 12}; // deck left end
   Line(14) = {12, 8};  // deck bottom left
-  Line(15) = {2, 13};  // foundation right face below the contact (free)
   // structured: 1 m cells on the coarse level (the master surfaces of
   // contacts 2 and 3 may be finer than the slave lines)
   Transfinite Line{1} = 8 * f + 1;
-  Transfinite Line{6} = 4 * f + 1;
-  Transfinite Line{2, 15} = 2 * f + 1;
+  Transfinite Line{2, 6} = 4 * f + 1;
   Transfinite Line{3, 5} = 2 * f + 1;
   Transfinite Line{4, 8} = 4 * f + 1;
   Transfinite Line{7, 9} = 18 * f + 1;
@@ -183,7 +160,7 @@ If (body == 3)
   Transfinite Line{11, 13} = 2 * f + 1;
   Transfinite Line{12} = 40 * f + 1;
   Transfinite Line{14} = 16 * f + 1;
-  Curve Loop(1) = {1, 15, 2, 3, 4, 5, 6};
+  Curve Loop(1) = {1, 2, 3, 4, 5, 6};
   Plane Surface(1) = {1};
   Transfinite Surface{1} = {1, 2, 3, 6};
   Curve Loop(2) = {-4, 7, 8, 9};
@@ -200,5 +177,5 @@ If (body == 3)
   Physical Line(11) = {12};
   Physical Line(12) = {13};
   Physical Line(13) = {11};
-  Physical Line(14) = {3, 5, 6, 7, 9, 10, 14, 15};
+  Physical Line(14) = {3, 5, 6, 7, 9, 10, 14};
 EndIf

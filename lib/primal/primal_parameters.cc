@@ -26,13 +26,6 @@ namespace dualcontact
         "10): none, diagonal, ssor (relaxation `SSOR omega'), ic (incomplete "
         "Cholesky on the pattern of K), icd (incomplete Cholesky with the "
         "dropped fill added to the diagonal), cholesky (complete, CHOLMOD).");
-      prm.declare_entry("Stiffness storage",
-                        "sparse",
-                        dealii::Patterns::Selection("sparse|skyline"),
-                        "Storage of the stiffness matrix C in the products of "
-                        "CG (report, remark 5.1): sparse (compressed rows) or "
-                        "skyline (the profile of the lower triangle, zeros "
-                        "inside it included; the report's SKY-LINE rows).");
       prm.declare_entry("Version",
                         "pcg2",
                         dealii::Patterns::Selection("pcg1|pcg2"),
@@ -72,25 +65,6 @@ namespace dualcontact
                         "negative ones (report, lemma 7.2; safe for "
                         "orthogonal rows), or all negative if the rows are "
                         "orthogonal, else one (automatic).");
-      prm.declare_entry(
-        "CGC stopping test",
-        "absolute",
-        dealii::Patterns::Selection("absolute|relative"),
-        "absolute: CGC stops when its projected-gradient criterion is at "
-        "most `CGC tolerance' ||b||; relative: the report's tests (remark "
-        "7.2, subroutine CG) with eps = `CGC tolerance': a facet problem is "
-        "solved when ||(I - P_J) f'|| / max(1, its value at the previous "
-        "outer iteration) < eps or the CG step ||x^{k+1} - x^k|| / max(1, "
-        "||x^k||) < 1e-15, a multiplier counts as negative when u_i / max(1, "
-        "max_m u_m) < -eps.");
-      prm.declare_entry(
-        "Friction multipliers",
-        "per node",
-        dealii::Patterns::Selection("per node|per edge"),
-        "per node: one friction multiplier per frictional contact node with "
-        "bound psi_i = g w_i; per edge: the report's Lambda_h (eq. 4.4), one "
-        "per slave edge, piecewise constant, the friction term g |int_e "
-        "u_T ds| (2D, Q1 elements, Tresca).");
       prm.declare_entry("Uzawa step factor",
                         "1.0",
                         dealii::Patterns::Double(0.),
@@ -105,19 +79,8 @@ namespace dualcontact
       prm.declare_entry("Uzawa tolerance",
                         "1e-9",
                         dealii::Patterns::Double(0.),
-                        "Uzawa stops when the change of the friction "
-                        "multipliers mu (|mu_i| <= 1) is at most this: the "
-                        "largest change of one mu_i (`Uzawa stopping test = "
-                        "absolute') or ||mu^{k+1} - mu^k|| / max(1, ||mu^k||) "
-                        "(relative) [-].");
-      prm.declare_entry("Uzawa stopping test",
-                        "absolute",
-                        dealii::Patterns::Selection("absolute|relative"),
-                        "How `Uzawa tolerance' measures the change of mu: "
-                        "absolute (max_i |mu_i^{k+1} - mu_i^k|) or relative "
-                        "(||mu^{k+1} - mu^k|| / max(1, ||mu^k||), the "
-                        "report's relative step test dd of subroutine CG "
-                        "applied to mu).");
+                        "Uzawa stops when the largest change of a friction "
+                        "multiplier mu_i (|mu_i| <= 1) is at most this [-].");
       prm.declare_entry("Uzawa maximum iterations",
                         "20000",
                         dealii::Patterns::Integer(1),
@@ -134,19 +97,15 @@ namespace dualcontact
       prm.enter_subsection("Primal solver");
       preconditioner       = prm.get("Preconditioner");
       version              = prm.get("Version");
-      storage              = prm.get("Stiffness storage");
       omega                = prm.get_double("SSOR omega");
       cgc_tolerance        = prm.get_double("CGC tolerance");
       cgc_max_iterations   = prm.get_integer("CGC maximum iterations");
       cgc_loose_tolerance  = prm.get_double("CGC loose tolerance");
       cgc_loose_iterations = prm.get_integer("CGC loose iterations");
       cgc_release          = prm.get("CGC release");
-      cgc_stopping         = prm.get("CGC stopping test");
-      friction_multipliers = prm.get("Friction multipliers");
       uzawa_step_factor    = prm.get_double("Uzawa step factor");
       uzawa_step           = prm.get_double("Uzawa step");
       uzawa_tolerance      = prm.get_double("Uzawa tolerance");
-      uzawa_stopping       = prm.get("Uzawa stopping test");
       uzawa_max_iterations = prm.get_integer("Uzawa maximum iterations");
       prm.leave_subsection();
       const std::string where = "' in `subsection Primal solver').";

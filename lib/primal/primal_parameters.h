@@ -22,9 +22,6 @@ namespace dualcontact
       /** none | diagonal | ssor | ic | icd | cholesky (report: SPARSE,
        * P-DIAG, P-SOR, P-ILL, P-ILLD, P-LL). */
       std::string preconditioner = "none";
-      /** sparse | skyline: the storage of C in the CG products (remark
-       * 5.1; the report's SPARSE and SKY-LINE rows). */
-      std::string storage = "sparse";
       /** pcg1 (section 8: CG in y = E'x) | pcg2 (section 9). */
       std::string version = "pcg2";
       /** SSOR relaxation omega in (0, 2). */
@@ -42,14 +39,6 @@ namespace dualcontact
       /** Which constraints leave the facet at a negative multiplier:
        * one | all negative | automatic (see qp::CGC). */
       std::string cgc_release = "automatic";
-      /** absolute (criterion <= tolerance ||b||) | relative (the report's
-       * remark 7.2 and subroutine CG: see qp::CGC::Stopping). */
-      std::string cgc_stopping = "absolute";
-
-      /** per node (one multiplier per frictional contact node, psi_i = g
-       * w_i) | per edge (the report's Lambda_h, eq. 4.4: one per slave
-       * edge, piecewise constant, psi_e = g |e|; 2D, Q1, Tresca). */
-      std::string friction_multipliers = "per node";
 
       /** Uzawa step rho = step factor / ||G K^{-1} G'|| (the Lipschitz
        * constant of the gradient of the dual function in mu; converges for
@@ -57,12 +46,8 @@ namespace dualcontact
       double uzawa_step_factor = 1.;
       /** Absolute Uzawa step rho [1/J, 1/(J/m) in 2D]; 0: use the factor. */
       double uzawa_step = 0.;
-      /** Stop when the change of mu is at most this: max_i |mu_i^{k+1} -
-       * mu_i^k| (absolute) or ||mu^{k+1} - mu^k|| / max(1, ||mu^k||)
-       * (relative, the report's test dd of subroutine CG applied to mu). */
+      /** Stop when max_i |mu_i^{k+1} - mu_i^k| <= this. */
       double uzawa_tolerance = 1e-9;
-      /** absolute | relative (see `Uzawa tolerance'). */
-      std::string uzawa_stopping = "absolute";
       /** Limit on the Uzawa iterations (per Tresca problem). */
       unsigned int uzawa_max_iterations = 20000;
 

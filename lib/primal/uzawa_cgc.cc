@@ -10,7 +10,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <map>
 #include <sstream>
 
 namespace dualcontact
@@ -233,23 +232,7 @@ namespace dualcontact
           frictional_index_[i] = frictional_nodes_.size();
           frictional_nodes_.push_back(i);
         }
-      AssertThrow(parameters.friction_multipliers == "per node" ||
-                    parameters.friction_multipliers == "per edge",
-                  dealii::ExcMessage("primal solver: Friction multipliers "
-                                     "must be `per node' or `per edge', got "
-                                     "`" +
-                                     parameters.friction_multipliers + "'"));
-      if (parameters.friction_multipliers == "per edge")
-        find_friction_edges();
-      else
-        for (unsigned int j = 0; j < frictional_nodes_.size(); ++j)
-        {
-          const auto &node = contact.nodes()[frictional_nodes_[j]];
-          supports_.push_back({{j, 1.}});
-          support_pair_.push_back(node.pair);
-          support_size_.push_back(node.weight);
-        }
-      psi_.reinit((dim - 1) * supports_.size());
+      psi_.reinit((dim - 1) * frictional_nodes_.size());
       mu_.reinit(psi_.size());
       u_.reinit(n);
 
@@ -257,13 +240,6 @@ namespace dualcontact
                   dealii::ExcMessage("primal solver: Version must be pcg1 "
                                      "or pcg2, got `" +
                                      parameters.version + "'"));
-      AssertThrow(parameters.storage == "sparse" ||
-                    parameters.storage == "skyline",
-                  dealii::ExcMessage("primal solver: Stiffness storage must "
-                                     "be sparse or skyline, got `" +
-                                     parameters.storage + "'"));
-      if (parameters.storage == "skyline")
-        skyline_ = std::make_unique<SkylineMatrix>(K_);
       preconditioner_ =
         Preconditioner::create(parameters.preconditioner, parameters.omega);
       pcg1_ = preconditioner_ != nullptr && parameters.version == "pcg1";
@@ -272,17 +248,6 @@ namespace dualcontact
 
     template <int dim>
     UzawaCGC<dim>::~UzawaCGC() = default;
-
-
-    template <int dim>
-    void
-    UzawaCGC<dim>::stiffness_vmult(VectorType &dst, const VectorType &src) const
-    {
-      if (skyline_)
-        skyline_->vmult(dst, src);
-      else
-        K_.vmult(dst, src);
-    }
 
 
     template <int dim>
@@ -295,66 +260,11 @@ namespace dualcontact
 
     template <int dim>
     void
-    UzawaCGC<dim>::find_friction_edges()
-    {
-      AssertThrow(dim == 2,
-                  dealii::ExcMessage("primal solver: `Friction multipliers "
-                                     "= per edge' is implemented in 2D only "
-                                     "(the report's setting)"));
-      // contact node of every (body, dof of the x component)
-      std::map<std::pair<unsigned int, dealii::types::global_dof_index>,
-               unsigned int>
-        node_of;
-      for (unsigned int j = 0; j < frictional_nodes_.size(); ++j)
-      {
-        const auto &node = contact_.nodes()[frictional_nodes_[j]];
-        AssertThrow(!contact_.pairs()[node.pair].friction.is_coulomb(),
-                    dealii::ExcMessage(
-                      "primal solver: `Friction multipliers = per edge' "
-                      "needs given (Tresca) friction; pair `" +
-                      contact_.pairs()[node.pair].name + "' is Coulomb"));
-        node_of[{node.body, node.dofs[0]}] = j;
-      }
-      for (unsigned int p = 0; p < contact_.pairs().size(); ++p)
-      {
-        const auto &pair = contact_.pairs()[p];
-        if (!pair.friction.has_friction())
-          continue;
-        const auto &body = *bodies_[pair.slave_body];
-        AssertThrow(body.fe().degree == 1,
-                    dealii::ExcMessage("primal solver: `Friction multipliers "
-                                       "= per edge' needs Q1 elements"));
-        for (const auto &cell : body.dof_handler().active_cell_iterators())
-          for (const auto &face : cell->face_iterators())
-          {
-            if (!face->at_boundary() ||
-                face->boundary_id() != pair.slave_boundary)
-              continue;
-            const auto a =
-              node_of.find({pair.slave_body, face->vertex_dof_index(0, 0)});
-            const auto b =
-              node_of.find({pair.slave_body, face->vertex_dof_index(1, 0)});
-            // an edge whose nodes are both contact nodes of this pair
-            // (a node beyond the search distance has no constraint)
-            if (a == node_of.end() || b == node_of.end() ||
-                contact_.nodes()[frictional_nodes_[a->second]].pair != p ||
-                contact_.nodes()[frictional_nodes_[b->second]].pair != p)
-              continue;
-            supports_.push_back({{a->second, 0.5}, {b->second, 0.5}});
-            support_pair_.push_back(p);
-            support_size_.push_back(face->vertex(0).distance(face->vertex(1)));
-          }
-      }
-    }
-
-
-    template <int dim>
-    void
     UzawaCGC<dim>::tangential_slip(const VectorType &u, VectorType &dst) const
     {
       const auto &BT = contact_.tangential_matrix();
       const auto &oT = contact_.tangential_offset();
-      VectorType  nodal((dim - 1) * frictional_nodes_.size());
+      dst.reinit(psi_.size());
       for (unsigned int j = 0; j < frictional_nodes_.size(); ++j)
         for (unsigned int k = 0; k + 1 < dim; ++k)
         {
@@ -362,13 +272,8 @@ namespace dualcontact
           double             sum = oT(row);
           for (auto it = BT.begin(row); it != BT.end(row); ++it)
             sum += it->value() * u(it->column());
-          nodal((dim - 1) * j + k) = sum;
+          dst((dim - 1) * j + k) = sum;
         }
-      dst.reinit(psi_.size());
-      for (unsigned int m = 0; m < supports_.size(); ++m)
-        for (const auto &[j, c] : supports_[m])
-          for (unsigned int k = 0; k + 1 < dim; ++k)
-            dst((dim - 1) * m + k) += c * nodal((dim - 1) * j + k);
     }
 
 
@@ -377,17 +282,12 @@ namespace dualcontact
     UzawaCGC<dim>::add_tangential_transpose(const VectorType &w,
                                             VectorType       &dst) const
     {
-      VectorType nodal((dim - 1) * frictional_nodes_.size());
-      for (unsigned int m = 0; m < supports_.size(); ++m)
-        for (const auto &[j, c] : supports_[m])
-          for (unsigned int k = 0; k + 1 < dim; ++k)
-            nodal((dim - 1) * j + k) += c * w((dim - 1) * m + k);
       const auto &BT = contact_.tangential_matrix();
       for (unsigned int j = 0; j < frictional_nodes_.size(); ++j)
         for (unsigned int k = 0; k + 1 < dim; ++k)
         {
           const unsigned int row = (dim - 1) * frictional_nodes_[j] + k;
-          const double       wk  = nodal((dim - 1) * j + k);
+          const double       wk  = w((dim - 1) * j + k);
           for (auto it = BT.begin(row); it != BT.end(row); ++it)
             dst(it->column()) += it->value() * wk;
         }
@@ -398,20 +298,19 @@ namespace dualcontact
     void
     UzawaCGC<dim>::update_slip_bounds(const VectorType *lambda_N)
     {
-      for (unsigned int m = 0; m < supports_.size(); ++m)
+      for (unsigned int j = 0; j < frictional_nodes_.size(); ++j)
       {
-        const contact::FrictionLaw &law =
-          contact_.pairs()[support_pair_[m]].friction;
-        const double value[2] = {law.first,
+        const unsigned int          node = frictional_nodes_[j];
+        const auto                 &n    = contact_.nodes()[node];
+        const contact::FrictionLaw &law  = contact_.pairs()[n.pair].friction;
+        const double                value[2] = {law.first,
                                  law.is_orthotropic() ? law.second : law.first};
-        // Coulomb multipliers are per node (checked in the constructor)
-        const unsigned int node = frictional_nodes_[supports_[m][0].first];
         for (unsigned int k = 0; k + 1 < dim; ++k)
-          psi_((dim - 1) * m + k) =
+          psi_((dim - 1) * j + k) =
             law.is_coulomb() ? (lambda_N != nullptr ?
                                   value[k] * std::max(0., (*lambda_N)(node)) :
                                   0.) :
-                               value[k] * support_size_[m];
+                               value[k] * n.weight;
       }
     }
 
@@ -430,9 +329,7 @@ namespace dualcontact
         }
         inverse = cholesky_.get();
       }
-      VectorType       v(psi_.size()), Mv(psi_.size()), w(K_.m()), z(K_.m());
-      const VectorType zero(K_.m());
-      VectorType       offset_slip;
+      VectorType v(psi_.size()), Mv(psi_.size()), w(K_.m()), z(K_.m());
       for (unsigned int i = 0; i < v.size(); ++i)
         v(i) = 1. + 0.1 * std::sin(1. + i);
       v /= v.l2_norm();
@@ -445,11 +342,16 @@ namespace dualcontact
         w = 0.;
         add_tangential_transpose(pv, w);
         inverse->apply_inverse(z, w);
-        // psi M B_T z: the slip of z without the offset o_T
-        tangential_slip(z, Mv);
-        tangential_slip(zero, offset_slip);
-        Mv -= offset_slip;
-        Mv.scale(psi_);
+        const auto &BT = contact_.tangential_matrix();
+        for (unsigned int j = 0; j < frictional_nodes_.size(); ++j)
+          for (unsigned int k = 0; k + 1 < dim; ++k)
+          {
+            const unsigned int row = (dim - 1) * frictional_nodes_[j] + k;
+            double             sum = 0.;
+            for (auto e = BT.begin(row); e != BT.end(row); ++e)
+              sum += e->value() * z(e->column());
+            Mv((dim - 1) * j + k) = psi_((dim - 1) * j + k) * sum;
+          }
         const double lambda_new = v * Mv;
         const double norm       = Mv.l2_norm();
         if (norm == 0.)
@@ -462,19 +364,6 @@ namespace dualcontact
       }
       return lambda;
     }
-
-
-    namespace
-    {
-      /// with the report's relative tests CGC's own test decides (its
-      /// criterion is not measured against tolerance ||b||)
-      bool
-      cgc_converged(const qp::SolverStatistics &stats, const bool relative)
-      {
-        return relative ? stats.reason == qp::ConvergenceReason::converged :
-                          stats.converged();
-      }
-    } // namespace
 
 
     template <int dim>
@@ -497,9 +386,6 @@ namespace dualcontact
       data.loose_tolerance = parameters_.cgc_loose_tolerance;
       data.n_loose         = parameters_.cgc_loose_iterations;
       data.release         = parse_release(parameters_.cgc_release);
-      data.stopping        = parameters_.cgc_stopping == "relative" ?
-                               qp::CGC<VectorType>::Stopping::relative :
-                               qp::CGC<VectorType>::Stopping::absolute;
       qp::CGC<VectorType> cgc(data);
 
       qp::SolverStatistics stats;
@@ -514,7 +400,7 @@ namespace dualcontact
         problem.hessian = [&](VectorType &dst, const VectorType &src)
         {
           E.apply_E_inverse_transpose(t, src);
-          stiffness_vmult(Kt, t);
+          K_.vmult(Kt, t);
           E.apply_E_inverse(dst, Kt);
         };
         E.apply_E_inverse(problem.b, b);
@@ -533,7 +419,7 @@ namespace dualcontact
       {
         qp::CGCProblem<VectorType> problem;
         problem.hessian = [this](VectorType &dst, const VectorType &src)
-        { stiffness_vmult(dst, src); };
+        { K_.vmult(dst, src); };
         problem.b           = b;
         problem.constraints = rows_;
         if (preconditioner_)
@@ -576,7 +462,7 @@ namespace dualcontact
       if (!friction)
       {
         const auto stats = solve_qp(result);
-        if (!cgc_converged(stats, parameters_.cgc_stopping == "relative"))
+        if (!stats.converged())
         {
           result.reason = "CGC did not converge (" +
                           qp::to_string(stats.reason) + ", criterion " +
@@ -597,7 +483,7 @@ namespace dualcontact
       for (unsigned int k = 0; k < parameters_.uzawa_max_iterations; ++k)
       {
         const auto stats = solve_qp(result);
-        if (!cgc_converged(stats, parameters_.cgc_stopping == "relative"))
+        if (!stats.converged())
         {
           result.reason =
             "CGC did not converge in Uzawa iteration " + std::to_string(k + 1) +
@@ -610,7 +496,7 @@ namespace dualcontact
         // every node (|mu_i| <= 1 in 2D)
         tangential_slip(u_, slip);
         double change = 0.;
-        for (unsigned int j = 0; j < supports_.size(); ++j)
+        for (unsigned int j = 0; j < frictional_nodes_.size(); ++j)
         {
           double norm_sq = 0.;
           for (unsigned int c = 0; c + 1 < dim; ++c)
@@ -626,12 +512,6 @@ namespace dualcontact
             mu_new(r) *= scale;
             change = std::max(change, std::abs(mu_new(r) - mu_(r)));
           }
-        }
-        if (parameters_.uzawa_stopping == "relative")
-        {
-          VectorType difference(mu_new);
-          difference -= mu_;
-          change = difference.l2_norm() / std::max(1., mu_.l2_norm());
         }
         result.mu_changes.push_back(change);
         // (u, mu) is the answer when mu is a fixed point of the update
@@ -658,18 +538,10 @@ namespace dualcontact
         preconditioner_ ? preconditioner_->name() : std::string("none");
       result.version       = parameters_.version;
       result.n_constraints = rows_->n_rows();
-      result.storage       = parameters_.storage;
-      for (unsigned int i = 0; i < rows_->n_rows(); ++i)
-        result.n_row_entries += rows_->row_length(i);
-      for (unsigned int i = 0; i < K_.m(); ++i)
-        for (auto it = K_.begin(i); it != K_.end(i); ++it)
-          if (it->column() <= i && it->value() != 0.)
-            ++result.n_sparse_stored;
-      result.n_skyline_stored = skyline_ ? skyline_->n_stored() : 0;
-      result.n_unknowns       = K_.m();
-      started_                = false;
-      u_                      = 0.;
-      mu_                     = 0.;
+      result.n_unknowns    = K_.m();
+      started_             = false;
+      u_                   = 0.;
+      mu_                  = 0.;
 
       if (preconditioner_)
       {
@@ -774,50 +646,21 @@ namespace dualcontact
           d(i) = u_(contact_.body_offset(b) + i);
         bodies_[b]->distribute(d);
       }
-      const unsigned int n_frictional = frictional_nodes_.size();
-      result.lambda.reinit(contact_.n_nodes() + (dim - 1) * n_frictional);
+      result.lambda.reinit(contact_.n_nodes() + psi_.size());
       const VectorType l = lambda_N();
       for (unsigned int i = 0; i < contact_.n_nodes(); ++i)
         result.lambda(i) = l(i);
-      // nodal tangential forces M' psi mu (per node: psi_j mu_j)
-      for (unsigned int m = 0; m < supports_.size(); ++m)
-        for (const auto &[j, c] : supports_[m])
-          for (unsigned int k = 0; k + 1 < dim; ++k)
-            result.lambda(contact_.n_nodes() + (dim - 1) * j + k) +=
-              c * psi_((dim - 1) * m + k) * mu_((dim - 1) * m + k);
-      // nodal slip bounds: per node psi; per edge g w_j, the bound of the
-      // nodal force when both edges of the node slip the same way
-      result.slip_bounds_first.assign(n_frictional, 0.);
-      result.slip_bounds_second.assign(n_frictional, 0.);
-      const bool per_node = parameters_.friction_multipliers == "per node";
-      for (unsigned int j = 0; j < n_frictional; ++j)
+      for (unsigned int r = 0; r < psi_.size(); ++r)
+        result.lambda(contact_.n_nodes() + r) = psi_(r) * mu_(r);
+      result.slip_bounds_first.assign(frictional_nodes_.size(), 0.);
+      result.slip_bounds_second.assign(frictional_nodes_.size(), 0.);
+      for (unsigned int j = 0; j < frictional_nodes_.size(); ++j)
       {
-        const auto &node = contact_.nodes()[frictional_nodes_[j]];
-        const contact::FrictionLaw &law = contact_.pairs()[node.pair].friction;
-        result.slip_bounds_first[j] =
-          per_node ? psi_((dim - 1) * j) : law.first * node.weight;
-        result.slip_bounds_second[j] =
-          per_node ?
-            psi_((dim - 1) * j + dim - 2) :
-            (law.is_orthotropic() ? law.second : law.first) * node.weight;
+        result.slip_bounds_first[j]  = psi_((dim - 1) * j);
+        result.slip_bounds_second[j] = psi_((dim - 1) * j + dim - 2);
       }
-      result.n_friction_multipliers = supports_.size();
-      result.total_time             = timer.wall_time();
+      result.total_time = timer.wall_time();
       return result;
-    }
-
-
-    template <int dim>
-    double
-    UzawaCGC<dim>::Result::contraction() const
-    {
-      // geometric mean of the ratios of successive changes over the last
-      // (up to) 20 iterations: the asymptotic linear rate of Uzawa
-      const std::size_t n = mu_changes.size();
-      const std::size_t k = std::min<std::size_t>(20, n > 0 ? n - 1 : 0);
-      if (k == 0 || !(mu_changes[n - 1 - k] > 0.) || !(mu_changes[n - 1] > 0.))
-        return 0.;
-      return std::pow(mu_changes[n - 1] / mu_changes[n - 1 - k], 1. / k);
     }
 
 
@@ -838,17 +681,11 @@ namespace dualcontact
         {"reason", reason},
         {"n_constraints", n_constraints},
         {"n_unknowns", n_unknowns},
-        {"storage", storage},
-        {"n_row_entries", n_row_entries},
-        {"n_sparse_stored", n_sparse_stored},
-        {"n_skyline_stored", n_skyline_stored},
         {"uzawa_iterations", uzawa_iterations},
         {"tresca_problems", n_tresca},
-        {"friction_multipliers", n_friction_multipliers},
         {"rho", rho},
         {"norm_G_Kinv_Gt", lipschitz},
         {"last_mu_change", mu_changes.empty() ? 0. : mu_changes.back()},
-        {"uzawa_contraction", contraction()},
         {"cgc_solves", n_cgc_solves},
         {"inner_iterations", total_inner_iterations},
         {"outer_iterations", total_outer_iterations},

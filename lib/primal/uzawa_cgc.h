@@ -9,7 +9,6 @@
 #include <fem/elastic_body.h>
 #include <primal/preconditioner.h>
 #include <primal/primal_parameters.h>
-#include <primal/skyline_matrix.h>
 #include <qp/cgc.h>
 #include <qp/linear_inequalities.h>
 #include <qp/solver_statistics.h>
@@ -64,8 +63,6 @@ namespace dualcontact
         std::vector<VectorType> displacements;
         /** Multipliers in the dual layout [lambda_N; lambda_T]. */
         VectorType lambda;
-        /** Friction multipliers (per node or per edge) and their number. */
-        unsigned int n_friction_multipliers = 0;
         /** Nodal slip bounds psi [N; N/m in 2D] of the frictional nodes
          * (second: along the second tangent, 3D), as
          * contact::DualProblem::set_slip_bounds() takes them. */
@@ -105,25 +102,10 @@ namespace dualcontact
         std::string version;
         /** Diagonal shift of incomplete Cholesky (0: none needed). */
         double ic_shift = 0.;
-        /** Storage of C ("sparse" or "skyline") and its stored entries:
-         * the lower triangle's non-zeros (the report's LIC) and, with
-         * skyline storage, the profile (NWK). */
-        std::string storage;
-        std::size_t n_sparse_stored  = 0;
-        std::size_t n_skyline_stored = 0;
         /** Non-penetration rows (contact nodes with an unknown in their
          * row) and unknowns of the QP. */
         unsigned int n_constraints = 0;
-        /** Non-zeros of the non-penetration rows (the report's LJA). */
-        std::size_t  n_row_entries = 0;
         unsigned int n_unknowns    = 0;
-
-        /** The asymptotic rate of Uzawa: the geometric mean of
-         * mu_changes[k+1] / mu_changes[k] over the last 20 iterations (0
-         * with fewer than two iterations).  Uzawa needs about log(tolerance
-         * / first change) / log(rate) iterations. */
-        double
-        contraction() const;
 
         /** Everything above but the fields, as a JSON object (statistics.json
          * of the app, `contact/primal'). */
@@ -159,11 +141,10 @@ namespace dualcontact
       /** Set psi_ from the pairs' laws; Coulomb from @p lambda_N. */
       void
       update_slip_bounds(const VectorType *lambda_N);
-      /** dst = M (B_T,fric u + o_T): the slip of every multiplier's
-       * support ((dim - 1) entries per multiplier). */
+      /** dst = B_T,fric u + o_T (one entry per frictional row). */
       void
       tangential_slip(const VectorType &u, VectorType &dst) const;
-      /** dst += B_T,fric' M' w. */
+      /** dst += B_T,fric' w. */
       void
       add_tangential_transpose(const VectorType &w, VectorType &dst) const;
 
@@ -182,30 +163,13 @@ namespace dualcontact
       std::shared_ptr<qp::LinearInequalities> transformed_rows_;
       std::unique_ptr<Preconditioner>         preconditioner_;
       std::unique_ptr<Preconditioner>         cholesky_; ///< for rho
-      /** C in profile storage (`Stiffness storage = skyline'). */
-      std::unique_ptr<SkylineMatrix> skyline_;
-      /** dst = C src in the chosen storage. */
-      void
-           stiffness_vmult(VectorType &dst, const VectorType &src) const;
-      bool pcg1_ = false;
-
-      /** Find the slave edges of the frictional pairs (per edge). */
-      void
-      find_friction_edges();
+      bool                                    pcg1_ = false;
 
       std::vector<unsigned int> frictional_nodes_;
       std::vector<int>          frictional_index_;
-      /** The friction multipliers' supports: multiplier m acts on the
-       * tangential slips s_j (j a frictional node) as sum_j c_mj s_j; per
-       * node {(m, 1)}, per edge {(a, 1/2), (b, 1/2)} (the mean slip of the
-       * edge, so that psi_m = g |e| gives g int_e u_T ds). */
-      std::vector<std::vector<std::pair<unsigned int, double>>> supports_;
-      /** Per multiplier its frictional pair's law and size (w_j or |e|). */
-      std::vector<unsigned int> support_pair_;
-      std::vector<double>       support_size_;
-      /** psi per multiplier component ((dim - 1) per multiplier). */
+      /** psi per frictional row ((dim - 1) per frictional node). */
       VectorType psi_;
-      /** Friction multipliers mu, (dim - 1) per multiplier. */
+      /** Friction multipliers mu, (dim - 1) per frictional node. */
       VectorType mu_;
       /** Current displacements (condensed) and, for PCG-1, y = E'u. */
       VectorType u_, y_;

@@ -257,11 +257,9 @@ namespace dualcontact
          */
         CGExit
         cg(const std::vector<size_type> &J,
-           double                        tolerance,
-           const bool                    force_step,
-           const double                  relative_eps = 0.)
+           const double                  tolerance,
+           const bool                    force_step)
         {
-          zero_step_hit = false;
           std::fill(in_facet.begin(), in_facet.end(), 0);
           for (const auto j : J)
             in_facet[j] = 1;
@@ -271,14 +269,6 @@ namespace dualcontact
           {
             project(J, r, u, Pr);
             const double norm_Pr = Pr.l2_norm();
-            if (k == 0)
-            {
-              start_norm = norm_Pr;
-              // the report's relative test: the projected gradient
-              // against its value when this CG run started
-              if (relative_eps > 0.)
-                tolerance = relative_eps * std::max(1., norm_Pr);
-            }
             // after leaving a facet at least one step is taken, else a
             // loose tolerance could accept the larger facet at once and
             // the same constraint would be released again and again
@@ -349,7 +339,6 @@ namespace dualcontact
               }
             if (!blocking.empty())
             {
-              zero_step_hit = alpha_max == 0.;
               x.add(alpha_max, p);
               r.add(alpha_max, Cp);
               // put single-entry rows (bounds) exactly on the bound so
@@ -394,10 +383,6 @@ namespace dualcontact
         VectorType                    r, p, Cp, Pr, z, t;
         std::vector<char>             in_facet;
         bool                          orthogonal = false;
-        /// ||(I - P_J) r|| at the start of the last cg() run
-        double start_norm = -1.;
-        /// the last cg() run stopped at a constraint without moving
-        bool zero_step_hit = false;
       };
     } // namespace
 
@@ -542,19 +527,6 @@ namespace dualcontact
       const bool release_all =
         data.release == Release::all_negative ||
         (data.release == Release::automatic && run.orthogonal);
-      // lemma 7.2 needs orthogonal rows of the (transformed) problem;
-      // a preconditioned direction may violate it (the report: "slightly
-      // violated ... when the preconditioning is used"): if the CG run
-      // after releasing several constraints is stopped at once, without
-      // moving, by a constraint, the next release drops only the most
-      // negative multiplier (lemma 7.1), else the same facets would cycle
-      bool released_several = false, release_one_next = false;
-
-      const bool relative = data.stopping == Stopping::relative;
-      // relative tests: the projected gradient at the start of the last
-      // CG run and whether that run ended on the step test
-      double reference_norm   = -1.;
-      bool   ended_small_step = false;
 
       double                 best = std::numeric_limits<double>::infinity();
       unsigned int           best_iteration = 0;
@@ -575,27 +547,7 @@ namespace dualcontact
           stats.message = "the criterion became " + std::to_string(value);
           break;
         }
-        // relative tests (report, remark 7.2): is the facet solved at eps,
-        // which multipliers are negative
-        const auto facet_solved = [&](const double eps)
-        {
-          return ended_small_step ||
-                 (reference_norm >= 0. &&
-                  norm_Pr <= eps * std::max(1., reference_norm));
-        };
-        std::vector<char> negative(J.size(), 0);
-        bool              any_negative = false;
-        if (relative)
-        {
-          double u_max = 1.;
-          for (const double uk : u)
-            u_max = std::max(u_max, uk);
-          for (std::size_t k = 0; k < J.size(); ++k)
-            if (u[k] / u_max < -data.tolerance)
-              negative[k] = any_negative = true;
-        }
-        if (relative ? (facet_solved(data.tolerance) && !any_negative) :
-                       value <= absolute_tolerance)
+        if (value <= absolute_tolerance)
         {
           stats.reason = ConvergenceReason::converged;
           break;
@@ -622,15 +574,12 @@ namespace dualcontact
         }
         ++stats.n_outer;
 
-        const bool   loose_phase = !strict_phase && outer < data.n_loose;
-        double       tolerance   = loose_phase ? loose : strict;
-        const double relative_eps =
-          relative ? (loose_phase ? data.loose_tolerance : data.tolerance) : 0.;
+        double tolerance =
+          (!strict_phase && outer < data.n_loose) ? loose : strict;
         std::vector<size_type> facet = J;
-        if (relative ? facet_solved(relative_eps) : norm_Pr <= tolerance)
+        if (norm_Pr <= tolerance)
         {
-          if (relative ? any_negative :
-                         norm_negative > 0.5 * absolute_tolerance)
+          if (norm_negative > 0.5 * absolute_tolerance)
           {
             // leave the facet of the negative multiplier(s)
             std::vector<size_type> kept;
@@ -647,14 +596,11 @@ namespace dualcontact
             }
             for (std::size_t k = 0; k < J.size(); ++k)
             {
-              const bool release = (release_all && !release_one_next) ?
-                                     (relative ? negative[k] != 0 : u[k] < 0.) :
-                                     k == most_negative;
+              const bool release = release_all ? u[k] < 0. : k == most_negative;
               if (!release)
                 kept.push_back(J[k]);
             }
-            released_several = J.size() - kept.size() > 1;
-            facet            = kept;
+            facet = kept;
             ++stats.n_proportioning;
           }
           else
@@ -667,16 +613,7 @@ namespace dualcontact
         }
 
         const unsigned int steps_before = stats.iterations;
-        const auto         exit =
-          run.cg(facet,
-                 tolerance,
-                 facet.size() != J.size(),
-                 relative ? (strict_phase ? data.tolerance : relative_eps) :
-                            0.);
-        reference_norm   = run.start_norm;
-        ended_small_step = exit == Run<VectorType>::CGExit::small_step;
-        release_one_next = released_several && run.zero_step_hit;
-        released_several = false;
+        const auto  exit = run.cg(facet, tolerance, facet.size() != J.size());
         OuterRecord record;
         record.n_active         = J.size();
         record.n_facet          = facet.size();

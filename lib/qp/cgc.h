@@ -78,25 +78,6 @@ namespace dualcontact
         automatic
       };
 
-      /// How a facet problem counts as solved and a multiplier as negative.
-      enum class Stopping
-      {
-        /// the criterion against tolerance * ||b|| (dimensionless in b)
-        absolute,
-        /// the report's relative tests with eps = tolerance (remark 7.2,
-        /// subroutine CG): CG on a facet returns when ||(I - P_J) g|| <=
-        /// eps max(1, its value when CG started) or its step
-        /// ||x^{k+1} - x^k|| / max(1, ||x^k||) < step_tolerance (the dd
-        /// test; at eps it stops CG early where x is small in its units:
-        /// the bridge's displacements are 1e-2 m); a facet counts as
-        /// solved when its projected gradient is at most eps max(1, the
-        /// projected gradient at the start of the previous CG run) or that
-        /// run ended on the step test; u_j is negative when u_j / max(1,
-        /// max_m u_m) < -eps.  During the first n_loose outer iterations
-        /// eps = loose_tolerance (remark 7.3).
-        relative
-      };
-
       struct AdditionalData
       {
         /// stop when the criterion <= tolerance * ||b||
@@ -108,9 +89,8 @@ namespace dualcontact
         double       loose_tolerance = 1e-2;
         unsigned int n_loose         = 10;
         /// ... afterwards at strict_factor * tolerance * ||b||
-        double   strict_factor = 0.5;
-        Release  release       = Release::automatic;
-        Stopping stopping      = Stopping::absolute;
+        double  strict_factor = 0.5;
+        Release release       = Release::automatic;
         /// a constraint is active when its slack is at most
         /// active_tolerance * (|c_i| + sum_k |a_ik x_k|)
         double active_tolerance = 1e-12;
