@@ -418,7 +418,7 @@ namespace dualcontact
       matrix.reinit(sparsity);
       load.reinit(dofs.size());
 
-      CellScratch        scratch(mapping_, fe_);
+      CellScratch        scratch(mapping_, curved_mapping_, fe_);
       FullMatrix<double> cell_matrix;
       Vector<double>     cell_rhs;
       for (unsigned int c = 0; c < cells.size(); ++c)
