@@ -26,6 +26,7 @@
 #include <deal.II/numerics/vector_tools.h>
 
 #include <contact/contact_solver.h>
+#include <contact/dual_problem.h>
 #include <fem/cholmod_solver.h>
 
 #include <test_tools.h>

@@ -24,6 +24,7 @@
 #include <deal.II/base/mpi.h>
 
 #include <contact/contact_solver.h>
+#include <contact/dual_problem.h>
 #include <fem/cholmod_solver.h>
 
 #include "unit_box.h"

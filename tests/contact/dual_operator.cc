@@ -15,6 +15,7 @@
 #include <deal.II/base/function.h>
 
 #include <contact/contact_solver.h>
+#include <contact/dual_problem.h>
 #include <fem/cholmod_solver.h>
 #include <fem/umfpack_solver.h>
 

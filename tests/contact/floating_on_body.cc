@@ -14,6 +14,7 @@
 #include <deal.II/grid/grid_generator.h>
 
 #include <contact/contact_solver.h>
+#include <contact/dual_problem.h>
 #include <fem/cholmod_solver.h>
 
 #include <test_tools.h>

@@ -15,6 +15,7 @@
 #include <deal.II/grid/manifold_lib.h>
 
 #include <contact/contact_solver.h>
+#include <contact/dual_problem.h>
 #include <fem/cholmod_solver.h>
 
 #include <cmath>

@@ -12,6 +12,7 @@
 #include <deal.II/grid/grid_generator.h>
 
 #include <contact/contact_solver.h>
+#include <contact/dual_problem.h>
 #include <fclib/accuracy.h>
 #include <fclib/fclib_file.h>
 #include <fclib/local_solver.h>

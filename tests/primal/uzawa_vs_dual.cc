@@ -16,6 +16,7 @@
 #include <deal.II/base/function.h>
 
 #include <contact/contact_solver.h>
+#include <contact/dual_problem.h>
 #include <contact/unit_box.h>
 #include <fem/cholmod_solver.h>
 #include <primal/uzawa_cgc.h>
