@@ -163,7 +163,7 @@ namespace dualcontact
       void
       check_size_estimate(const double memory_limit) const;
 
-      unsigned int                            fe_degree_ = 1;
+      unsigned int fe_degree_ = 1;
       /** Mapping degree of tractions on curved faces (ElasticBody). */
       unsigned int                            curved_load_mapping_degree_ = 4;
       std::vector<BodyParameters<dim>>        body_parameters_;

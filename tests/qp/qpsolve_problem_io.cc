@@ -205,7 +205,9 @@ main()
         "3 3 4\n1 1 2\n2 1 -1\n2 2 2\n3 3 1\n");
   write(dir + "/bad11.json", R"({"hessian": "lower.mtx", "rhs": "b.txt"})");
   expect_error(dir + "/bad11.json",
-               {"lower.mtx", "not symmetric", "A(2, 1) = -1 but A(1, 2) = 0",
+               {"lower.mtx",
+                "not symmetric",
+                "A(2, 1) = -1 but A(1, 2) = 0",
                 "'symmetric' in its header"},
                "lower triangle under a general header");
   // a size line claiming 1e15 entries is refused before reserving memory
@@ -214,7 +216,8 @@ main()
         "3 3 1000000000000000\n1 1 2\n");
   write(dir + "/bad12.json", R"({"hessian": "claim.mtx", "rhs": "b.txt"})");
   expect_error(dir + "/bad12.json",
-               {"claim.mtx", "announces 1000000000000000 entries",
+               {"claim.mtx",
+                "announces 1000000000000000 entries",
                 "hold at most"},
                "a huge entry count is checked against the file");
   // a cone count whose product with 3 wraps around in 32 bits
