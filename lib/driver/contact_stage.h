@@ -7,6 +7,7 @@
 #include <contact/contact_discretization.h>
 #include <contact/contact_solver.h>
 #include <contact/dual_problem.h>
+#include <driver/run_log.h>
 #include <driver/scene.h>
 #include <io/contact_surface_writer.h>
 #include <primal/primal_parameters.h>
@@ -88,6 +89,16 @@ namespace dualcontact
       void
       reset();
 
+      /**
+       * Show progress through @p log (null: none): the factorizations'
+       * monitors, the QP solvers' progress hook, the Coulomb iterates.
+       */
+      void
+      set_run_log(RunLog *log)
+      {
+        run_log_ = log;
+      }
+
       const qp::SolverParameters &
       qp_parameters() const
       {
@@ -159,6 +170,7 @@ namespace dualcontact
 
       dealii::ParameterHandler      &prm_;
       Scene<dim>                    &scene_;
+      RunLog                        *run_log_ = nullptr;
       qp::SolverParameters           qp_parameters_;
       qp::SMALSEMParameters          smalse_parameters_;
       contact::CoulombParameters     coulomb_parameters_;

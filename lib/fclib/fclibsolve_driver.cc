@@ -81,6 +81,10 @@ namespace dualcontact
              "Options (they override a .prm):\n"
              "  --prm FILE.prm        parameters: Model, subsections `QP "
              "solver' and `Coulomb'\n"
+             "  --set \"Subsection/Entry=value\"  one parameter of them, "
+             "after the .prm (repeatable;\n"
+             "                        e.g. --set \"Coulomb/Tolerance=1e-6\", "
+             "--set \"QP solver/Solver=mpgp-bb\")\n"
              "  --model coulomb|cone  Coulomb fixed point over Tresca QPs "
              "(default) or the cone QP\n"
              "                        (a convex relaxation, 3D only)\n"
@@ -120,11 +124,12 @@ namespace dualcontact
     {
       std::string file, prm_file, json_file, write_file, model_name, solver,
         first_name, storage_name;
-      std::string prox;
-      bool        fixed_rho = false, exact_qps = false;
-      double      tol = -1, coulomb_tol = -1;
-      long        max_iter = -1, coulomb_max_iter = -1;
-      bool        info_only = false;
+      std::string              prox;
+      bool                     fixed_rho = false, exact_qps = false;
+      double                   tol = -1, coulomb_tol = -1;
+      long                     max_iter = -1, coulomb_max_iter = -1;
+      bool                     info_only = false;
+      std::vector<std::string> settings;
       try
       {
         for (std::size_t i = 0; i < args.size(); ++i)
@@ -143,6 +148,8 @@ namespace dualcontact
           }
           else if (a == "--prm")
             prm_file = value();
+          else if (a == "--set")
+            settings.push_back(value());
           else if (a == "--model")
             model_name = value();
           else if (a == "--prox")
@@ -201,6 +208,10 @@ namespace dualcontact
         declare(prm);
         if (!prm_file.empty())
           io::parse_parameter_file(prm, prm_file, false);
+        std::vector<io::ParameterOverride> overrides;
+        for (const auto &setting : settings)
+          overrides.push_back(io::parse_parameter_override(setting));
+        io::apply_parameter_overrides(prm, overrides, false);
         qp::SolverParameters qp_parameters;
         qp_parameters.parse_parameters(prm);
         contact::CoulombParameters coulomb;
