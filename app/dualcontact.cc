@@ -107,9 +107,11 @@ parse_command_line(const std::vector<std::string> &arguments)
     else if (argument == "--validate")
       command_line.validate = true;
     else if (!argument.empty() && argument[0] == '-')
+    {
       AssertThrow(false,
                   dealii::ExcMessage("Unknown option `" + argument +
                                      "' (see `dualcontact --help')."));
+    }
     else
     {
       AssertThrow(command_line.parameter_file.empty(),
