@@ -10,6 +10,7 @@
 #include <driver/scene_parameters.h>
 #include <driver/simulation.h>
 #include <io/output_folder.h>
+#include <io/console_log.h>
 #include <io/parameter_file.h>
 
 #include <iostream>
@@ -23,7 +24,8 @@ namespace
   print_help(std::ostream &out)
   {
     out
-      << "Usage: dualcontact FILE.prm\n"
+      << "Usage: dualcontact FILE.prm [--set \"Subsection/Entry=value\"]... "
+         "[--validate]\n"
          "       dualcontact --print-parameters\n"
          "       dualcontact --help | --version\n"
          "\n"
@@ -33,6 +35,16 @@ namespace
          "`subsection ... end' blocks) and writes the results into the folder\n"
          "named by `set Output folder' in `subsection Output'.\n"
          "\n"
+         "  --set \"Subsection/Entry=value\"\n"
+         "                      set a parameter after reading FILE.prm, as a\n"
+         "                      `set Entry = value' line at its end would\n"
+         "                      (nested subsections separated by `/', e.g.\n"
+         "                      --set \"Body 1/Mesh/Global refinements=3\");\n"
+         "                      repeatable; checked like the file's values\n"
+         "  --validate          check the input (parameters, files, meshes,\n"
+         "                      boundary and material ids) and print the\n"
+         "                      scene: bodies, cells, dofs, contact pairs,\n"
+         "                      solvers; computes and writes nothing\n"
          "  --print-parameters  print every parameter with its default, its\n"
          "                      allowed values and its documentation, as a\n"
          "                      parameter file (one body; `Body 2', ... work\n"
@@ -61,42 +73,106 @@ namespace
 } // namespace
 
 
+/** What the command line asks for. */
+struct CommandLine
+{
+  std::string                                     parameter_file;
+  std::vector<dualcontact::io::ParameterOverride> overrides;
+  bool                                            validate = false;
+};
+
+
+/**
+ * FILE.prm, --set "A/B=v" (or --set=A/B=v) and --validate in any order;
+ * throws an ExcMessage for anything else.
+ */
+CommandLine
+parse_command_line(const std::vector<std::string> &arguments)
+{
+  CommandLine command_line;
+  for (unsigned int k = 0; k < arguments.size(); ++k)
+  {
+    const std::string &argument = arguments[k];
+    if (argument == "--set")
+    {
+      AssertThrow(
+        k + 1 < arguments.size(),
+        dealii::ExcMessage(
+          "`--set' needs a value: --set \"Subsection/Entry=value\"."));
+      command_line.overrides.push_back(
+        dualcontact::io::parse_parameter_override(arguments[++k]));
+    }
+    else if (argument.rfind("--set=", 0) == 0)
+      command_line.overrides.push_back(
+        dualcontact::io::parse_parameter_override(argument.substr(6)));
+    else if (argument == "--validate")
+      command_line.validate = true;
+    else if (!argument.empty() && argument[0] == '-')
+    {
+      AssertThrow(false,
+                  dealii::ExcMessage("Unknown option `" + argument +
+                                     "' (see `dualcontact --help')."));
+    }
+    else
+    {
+      AssertThrow(command_line.parameter_file.empty(),
+                  dealii::ExcMessage("Two parameter files given, `" +
+                                     command_line.parameter_file + "' and `" +
+                                     argument +
+                                     "': dualcontact computes one scene."));
+      command_line.parameter_file = argument;
+    }
+  }
+  AssertThrow(!command_line.parameter_file.empty(),
+              dealii::ExcMessage("No parameter file given (see `dualcontact "
+                                 "--help')."));
+  return command_line;
+}
+
+
 int
 main(int argc, char *argv[])
 {
   // OpenBLAS' fast kernels on CPUs it does not recognise
   (void)dualcontact::util::blas_kernel_choice();
   using namespace dualcontact;
+  bool is_rank_0 = true;
   try
   {
     dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
-    const bool                               is_rank_0 =
-      dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0;
-    dealii::ConditionalOStream console(std::cout, is_rank_0);
+    is_rank_0 = dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0;
+    // every process has its own BLAS: one thread each, so that N processes
+    // do not run N times as many threads as there are cores
+    if (dealii::Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD) > 1)
+      util::set_blas_threads(1);
+    // what the console shows is kept for log.txt
+    io::ConsoleLog             log(std::cout);
+    dealii::ConditionalOStream console(log.stream(), is_rank_0);
 
     const std::vector<std::string> arguments(argv + 1, argv + argc);
-    if (arguments.size() != 1)
+    if (arguments.empty())
     {
       if (is_rank_0)
       {
-        std::cerr << "dualcontact: expected one argument.\n\n";
+        std::cerr << "dualcontact: expected a parameter file.\n\n";
         print_help(std::cerr);
       }
       return 1;
     }
     const std::string &argument = arguments.front();
-    if (argument == "--help" || argument == "-h")
+    if (arguments.size() == 1 && (argument == "--help" || argument == "-h"))
     {
       if (is_rank_0)
         print_help(std::cout);
       return 0;
     }
-    if (argument == "--version")
+    if (arguments.size() == 1 && argument == "--version")
     {
-      console << "dualcontact " << DUALCONTACT_VERSION << std::endl;
+      if (is_rank_0)
+        std::cout << "dualcontact " << DUALCONTACT_VERSION << std::endl;
       return 0;
     }
-    if (argument == "--print-parameters")
+    if (arguments.size() == 1 && argument == "--print-parameters")
     {
       dealii::ParameterHandler prm;
       driver::SceneLayout      layout;
@@ -114,37 +190,45 @@ main(int argc, char *argv[])
       }
       return 0;
     }
-    if (!argument.empty() && argument[0] == '-')
-    {
-      if (is_rank_0)
-      {
-        std::cerr << "dualcontact: unknown option `" << argument << "'.\n\n";
-        print_help(std::cerr);
-      }
-      return 1;
-    }
 
-    console << "dualcontact " << DUALCONTACT_VERSION << ": " << argument
+    const CommandLine  command_line = parse_command_line(arguments);
+    const std::string &file         = command_line.parameter_file;
+    console << "dualcontact " << DUALCONTACT_VERSION << ": " << file
             << std::endl;
     io::OutputFolder::install_signal_handlers();
+    for (const auto &entry : command_line.overrides)
+      console << "  --set " << entry.text << std::endl;
     driver::SceneLayout layout;
-    const auto          prm = driver::SceneParameters::read(argument, layout);
+    const auto          prm =
+      driver::SceneParameters::read(file, layout, command_line.overrides);
+    if (command_line.validate)
+    {
+      if (layout.dimension == 2)
+        driver::Simulation<2>(*prm, file, console, &log).validate();
+      else
+        driver::Simulation<3>(*prm, file, console, &log).validate();
+      return 0;
+    }
     // exit code 2: the contact solver did not converge (output written)
     const bool converged =
       layout.dimension == 2 ?
-        driver::Simulation<2>(*prm, argument, console).run() :
-        driver::Simulation<3>(*prm, argument, console).run();
+        driver::Simulation<2>(*prm, file, console, &log).run() :
+        driver::Simulation<3>(*prm, file, console, &log).run();
     if (!converged)
       return 2;
   }
+  // Every process reads the same input and runs the same phases, so every
+  // process meets the same error: process 0 says it, all exit with 1.
   catch (const std::exception &exception)
   {
-    std::cerr << "\nError: " << message_of(exception) << std::endl;
+    if (is_rank_0)
+      std::cerr << "\nError: " << message_of(exception) << std::endl;
     return 1;
   }
   catch (...)
   {
-    std::cerr << "\nError: unknown exception." << std::endl;
+    if (is_rank_0)
+      std::cerr << "\nError: unknown exception." << std::endl;
     return 1;
   }
   return 0;

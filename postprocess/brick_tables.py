@@ -66,7 +66,8 @@ def active_sets(case_dir):
     x and t_2 along y (the brick's tangents).  The percentages refer to all
     contact nodes, including the 2L + 1 nodes on the fixed edge y = z = 0,
     whose rows of B vanish (their multipliers stay 0)."""
-    prm = os.path.join(case_dir, "brick.prm")
+    # the values the run used (brick.prm with the script's --set applied)
+    prm = os.path.join(case_dir, "out", "used_parameters.prm")
     vtu = os.path.join(case_dir, "out", "contact_1.vtu")
     if not os.path.exists(vtu):
         return float("nan"), float("nan")

@@ -1,9 +1,10 @@
 #!/usr/bin/env python3
 """Runs one benchmark case of dualcontact and records how it went.
 
-Usage: run_case.py PROGRAM CASE_DIR INPUT.prm [TIME_LIMIT_S]
+Usage: run_case.py PROGRAM CASE_DIR INPUT.prm [TIME_LIMIT_S] [-- ARGUMENTS...]
 
-Runs PROGRAM INPUT.prm in CASE_DIR (stdout and stderr to CASE_DIR/log.txt)
+Runs PROGRAM INPUT.prm ARGUMENTS... (e.g. --set "QP solver/Tolerance=1e-6")
+in CASE_DIR (stdout and stderr to CASE_DIR/log.txt)
 and writes CASE_DIR/run.json: exit code (0 converged, 2 the contact solver
 failed, other: error), whether the time limit stopped it, wall time of the
 process [s], its peak resident memory [MB] and the load average when it
@@ -18,14 +19,19 @@ import time
 
 
 def main():
-    program, case_dir, prm = sys.argv[1:4]
-    limit = float(sys.argv[4]) if len(sys.argv) > 4 and float(sys.argv[4]) > 0 else None
+    argv = sys.argv[1:]
+    extra = []
+    if "--" in argv:
+        extra = argv[argv.index("--") + 1:]
+        argv = argv[:argv.index("--")]
+    program, case_dir, prm = argv[0:3]
+    limit = float(argv[3]) if len(argv) > 3 and float(argv[3]) > 0 else None
     load = open("/proc/loadavg").read().split()[:3]
     start = time.time()
     timeout = False
     with open(os.path.join(case_dir, "log.txt"), "w") as log:
         try:
-            code = subprocess.run([program, prm], cwd=case_dir, stdout=log,
+            code = subprocess.run([program, prm] + extra, cwd=case_dir, stdout=log,
                                   stderr=subprocess.STDOUT, timeout=limit).returncode
         except subprocess.TimeoutExpired:
             code, timeout = None, True

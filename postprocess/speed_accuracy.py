@@ -144,60 +144,46 @@ RUN_COLUMNS = ["case", "problem", "level", "solver", "tolerance", "role", "conve
 # --------------------------------------------------------------- inputs
 
 
-def set_in(text, subsection, name, value):
-    """Sets `name' in the top-level `subsection' of a .prm (added if the
-    subsection does not set it)."""
-    start = text.index("subsection " + subsection)
-    end = text.index("\nend", start)
-    block = text[start:end]
-    pattern = r"(?m)^(\s*set %s\s*=).*$" % re.escape(name)
-    if re.search(pattern, block):
-        block = re.sub(pattern, r"\g<1> %s" % value, block, count=1)
-    else:
-        block += "\n  set %s = %s" % (name, value)
-    return text[:start] + block + text[end:]
+def common_settings(solver, tolerance, max_iterations):
+    """The `--set' arguments every run gets."""
+    return ["Output/Output folder=out", "Output/Write VTU=false",
+            "QP solver/Solver=%s" % solver, "QP solver/Tolerance=%r" % tolerance,
+            "QP solver/Maximum iterations=%d" % max_iterations,
+            # only the iteration limit (and the time limit) stop a solver, as
+            # in scripts/bench_brick: a slow solver is slow, not "stagnating"
+            "QP solver/Stagnation window=0"]
 
 
-def common_settings(text, solver, tolerance, max_iterations):
-    text = set_in(text, "Output", "Output folder", "out")
-    text = set_in(text, "Output", "Write VTU", "false")
-    text = set_in(text, "QP solver", "Solver", solver)
-    text = set_in(text, "QP solver", "Tolerance", repr(tolerance))
-    text = set_in(text, "QP solver", "Maximum iterations", str(max_iterations))
-    # only the iteration limit (and the time limit) stop a solver, as in
-    # scripts/bench_brick: a slow solver is slow, not "stagnating"
-    text = set_in(text, "QP solver", "Stagnation window", "0")
-    return text
+def value_in(path, name):
+    """The value of the first `set NAME = ...' line of the .prm at PATH (the
+    unedited input: the level shifts it)."""
+    m = re.search(r"(?m)^\s*set %s\s*=\s*([^#\n]*)" % re.escape(name),
+                  open(path).read())
+    if m is None:
+        raise ValueError("%s: no `%s' line" % (path, name))
+    return m.group(1).strip()
 
 
 def make_input(root, case, cfg, level, solver, tolerance, max_iterations):
-    """The .prm text of one run."""
-    text = open(os.path.join(root, "inputs", cfg["input"])).read()
+    """The input of one run: the unedited .prm of inputs/ and the `--set'
+    arguments that make the case (its level) and the solver settings."""
+    path = os.path.join(root, "inputs", cfg["input"])
+    settings = []
     if case.startswith("hertz"):
-        word = cfg["refine"]
-        count = [0]
-
-        def shift(m):
-            count[0] += 1
-            value = int(m.group(2)) + level
-            if value < 0:
-                raise ValueError("%s level %d: %s refinements < 0" % (case, level, word))
-            return m.group(1) + str(value)
-        text = re.sub(r"(?m)^(\s*set %s refinements\s*=\s*)(\d+)" % word, shift, text)
-        if count[0] == 0:
-            raise ValueError("%s: no `%s refinements' line" % (cfg["input"], word))
+        name = "%s refinements" % cfg["refine"]
+        value = int(value_in(path, name)) + level
+        if value < 0:
+            raise ValueError("%s level %d: %s < 0" % (case, level, name))
+        settings.append("Body 1/Mesh/%s=%d" % (name, value))
     elif case == "brick":
-        text, n = re.subn(r"(?m)^(\s*set Subdivisions\s*=).*$",
-                          r"\g<1> %d, %d, %d" % (level, 2 * level, level), text)
-        assert n == 1
+        settings.append("Body 1/Mesh/Subdivisions=%d, %d, %d" % (level, 2 * level, level))
     elif case == "bridge":
-        text = re.sub(r"meshes/(bridge_pier_body\d)_level\d+\.msh",
-                      lambda m: os.path.join(root, "meshes", "%s_level%d.msh" % (m.group(1), level)),
-                      text)
+        for body in (1, 2, 3):
+            settings.append("Body %d/Mesh/Gmsh file=%s" % (
+                body, os.path.join(root, "meshes", "bridge_pier_body%d_level%d.msh" % (body, level))))
     elif case == "cylinder":
-        text, n = re.subn(r"(?m)^(\s*set Young's modulus\s*=).*$", r"\g<1> %r" % level, text)
-        assert n == 1
-    return common_settings(text, solver, tolerance, max_iterations)
+        settings.append("Body 1/Material 1/Young's modulus=%r" % level)
+    return path, settings + common_settings(solver, tolerance, max_iterations)
 
 
 # ----------------------------------------------------------------- runs
@@ -208,6 +194,7 @@ class Run:
 
     def __init__(self, case, level, solver, tolerance, role, folder, text=None,
                  membrane=None):
+        # text: (input .prm, its `--set' arguments) of a dualcontact run
         self.case, self.level, self.solver, self.tolerance = case, level, solver, tolerance
         self.role, self.folder, self.text, self.membrane = role, folder, text, membrane
         self.record = None
@@ -222,18 +209,22 @@ class Run:
 def run_dualcontact(program, run, time_limit):
     """Runs the app unless the folder already holds this input's run."""
     os.makedirs(run.folder, exist_ok=True)
-    prm = os.path.join(run.folder, "input.prm")
+    # the command line of the run, kept to skip a run already done
+    path, settings = run.text
+    command = os.path.join(run.folder, "input.args")
+    text = "\n".join([path] + settings) + "\n"
     done = os.path.join(run.folder, "run.json")
-    if os.path.exists(done) and os.path.exists(prm) and open(prm).read() == run.text:
+    if os.path.exists(done) and os.path.exists(command) and open(command).read() == text:
         return
-    open(prm, "w").write(run.text)
+    open(command, "w").write(text)
     for stale in (done, os.path.join(run.folder, "out")):
         if os.path.isdir(stale):
             shutil.rmtree(stale)
         elif os.path.exists(stale):
             os.remove(stale)
+    arguments = [a for setting in settings for a in ("--set", setting)]
     subprocess.run(["/usr/bin/python3", os.path.join(HERE, "run_case.py"), program,
-                    run.folder, "input.prm", str(time_limit)],
+                    run.folder, path, str(time_limit), "--"] + arguments,
                    check=True, stdout=subprocess.DEVNULL)
 
 
@@ -448,8 +439,8 @@ def evaluate_errors(runs, cfg):
             if r.case != case or not r.record["converged"]:
                 continue
             if case.startswith("hertz"):
-                prm = os.path.join(r.folder, "input.prm")
-                r.record["error"] = hertz_convergence.evaluate(prm, r.folder)["l2_nodal"]
+                # the unedited input: its `# Hertz:' line holds the load
+                r.record["error"] = hertz_convergence.evaluate(r.text[0], r.folder)["l2_nodal"]
             elif r.role != "reference" and usable["finest mesh"]:
                 r.record["error"], r.record["error_displacement"] = \
                     contact_error(r.folder, fine_ref.folder)

@@ -5,11 +5,11 @@ Usage: stability_sweep.py DUALCONTACT ROOT BENCH_DIR [--quick]
            [--tolerance T] [--max-iterations N] [--time-limit S]
            [--solvers "a b c"] [--scenarios "cylinder brick ..."]
 
-Each case is one run of DUALCONTACT (through postprocess/run_case.py) on a
-parameter file made from an input of ROOT/inputs/ with the scenario's
-parameter changed, in BENCH_DIR/<scenario>/<value>_<solver>/.  A case whose
-folder holds the same input file and a run.json is not run again (delete
-the folder to redo it).  The outcome of each run is read from its
+Each case is one run of DUALCONTACT (through postprocess/run_case.py) on an
+unedited input of ROOT/inputs/ with `--set' arguments for the scenario's
+parameter and the QP settings, in BENCH_DIR/<scenario>/<value>_<solver>/.
+A case whose folder holds the same arguments (case.args) and a run.json is
+not run again (delete the folder to redo it).  The outcome of each run is read from its
 statistics.json (converged, reason, iterations, Hessian products, final
 criterion, KKT residuals, the attempts of the solver `auto`) and log.txt
 (the error of a run that stopped with exit code 1), and all outcomes are
@@ -86,52 +86,18 @@ def scenarios(quick):
     return [(s[0], s[1], s[2], s[3], s[4], pick[s[0]], s[6]) for s in full if s[0] in pick]
 
 
-def set_parameter(lines, path, name, value):
-    """Sets `name` in subsection `path` (tuple) of a .prm; inserts it before
-    the subsection's `end` (or at the end of the file, for the top level)
-    when it is not there.  Raises if the subsection does not exist."""
-    stack = []
-    pattern = re.compile(r"^\s*set\s+" + re.escape(name) + r"\s*=")
-    for i, line in enumerate(lines):
-        text = line.split("#")[0].strip()
-        m = re.match(r"subsection\s+(.*)$", text)
-        if m:
-            stack.append(m.group(1).strip())
-            continue
-        if text == "end":
-            if tuple(stack) == tuple(path):
-                lines.insert(i, "  " * len(path) + "set %s = %s\n" % (name, value))
-                return
-            stack.pop()
-            continue
-        if tuple(stack) == tuple(path) and pattern.match(line):
-            lines[i] = re.sub(r"=.*$", "= " + value, line.rstrip("\n")) + "\n"
-            return
-    if not path:
-        lines.append("set %s = %s\n" % (name, value))
-        return
-    # the subsection is missing: create it
-    text = ""
-    for depth, sub in enumerate(path):
-        text += "  " * depth + "subsection %s\n" % sub
-    text += "  " * len(path) + "set %s = %s\n" % (name, value)
-    for depth in reversed(range(len(path))):
-        text += "  " * depth + "end\n"
-    lines.append(text)
-
-
 def make_input(root, scenario_input, edits, solver, args):
-    with open(os.path.join(root, "inputs", scenario_input)) as f:
-        lines = f.readlines()
+    """The run's input: the unedited .prm of ROOT/inputs/ and its `--set'
+    arguments (the common QP settings, then the scenario's edits)."""
     common = [(("Output",), "Output folder", "out"),
               (("Output",), "Write VTU", "false"),
               (("QP solver",), "Solver", solver),
               (("QP solver",), "Tolerance", "%g" % args.tolerance),
               (("QP solver",), "Maximum iterations", str(args.max_iterations)),
               (("QP solver",), "Stagnation window", "1000")]
-    for path, name, value in common + edits:
-        set_parameter(lines, path, name, value)
-    return "".join(lines)
+    settings = ["/".join(path + (name,)) + "=" + value
+                for path, name, value in common + edits]
+    return os.path.join(root, "inputs", scenario_input), settings
 
 
 def outcome(case_dir):
@@ -228,13 +194,15 @@ def main():
             for solver in solvers:
                 case_dir = os.path.join(args.bench_dir, key, "%s_%s" % (fmt(value), solver))
                 os.makedirs(case_dir, exist_ok=True)
-                text = make_input(args.root, prm, edits(value), solver, args)
-                prm_file = os.path.join(case_dir, "case.prm")
+                path, settings = make_input(args.root, prm, edits(value), solver, args)
+                # the command line, kept to skip a case already run
+                text = "\n".join([path] + settings) + "\n"
+                args_file = os.path.join(case_dir, "case.args")
                 fresh = os.path.exists(os.path.join(case_dir, "run.json")) and \
-                    os.path.exists(prm_file) and open(prm_file).read() == text
+                    os.path.exists(args_file) and open(args_file).read() == text
                 if not fresh:
                     n_run += 1
-                    with open(prm_file, "w") as f:
+                    with open(args_file, "w") as f:
                         f.write(text)
                     for name in ("run.json",):
                         if os.path.exists(os.path.join(case_dir, name)):
@@ -243,7 +211,9 @@ def main():
                     print("bench_stability: %-11s %s = %-6g %-8s ... " % (key, label, value, solver),
                           end="", flush=True)
                     subprocess.run(["/usr/bin/python3", run_case, args.program, case_dir,
-                                    "case.prm", str(args.time_limit)], check=True)
+                                    path, str(args.time_limit), "--"] +
+                                   [a for setting in settings for a in ("--set", setting)],
+                                   check=True)
                 row["cases"][solver] = outcome(case_dir)
             scenario["rows"].append(row)
         results["scenarios"].append(scenario)

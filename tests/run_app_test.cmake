@@ -1,4 +1,6 @@
-# Runs `dualcontact PRM` in an empty WORKDIR.
+# Runs `dualcontact PRM ARGUMENTS...` in an empty WORKDIR; ARGUMENTS are the
+# lines of ARGS_FILE if given (e.g. `--set' and `Subsection/Entry=value' on
+# two lines).
 #  MODE=compare: must succeed; WORKDIR/<output>/results.txt is compared with
 #                REF by numdiff (relative 1e-8, absolute 1e-12), where <output>
 #                is the only folder the run created.
@@ -6,8 +8,18 @@
 #                write results.txt containing `contact.converged = 0'.
 #  MODE=fail:    must exit non-zero, print EXPECT (stdout or stderr), and leave
 #                WORKDIR empty (no partial output).
+#  MODE=clean:   must exit 0, print every line of EXPECT_FILE, and leave
+#                WORKDIR empty (--validate computes and writes nothing).
+#  MODE=log:     must exit 0; the log.txt of the only output folder must
+#                contain every line of EXPECT_FILE.
 file(REMOVE_RECURSE ${WORKDIR})
 file(MAKE_DIRECTORY ${WORKDIR})
+if(DEFINED ARGS_FILE)
+  file(STRINGS ${ARGS_FILE} EXTRA_ARGS)
+endif()
+if(DEFINED EXPECT_FILE)
+  file(STRINGS ${EXPECT_FILE} _expected_lines)
+endif()
 execute_process(COMMAND ${APP} ${PRM} ${EXTRA_ARGS}
   WORKING_DIRECTORY ${WORKDIR}
   RESULT_VARIABLE _rc OUTPUT_VARIABLE _out ERROR_VARIABLE _err)
@@ -26,6 +38,30 @@ if(MODE STREQUAL "fail")
   if(_left OR _left_dirs)
     message(FATAL_ERROR "a failed run left output behind: ${_left} ${_left_dirs}")
   endif()
+elseif(MODE STREQUAL "clean" OR MODE STREQUAL "log")
+  if(NOT _rc EQUAL 0)
+    message(FATAL_ERROR "the run failed with exit code ${_rc}")
+  endif()
+  if(MODE STREQUAL "clean")
+    set(_text "${_out}${_err}")
+    file(GLOB _left LIST_DIRECTORIES true ${WORKDIR}/*)
+    if(_left)
+      message(FATAL_ERROR "the run wrote: ${_left}")
+    endif()
+  else()
+    file(GLOB_RECURSE _logs ${WORKDIR}/*log.txt)
+    list(LENGTH _logs _n)
+    if(NOT _n EQUAL 1)
+      message(FATAL_ERROR "expected exactly one log.txt, found: ${_logs}")
+    endif()
+    file(READ ${_logs} _text)
+  endif()
+  foreach(_line IN LISTS _expected_lines)
+    string(FIND "${_text}" "${_line}" _pos)
+    if(_pos EQUAL -1)
+      message(FATAL_ERROR "missing: ${_line}")
+    endif()
+  endforeach()
 elseif(MODE STREQUAL "nonconverged")
   if(NOT _rc EQUAL 2)
     message(FATAL_ERROR "expected exit code 2, got ${_rc}")

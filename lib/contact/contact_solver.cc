@@ -134,6 +134,15 @@ namespace dualcontact
 
 
     template <int dim>
+    void
+    ContactSolver<dim>::set_coulomb_monitor(
+      std::function<void(const Result &)> monitor)
+    {
+      coulomb_monitor_ = std::move(monitor);
+    }
+
+
+    template <int dim>
     typename ContactSolver<dim>::Result
     ContactSolver<dim>::solve(
       const std::function<void(const Result &)> &on_iterate)
@@ -214,6 +223,8 @@ namespace dualcontact
               1. :
               (norm > 0 ? std::sqrt(change / norm) : std::sqrt(change));
           result.coulomb_changes.push_back(relative);
+          if (coulomb_monitor_)
+            coulomb_monitor_(result);
           if (on_iterate)
           {
             whole(dual_, lambda, result.lambda);

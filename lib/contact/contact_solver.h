@@ -88,6 +88,16 @@ namespace dualcontact
       Result
       solve(const std::function<void(const Result &)> &on_iterate = {});
 
+      /**
+       * A progress hook: called after every Coulomb iterate's change of the
+       * slip bounds is known (result.coulomb_changes.back(), the QP of the
+       * iterate result.qp_statistics.back()), before anything else is done
+       * with it (unlike solve()'s @p on_iterate, which gets the recovered
+       * displacements and costs a stiffness solve per body).
+       */
+      void
+      set_coulomb_monitor(std::function<void(const Result &)> monitor);
+
     private:
       /** solve() on the vectors @p V of the QP. */
       template <typename V>
@@ -99,10 +109,11 @@ namespace dualcontact
       qp::SolverStatistics
       solve_qp(V &lambda) const;
 
-      DualFormulation<dim> &dual_;
-      qp::SolverParameters  qp_parameters_;
-      qp::SMALSEMParameters smalse_parameters_;
-      CoulombParameters     coulomb_parameters_;
+      DualFormulation<dim>               &dual_;
+      qp::SolverParameters                qp_parameters_;
+      qp::SMALSEMParameters               smalse_parameters_;
+      CoulombParameters                   coulomb_parameters_;
+      std::function<void(const Result &)> coulomb_monitor_;
     };
   } // namespace contact
 } // namespace dualcontact

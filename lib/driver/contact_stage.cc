@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <array>
+#include <chrono>
 #include <cmath>
 #include <functional>
 #include <iomanip>
@@ -96,7 +97,13 @@ namespace dualcontact
           bodies,
           *contact_,
           decomposition_parameters_,
-          [&prm]() { return fem::StiffnessSolver::create(prm); });
+          [&prm, log = run_log_]()
+          {
+            auto solver = fem::StiffnessSolver::create(prm);
+            if (log != nullptr)
+              solver->set_monitor(log->monitor());
+            return solver;
+          });
         describe_decomposition(details);
       }
       else
@@ -106,9 +113,11 @@ namespace dualcontact
           // one solver per body, in body order (a fem::TrilinosSolver gets
           // the body's rows; a generalized inverse drops the fixing dofs
           // and with them this partition: the solver then splits evenly)
-          [&prm, &bodies, b = 0u]() mutable
+          [&prm, &bodies, b = 0u, log = run_log_]() mutable
           {
             auto solver = fem::StiffnessSolver::create(prm);
+            if (log != nullptr)
+              solver->set_monitor(log->monitor());
             if (b < bodies.size())
               configure_solver(*solver, *bodies[b++]);
             return solver;
@@ -218,10 +227,30 @@ namespace dualcontact
         details.push_back((r.converged ? "" : "NOT CONVERGED: ") + r.reason);
         return;
       }
+      qp::SolverParameters qp_parameters = qp_parameters_;
+      if (run_log_ != nullptr)
+        qp_parameters.progress = run_log_->qp_monitor();
       contact::ContactSolver<dim> solver(*dual_,
-                                         qp_parameters_,
+                                         qp_parameters,
                                          smalse_parameters_,
                                          coulomb_parameters_);
+      if (run_log_ != nullptr)
+      {
+        const auto start = std::chrono::steady_clock::now();
+        solver.set_coulomb_monitor(
+          [this, start](const auto &iterate)
+          {
+            const std::chrono::duration<double> elapsed =
+              std::chrono::steady_clock::now() - start;
+            run_log_->coulomb_iterate(iterate.coulomb_changes.size(),
+                                      iterate.coulomb_changes.back(),
+                                      coulomb_parameters_.tolerance,
+                                      iterate.qp_statistics.empty() ?
+                                        0 :
+                                        iterate.qp_statistics.back().iterations,
+                                      elapsed.count());
+          });
+      }
       std::function<void(const typename contact::ContactSolver<dim>::Result &)>
         on_iterate;
       if (write_coulomb_iterates_ && dual_->has_coulomb_friction())

@@ -9,6 +9,7 @@
 #include <contact/dual_problem.h>
 #include <decomposition/decomposition_parameters.h>
 #include <decomposition/tfeti_dual.h>
+#include <driver/run_log.h>
 #include <driver/scene.h>
 #include <io/contact_surface_mesh.h>
 #include <io/contact_surface_writer.h>
@@ -98,6 +99,16 @@ namespace dualcontact
       void
       reset();
 
+      /**
+       * Show progress through @p log (null: none): the factorizations'
+       * monitors, the QP solvers' progress hook, the Coulomb iterates.
+       */
+      void
+      set_run_log(RunLog *log)
+      {
+        run_log_ = log;
+      }
+
       const qp::SolverParameters &
       qp_parameters() const
       {
@@ -183,6 +194,7 @@ namespace dualcontact
 
       dealii::ParameterHandler      &prm_;
       Scene<dim>                    &scene_;
+      RunLog                        *run_log_ = nullptr;
       qp::SolverParameters           qp_parameters_;
       qp::SMALSEMParameters          smalse_parameters_;
       contact::CoulombParameters     coulomb_parameters_;

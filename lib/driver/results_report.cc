@@ -7,6 +7,7 @@
 #include <io/contact_surface_writer.h>
 #include <io/parameter_file.h>
 #include <io/solution_writer.h>
+#include <util/blas_kernels.h>
 
 #include <nlohmann/json.hpp>
 
@@ -218,6 +219,11 @@ namespace dualcontact
       json["fe_degree"]      = scene_.fe_degree();
       json["mpi_processes"] =
         dealii::Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD);
+      // which BLAS kernels and threads ran (util/blas_kernels.h): they
+      // decide the factorization's and the dense dual operator's speed
+      json["blas"] = {{"core", util::blas_core_name()},
+                      {"choice", util::blas_kernel_report()},
+                      {"threads", util::blas_threads()}};
 
       nlohmann::json timing;
       for (const auto &[section, seconds] :
@@ -537,7 +543,6 @@ namespace dualcontact
                        dealii::ParameterHandler::ShortPRM |
                          dealii::ParameterHandler::KeepDeclarationOrder);
                    });
-      folder.commit();
     }
 
 

@@ -54,7 +54,8 @@ namespace dualcontact
 
       /**
        * results.txt, statistics.json (with the phase times of @p timer),
-       * used_parameters.prm (@p prm), then commit @p folder.
+       * used_parameters.prm (@p prm); the caller commits @p folder (after
+       * log.txt).
        */
       void
       write_records(io::OutputFolder               &folder,

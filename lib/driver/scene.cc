@@ -286,6 +286,16 @@ namespace dualcontact
     configure_solver<2>(fem::StiffnessSolver &, const fem::ElasticBody<2> &);
     template void
     configure_solver<3>(fem::StiffnessSolver &, const fem::ElasticBody<3> &);
+    template <int dim>
+    void
+    Scene<dim>::set_solver_monitor(
+      const std::function<void(const std::string &)> &monitor)
+    {
+      for (auto &solver : solvers_)
+        solver->set_monitor(monitor);
+    }
+
+
     template class Scene<2>;
     template class Scene<3>;
   } // namespace driver

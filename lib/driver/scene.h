@@ -11,6 +11,7 @@
 #include <fem/elastic_body.h>
 #include <fem/stiffness_solver.h>
 
+#include <functional>
 #include <map>
 #include <memory>
 #include <string>
@@ -82,6 +83,13 @@ namespace dualcontact
        */
       void
       refine(std::vector<std::string> &details);
+      /**
+       * Tell the stiffness solvers of the solve without contact where to
+       * report a long factorization (fem::StiffnessSolver::set_monitor).
+       */
+      void
+      set_solver_monitor(
+        const std::function<void(const std::string &)> &monitor);
       /** The mesh of body @p b (after create_meshes()), to flag cells. */
       dealii::Triangulation<dim> &
       triangulation(const unsigned int b)

@@ -119,8 +119,9 @@ namespace dualcontact
                         "directory; created if missing. It receives "
                         "solution.pvd (open this in ParaView), solution.pvtu, "
                         "body_N.vtu, results.txt, statistics.json and "
-                        "used_parameters.prm, and with contact pairs "
-                        "contact_N.vtu per pair.");
+                        "used_parameters.prm, log.txt (what the console "
+                        "showed), and with contact pairs contact_N.vtu per "
+                        "pair.");
       prm.declare_entry("Write VTU",
                         "true",
                         dealii::Patterns::Bool(),
@@ -143,6 +144,26 @@ namespace dualcontact
                         "bound (the boundary of the friction set), stick "
                         "otherwise; frictionless nodes in contact count as "
                         "slip.");
+      prm.declare_entry(
+        "Verbosity",
+        "normal",
+        dealii::Patterns::Selection("quiet|normal|detailed"),
+        "What the console shows (process 0). quiet: nothing but errors. "
+        "normal: a line per phase with its wall time (a phase that runs "
+        "long shows its start first), the phases' details, during the long "
+        "phases (factorization, QP, Coulomb fixed point, refinement cycles) "
+        "a progress line every `Progress interval' seconds, the results, "
+        "and a timing table at the end. detailed: also a progress line at "
+        "the start of every QP solve and after every Coulomb iterate, and "
+        "every phase's start. log.txt in the output folder always holds "
+        "the normal (or detailed) console, also for quiet runs.");
+      prm.declare_entry("Progress interval",
+                        "5",
+                        dealii::Patterns::Double(0.1),
+                        "Seconds [s] between two progress lines of a long "
+                        "solve (QP iterations with the criterion against "
+                        "its tolerance, the active set, Hessian products "
+                        "and the time).");
       prm.declare_entry("FCLIB problem",
                         "none",
                         dealii::Patterns::Selection("none|global|local|both"),
@@ -238,13 +259,16 @@ namespace dualcontact
 
 
     std::unique_ptr<dealii::ParameterHandler>
-    SceneParameters::read(const std::string &file_name, SceneLayout &layout)
+    SceneParameters::read(const std::string                        &file_name,
+                          SceneLayout                              &layout,
+                          const std::vector<io::ParameterOverride> &overrides)
     {
       // pass 1: dimension and number of bodies
       {
         dealii::ParameterHandler prm;
         declare_top_level_entries(prm);
         io::parse_parameter_file(prm, file_name, true);
+        io::apply_parameter_overrides(prm, overrides, true);
         layout.dimension = prm.get_integer("Dimension");
         layout.bodies.assign(prm.get_integer("Number of bodies"), BodyLayout());
         layout.n_obstacles     = prm.get_integer("Number of obstacles");
@@ -261,6 +285,7 @@ namespace dualcontact
           prm.leave_subsection();
         }
         io::parse_parameter_file(prm, file_name, true);
+        io::apply_parameter_overrides(prm, overrides, true);
         for (unsigned int b = 0; b < layout.bodies.size(); ++b)
         {
           prm.enter_subsection(body_subsection(b));
@@ -273,6 +298,7 @@ namespace dualcontact
       declare_parameters(*prm, layout);
       io::parse_parameter_file(*prm, file_name, false);
       check_numbered_subsections_written(file_name, layout);
+      io::apply_parameter_overrides(*prm, overrides, false);
       return prm;
     }
   } // namespace driver

@@ -3,9 +3,11 @@
 #include <deal.II/base/parameter_handler.h>
 
 #include <driver/scene_layout.h>
+#include <io/parameter_file.h>
 
 #include <memory>
 #include <string>
+#include <vector>
 
 namespace dualcontact
 {
@@ -35,9 +37,18 @@ namespace dualcontact
       declare_parameters(dealii::ParameterHandler &prm,
                          const SceneLayout        &layout);
 
-      /** Read @p file_name in the three passes; the result is complete. */
+      /**
+       * Read @p file_name in the three passes; the result is complete.
+       * @p overrides (the command line's `--set') are applied after the
+       * file in every pass, so that they may also change the layout
+       * (`Number of bodies', ...); in the last pass an override of an
+       * entry the scene does not have is an error, as an unknown entry
+       * of the file is.
+       */
       static std::unique_ptr<dealii::ParameterHandler>
-      read(const std::string &file_name, SceneLayout &layout);
+      read(const std::string                        &file_name,
+           SceneLayout                              &layout,
+           const std::vector<io::ParameterOverride> &overrides = {});
 
     private:
       static void

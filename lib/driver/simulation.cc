@@ -15,19 +15,56 @@ namespace dualcontact
 {
   namespace driver
   {
+    namespace
+    {
+      /** "coulomb, mu = 0.3": a pair's law as its .prm names it. */
+      std::string
+      describe(const contact::FrictionLaw &law)
+      {
+        using Type = contact::FrictionLaw::Type;
+        std::ostringstream text;
+        text << std::setprecision(4);
+        switch (law.type)
+        {
+          case Type::frictionless:
+            text << "frictionless";
+            break;
+          case Type::tresca_isotropic:
+            text << "tresca, slip bound " << law.first << " Pa";
+            break;
+          case Type::tresca_orthotropic:
+            text << "tresca orthotropic, slip bounds " << law.first << ", "
+                 << law.second << " Pa";
+            break;
+          case Type::coulomb_isotropic:
+            text << "coulomb, friction coefficient " << law.first;
+            break;
+          case Type::coulomb_orthotropic:
+            text << "coulomb orthotropic, friction coefficients " << law.first
+                 << ", " << law.second;
+            break;
+        }
+        return text.str();
+      }
+    } // namespace
+
+
     template <int dim>
     Simulation<dim>::Simulation(dealii::ParameterHandler   &prm,
                                 const std::string          &parameter_file,
-                                dealii::ConditionalOStream &console)
+                                dealii::ConditionalOStream &console,
+                                io::ConsoleLog             *log)
         : prm_(prm)
         , parameter_file_(parameter_file)
         , console_(console)
+        , run_log_(console, log)
         , is_output_rank_(
             dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0)
         , timer_(console,
                  dealii::TimerOutput::never,
                  dealii::TimerOutput::wall_times)
     {
+      run_log_.parse_parameters(prm);
       prm.enter_subsection("Output");
       output_folder_ = std::make_unique<io::OutputFolder>(
         prm.get("Output folder"),
@@ -56,7 +93,11 @@ namespace dualcontact
       const bool tfeti = prm.get("Method") == "tfeti";
       prm.leave_subsection();
       if (scene_->has_contact() || tfeti)
+      {
         contact_ = std::make_unique<ContactStage<dim>>(prm, *scene_);
+        contact_->set_run_log(&run_log_);
+      }
+      scene_->set_solver_monitor(run_log_.monitor());
     }
 
 
@@ -71,16 +112,13 @@ namespace dualcontact
     {
       details_.clear();
       dealii::Timer timer;
+      run_log_.start_phase(name);
       {
         dealii::TimerOutput::Scope scope(timer_, name);
         phase();
       }
       timer.stop();
-      std::ostringstream line;
-      line << "  " << std::left << std::setw(16) << name << std::right
-           << std::fixed << std::setprecision(3) << std::setw(9)
-           << timer.wall_time() << " s";
-      console_ << line.str() << std::endl;
+      run_log_.end_phase(name, timer.wall_time());
       for (const auto &detail : details_)
         console_ << "      " << detail << std::endl;
     }
@@ -168,10 +206,10 @@ namespace dualcontact
 
 
     template <int dim>
-    bool
-    Simulation<dim>::run()
+    void
+    Simulation<dim>::print_scene_line()
     {
-      Scene<dim> &scene = *scene_;
+      const Scene<dim>  &scene = *scene_;
       // solved through a dual (ContactStage), with or without contact pairs
       const bool         has_contact = contact_ != nullptr;
       const unsigned int n_pairs     = scene.pair_parameters().size();
@@ -185,6 +223,92 @@ namespace dualcontact
                  << (n_pairs == 1 ? "" : "s") << ", QP solver "
                  << contact_->qp_parameters().solver;
       console_ << std::endl;
+    }
+
+
+    template <int dim>
+    void
+    Simulation<dim>::validate()
+    {
+      Scene<dim> &scene = *scene_;
+      print_scene_line();
+      run_phase("Mesh", [&]() { scene.create_meshes(details_); });
+      run_phase("Setup", [&]() { scene.setup(details_); });
+
+      console_ << "Bodies:" << std::endl;
+      unsigned long n_cells = 0, n_dofs = 0;
+      for (unsigned int b = 0; b < scene.n_bodies(); ++b)
+      {
+        const auto &body = scene.body(b);
+        console_ << "  " << body.name() << ": "
+                 << body.triangulation().n_global_active_cells() << " cells, "
+                 << body.n_dofs() << " dofs, "
+                 << scene.body_parameters()[b].mesh.description() << std::endl;
+        n_cells += body.triangulation().n_global_active_cells();
+        n_dofs += body.n_dofs();
+      }
+      console_ << "  total: " << n_cells << " cells, " << n_dofs << " dofs"
+               << std::endl;
+      if (scene.has_contact())
+      {
+        console_ << "Contact pairs:" << std::endl;
+        for (const auto &p : scene.pair_parameters())
+          console_ << "  " << p.pair.name << ": slave body "
+                   << p.pair.slave_body + 1 << " boundary "
+                   << p.pair.slave_boundary << ", master "
+                   << p.master_description << ", " << describe(p.pair.friction)
+                   << std::endl;
+      }
+      console_ << "Solvers: stiffness " << scene.solver(0).name();
+      if (contact_ != nullptr)
+        console_ << ", QP " << contact_->qp_parameters().solver << " to "
+                 << contact_->qp_parameters().tolerance;
+      console_ << std::endl
+               << "The input is valid (nothing was computed or written)."
+               << std::endl;
+    }
+
+
+    template <int dim>
+    std::string
+    Simulation<dim>::failure_message() const
+    {
+      std::ostringstream message;
+      message << "The contact solver did NOT converge: "
+              << contact_->result().reason << ".";
+      if (!contact_->result().qp_statistics.empty())
+      {
+        const auto &last = contact_->result().qp_statistics.back();
+        message << std::setprecision(3) << " Last QP: " << last.solver << ", "
+                << qp::to_string(last.reason) << " after " << last.iterations
+                << " iterations, criterion " << last.final_criterion
+                << " (tolerance " << last.tolerance
+                << "), KKT residuals: stationarity " << last.kkt.stationarity
+                << ", feasibility " << last.kkt.feasibility
+                << ", complementarity " << last.kkt.complementarity
+                << " (||b|| " << last.norm_b << ")";
+        if (!last.message.empty())
+          message << "; " << last.message;
+        message << ".";
+      }
+      if (!contact_->result().coulomb_changes.empty())
+        message << std::setprecision(3) << " Last Coulomb change of psi: "
+                << contact_->result().coulomb_changes.back() << ".";
+      message << " The output was written all the same, flagged as not "
+                 "converged.";
+      return message.str();
+    }
+
+
+    template <int dim>
+    bool
+    Simulation<dim>::run()
+    {
+      Scene<dim>        &scene       = *scene_;
+      // solved through a dual (ContactStage), with or without contact pairs
+      const bool         has_contact = contact_ != nullptr;
+      const unsigned int n_pairs     = scene.pair_parameters().size();
+      print_scene_line();
 
       run_phase("Mesh", [&]() { scene.create_meshes(details_); });
       // Contact refinement: cycle 0 solves on the meshes as given, each
@@ -296,14 +420,20 @@ namespace dualcontact
                   if (has_contact && fclib_problem_ != "none")
                     report.write_fclib_problem(*output_folder_, fclib_problem_);
                 });
+      // the records, then log.txt with everything the console showed up to
+      // here (the list of files and the timing table included), then all
+      // files renamed at once
       if (is_output_rank_)
         report.write_records(*output_folder_, prm_, timer_);
-      else
-        output_folder_->commit();
 
-      std::string files;
+      const std::string failure = has_contact && !contact_->result().converged ?
+                                    failure_message() :
+                                    std::string();
+      std::string       files;
       for (const auto &name : output_folder_->file_names())
         files += (files.empty() ? "" : ", ") + name;
+      if (is_output_rank_)
+        files += ", log.txt";
       console_ << "Output written to `" << output_folder_->path()
                << "/': " << files;
       if (dealii::Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD) > 1 &&
@@ -313,34 +443,19 @@ namespace dualcontact
       if (write_vtu_)
         console_ << "Open `" << output_folder_->path()
                  << "/solution.pvd' in ParaView." << std::endl;
+      timer_.print_summary();
+      if (!failure.empty())
+        run_log_.record("\nError: " + failure + "\n");
+      if (is_output_rank_)
+        output_folder_->write("log.txt",
+                              [&](std::ostream &out)
+                              { out << run_log_.text(); });
+      output_folder_->commit();
 
-      if (has_contact && !contact_->result().converged)
+      if (!failure.empty())
       {
-        std::ostringstream message;
-        message << "The contact solver did NOT converge: "
-                << contact_->result().reason << ".";
-        if (!contact_->result().qp_statistics.empty())
-        {
-          const auto &last = contact_->result().qp_statistics.back();
-          message << std::setprecision(3) << " Last QP: " << last.solver << ", "
-                  << qp::to_string(last.reason) << " after " << last.iterations
-                  << " iterations, criterion " << last.final_criterion
-                  << " (tolerance " << last.tolerance
-                  << "), KKT residuals: stationarity " << last.kkt.stationarity
-                  << ", feasibility " << last.kkt.feasibility
-                  << ", complementarity " << last.kkt.complementarity
-                  << " (||b|| " << last.norm_b << ")";
-          if (!last.message.empty())
-            message << "; " << last.message;
-          message << ".";
-        }
-        if (!contact_->result().coulomb_changes.empty())
-          message << std::setprecision(3) << " Last Coulomb change of psi: "
-                  << contact_->result().coulomb_changes.back() << ".";
-        message << " The output was written all the same, flagged as not "
-                   "converged.";
         if (is_output_rank_)
-          std::cerr << "\nError: " << message.str() << std::endl;
+          std::cerr << "\nError: " << failure << std::endl;
         return false;
       }
       return true;

@@ -6,7 +6,9 @@
 
 #include <driver/contact_refinement.h>
 #include <driver/contact_stage.h>
+#include <driver/run_log.h>
 #include <driver/scene.h>
+#include <io/console_log.h>
 #include <io/output_folder.h>
 
 #include <memory>
@@ -32,8 +34,10 @@ namespace dualcontact
      * under temporary names renamed when all are complete
      * (io::OutputFolder).
      *
-     * Console output goes to @p console (rank 0 only under MPI); each
-     * phase prints one progress line with its wall time.
+     * Console output goes to @p console (rank 0 only under MPI) through a
+     * RunLog: each phase prints one line with its wall time, long phases
+     * progress lines, the end a TimerOutput table; `Output/Verbosity'
+     * chooses how much, and log.txt in the output folder keeps it.
      *
      * The work is in Scene (bodies: meshes, assembly, solve, per-body
      * results), ContactStage (contact search, dual problem, QP, recovery,
@@ -47,9 +51,15 @@ namespace dualcontact
     class Simulation
     {
     public:
+      /**
+       * @p console prints on process 0; @p log (may be null) is the stream
+       * behind it, whose text is written as log.txt with the output and
+       * whose terminal `Output/Verbosity = quiet' switches off.
+       */
       Simulation(dealii::ParameterHandler   &prm,
                  const std::string          &parameter_file,
-                 dealii::ConditionalOStream &console);
+                 dealii::ConditionalOStream &console,
+                 io::ConsoleLog             *log = nullptr);
       ~Simulation();
 
       /**
@@ -61,6 +71,16 @@ namespace dualcontact
       bool
       run();
 
+      /**
+       * Check the scene as far as it can be without computing: the
+       * parameters (done by the constructor), the meshes (cells, boundary
+       * and material ids of every condition and pair) and the dofs; then
+       * print its summary (bodies with cells and dofs, contact pairs,
+       * solvers).  Assembles, solves and writes nothing.
+       */
+      void
+      validate();
+
     private:
       /**
        * Throw (on every process) if a displacement, a multiplier or a
@@ -71,6 +91,13 @@ namespace dualcontact
        */
       void
       check_finite_results() const;
+      /** Why the contact solver did not converge, with its residuals. */
+      std::string
+      failure_message() const;
+
+      /** The scene line: dimension, bodies, element, solvers. */
+      void
+      print_scene_line();
 
       /** Run @p phase timed, then print its line and the details lines. */
       template <typename Phase>
@@ -91,6 +118,7 @@ namespace dualcontact
       dealii::ParameterHandler   &prm_;
       const std::string           parameter_file_;
       dealii::ConditionalOStream &console_;
+      RunLog                      run_log_;
       const bool                  is_output_rank_;
       dealii::TimerOutput         timer_;
 

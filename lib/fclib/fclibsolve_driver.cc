@@ -116,6 +116,10 @@ namespace dualcontact
              "Options (they override a .prm):\n"
              "  --prm FILE.prm        parameters: Model, subsections `QP "
              "solver' and `Coulomb'\n"
+             "  --set \"Subsection/Entry=value\"  one parameter of them, "
+             "after the .prm (repeatable;\n"
+             "                        e.g. --set \"Coulomb/Tolerance=1e-6\", "
+             "--set \"QP solver/Solver=mpgp-bb\")\n"
              "  --model coulomb|cone  Coulomb fixed point over Tresca QPs "
              "(default) or the cone QP\n"
              "                        (a convex relaxation, 3D only)\n"
@@ -159,9 +163,10 @@ namespace dualcontact
       bool        fixed_rho = false, exact_qps = false;
       // unset unless given: every given value is checked (no sentinel that
       // a user could write, such as -1, is taken for "the default")
-      std::optional<double> tol, coulomb_tol;
-      std::optional<long>   max_iter, coulomb_max_iter;
-      bool                  info_only = false;
+      std::optional<double>    tol, coulomb_tol;
+      std::optional<long>      max_iter, coulomb_max_iter;
+      bool                     info_only = false;
+      std::vector<std::string> settings;
       try
       {
         for (std::size_t i = 0; i < args.size(); ++i)
@@ -180,6 +185,8 @@ namespace dualcontact
           }
           else if (a == "--prm")
             prm_file = value();
+          else if (a == "--set")
+            settings.push_back(value());
           else if (a == "--model")
             model_name = value();
           else if (a == "--prox")
@@ -231,6 +238,10 @@ namespace dualcontact
         declare(prm);
         if (!prm_file.empty())
           io::parse_parameter_file(prm, prm_file, false);
+        std::vector<io::ParameterOverride> overrides;
+        for (const auto &setting : settings)
+          overrides.push_back(io::parse_parameter_override(setting));
+        io::apply_parameter_overrides(prm, overrides, false);
         qp::SolverParameters qp_parameters;
         qp_parameters.parse_parameters(prm);
         contact::CoulombParameters coulomb;

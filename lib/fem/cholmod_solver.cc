@@ -5,6 +5,8 @@
 
 #include <cholmod.h>
 
+#include <algorithm>
+#include <cstdio>
 #include <cstring>
 
 namespace dualcontact
@@ -17,6 +19,26 @@ namespace dualcontact
       cholmod_factor  *factor = nullptr;
       SuiteSparse_long n      = 0;
     };
+
+
+    namespace
+    {
+      /**
+       * The rate [flop/s] of the last numerical factorization of at least
+       * 10^8 flops in this process, for the estimate of the next one; before
+       * the first, 10 GFlop/s (the order of a supernodal factorization with
+       * OpenBLAS on one core of this project's machines).
+       */
+      double measured_rate = 1e10;
+
+      std::string
+      format(const char *pattern, const double value)
+      {
+        char text[64];
+        std::snprintf(text, sizeof(text), pattern, value);
+        return text;
+      }
+    } // namespace
 
 
     CholmodSolver::CholmodSolver(const Ordering ordering)
@@ -162,7 +184,19 @@ namespace dualcontact
         cholmod_l_free_sparse(&A, &c);
         return;
       }
+      // after the analysis CHOLMOD knows the factor's size and flops: say
+      // what is coming (the numerical factorization cannot report progress)
+      const double flops = c.fl;
+      if (monitor_)
+        monitor_("CHOLMOD factorization of order " + std::to_string(n) + ", " +
+                 format("%.3g", c.lnz) + " factor nonzeros (" +
+                 format("%.0f", 8e-6 * c.lnz) + " MB), " +
+                 format("%.3g", flops * 1e-9) + " GFlop: about " +
+                 format("%.2g", flops / measured_rate) + " s at " +
+                 format("%.3g", measured_rate * 1e-9) + " GFlop/s");
+      dealii::Timer numeric_timer;
       cholmod_l_factorize(A, data_->factor, &c);
+      numeric_timer.stop();
       const int status = c.status;
       cholmod_l_free_sparse(&A, &c);
       AssertThrow(status != CHOLMOD_NOT_POSDEF,
@@ -176,6 +210,16 @@ namespace dualcontact
                   dealii::ExcMessage("CHOLMOD: numerical factorization failed "
                                      "(status " +
                                      std::to_string(status) + ")."));
+
+      if (flops >= 1e8 && numeric_timer.wall_time() > 0.)
+        measured_rate = flops / numeric_timer.wall_time();
+      if (monitor_)
+        monitor_(
+          "CHOLMOD factorization done in " +
+          format("%.3g", numeric_timer.wall_time()) + " s (" +
+          format("%.3g",
+                 flops * 1e-9 / std::max(numeric_timer.wall_time(), 1e-9)) +
+          " GFlop/s)");
 
       statistics_                 = Statistics();
       statistics_.setup_time      = timer.wall_time();

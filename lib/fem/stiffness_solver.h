@@ -4,6 +4,7 @@
 #include <deal.II/lac/sparse_matrix.h>
 #include <deal.II/lac/vector.h>
 
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -100,8 +101,25 @@ namespace dualcontact
       static std::unique_ptr<StiffnessSolver>
       create(dealii::ParameterHandler &prm);
 
+      /**
+       * The solver `Solver = @p name' stands for: `automatic' is cholmod on
+       * one process and mumps under MPI; any other name is itself.
+       */
+      static std::string
+      resolved_name(const std::string &name);
+
+      /**
+       * Where to tell about a long setup while it runs: a sparse
+       * factorization cannot report its progress, so a direct solver calls
+       * @p monitor before it (matrix order, factor size, flops and an
+       * estimate of the time) and after it (the time taken).  Unset: quiet.
+       */
+      void
+      set_monitor(std::function<void(const std::string &)> monitor);
+
     protected:
-      mutable Statistics statistics_;
+      mutable Statistics                       statistics_;
+      std::function<void(const std::string &)> monitor_;
     };
   } // namespace fem
 } // namespace dualcontact

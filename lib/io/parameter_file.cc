@@ -497,5 +497,104 @@ namespace dualcontact
         prm.leave_subsection();
       }
     }
+
+
+    std::string
+    ParameterOverride::subsection_path() const
+    {
+      std::string path;
+      for (const auto &name : subsections)
+        path = join_path(path, name);
+      return path;
+    }
+
+
+    ParameterOverride
+    parse_parameter_override(const std::string &text)
+    {
+      const auto equals = text.find('=');
+      AssertThrow(equals != std::string::npos,
+                  dealii::ExcMessage("The option `--set " + text +
+                                     "' has no `=': expected --set "
+                                     "\"Subsection/Entry=value\" (e.g. "
+                                     "\"Body 1/Mesh/Global refinements=3\")."));
+      ParameterOverride result;
+      result.text  = text;
+      result.value = dealii::Utilities::trim(text.substr(equals + 1));
+      std::vector<std::string> names =
+        dealii::Utilities::split_string_list(text.substr(0, equals), '/');
+      AssertThrow(!names.empty() && !names.back().empty(),
+                  dealii::ExcMessage("The option `--set " + text +
+                                     "' names no parameter before the `=': "
+                                     "expected --set "
+                                     "\"Subsection/Entry=value\"."));
+      result.entry = names.back();
+      names.pop_back();
+      result.subsections = names;
+      return result;
+    }
+
+
+    void
+    apply_parameter_overrides(dealii::ParameterHandler             &prm,
+                              const std::vector<ParameterOverride> &overrides,
+                              const bool skip_undefined)
+    {
+      for (const auto &entry : overrides)
+      {
+        const std::string where = "given by `--set " + entry.text + "'";
+        if (!prm.subsection_path_exists(entry.subsections))
+        {
+          if (skip_undefined)
+            continue;
+          AssertThrow(false,
+                      dealii::ExcMessage(
+                        "Unknown subsection `subsection " +
+                        entry.subsection_path() + "' " + where +
+                        " (see `dualcontact --print-parameters'; numbered "
+                        "subsections `Body N', ... exist for N up to their "
+                        "`Number of ...')."));
+        }
+        // as a `set' line of a file: deal.II checks the value against the
+        // entry's pattern exactly as when it reads one
+        std::string input;
+        for (const auto &name : entry.subsections)
+          input += "subsection " + name + "\n";
+        input += "set " + entry.entry + " = " + entry.value + "\n";
+        for (std::size_t k = 0; k < entry.subsections.size(); ++k)
+          input += "end\n";
+        try
+        {
+          prm.parse_input_from_string(input, "", skip_undefined);
+        }
+        catch (const dealii::ExceptionBase &exception)
+        {
+          std::ostringstream info;
+          exception.print_info(info);
+          const std::string text = info.str();
+          const std::string location =
+            parameter_location(entry.subsection_path(), entry.entry);
+          if (text.find("No entry with name") != std::string::npos)
+            throw dealii::ExcMessage(
+              "Unknown parameter " + location + " " + where +
+              ": there is no such parameter in this subsection (see "
+              "`dualcontact --print-parameters').");
+          std::smatch match;
+          if (std::regex_search(text,
+                                match,
+                                std::regex("does not match the given "
+                                           "pattern:?[ \t\n]*<?([^\n>]*)")))
+            throw dealii::ExcMessage("The value `" + entry.value +
+                                     "' does not match the pattern " +
+                                     dealii::Utilities::trim(match[1].str()) +
+                                     " " + location + " " + where + ".");
+          throw dealii::ExcMessage(
+            "Cannot set " + location + " " + where + ": " +
+            std::regex_replace(dealii::Utilities::trim(text),
+                               std::regex("[ \t]*\n[ \t]*"),
+                               " "));
+        }
+      }
+    }
   } // namespace io
 } // namespace dualcontact

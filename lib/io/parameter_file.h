@@ -132,6 +132,45 @@ namespace dualcontact
     std::string
     shorten_for_message(const std::string &text,
                         const std::size_t  max_bytes = 200);
+     * One `--set "Subsection/Entry=value"' of the command line: the
+     * subsections (nested with '/'), the entry and its value, and the
+     * text as given (for error messages).
+     */
+    struct ParameterOverride
+    {
+      std::vector<std::string> subsections;
+      std::string              entry;
+      std::string              value;
+      std::string              text;
+
+      /** "Body 1/Mesh": the subsections joined, empty at the top level. */
+      std::string
+      subsection_path() const;
+    };
+
+    /**
+     * Split @p text ("Body 1/Mesh/Global refinements=3") at its first '='
+     * and the part before it at '/'; blanks around the names and the value
+     * are dropped.  Throws an ExcMessage naming @p text if it has no '=' or
+     * no entry name.
+     */
+    ParameterOverride
+    parse_parameter_override(const std::string &text);
+
+    /**
+     * Set the values of @p overrides in @p prm, in order, as if they were
+     * `set' lines at the end of the parameter file: the values are checked
+     * against their patterns as file values are.  With @p skip_undefined,
+     * overrides of entries or subsections that @p prm does not declare are
+     * ignored (the passes of driver::SceneParameters::read() that only read
+     * the layout); without, an unknown subsection or entry and a value that
+     * does not match its pattern throw an ExcMessage naming the entry, its
+     * subsection and the `--set' argument.
+     */
+    void
+    apply_parameter_overrides(dealii::ParameterHandler             &prm,
+                              const std::vector<ParameterOverride> &overrides,
+                              const bool skip_undefined);
 
     /**
      * Print every entry of @p prm as a parameter file: per entry its

@@ -39,8 +39,10 @@ namespace dualcontact
       struct Options
       {
         std::string problem_file;
-        std::string solver    = "mprgp";
-        double      tolerance = -1.;
+        std::string solver = "mprgp";
+        /// --solver given (else a base parameter set's solver is used)
+        bool        solver_given = false;
+        double      tolerance    = -1.;
         std::string criterion;
         long        max_iterations    = -1;
         long        stagnation_window = -1;
@@ -71,7 +73,10 @@ namespace dualcontact
             return args[++i];
           };
           if (a == "--solver")
-            o.solver = value();
+          {
+            o.solver       = value();
+            o.solver_given = true;
+          }
           else if (a == "--tol")
           {
             const std::string v = value();
@@ -298,7 +303,12 @@ namespace dualcontact
              "[--proportioning chopped-gradient|preconditioned] "
              "[--amg-reuse-aggregates 0|1] [--amg-keep-fraction F] "
              "[--repeat N] "
-             "[--x-out FILE] [--json-out FILE]\n"
+             "[--x-out FILE] [--json-out FILE] [--prm FILE.prm] "
+             "[--set \"QP solver/Entry=value\"]...\n"
+             "--prm, --set: the QP solver's parameters by the names of "
+             "dualcontact's .prm (subsection `QP solver', see `dualcontact "
+             "--print-parameters'; default solver mprgp); the options above "
+             "override them.\n"
              "--preconditioner: MPRGP with preconditioning in face (jacobi: "
              "diag(A) on the free set; amg: Trilinos ML on A with the active "
              "rows and columns replaced by identity rows, rebuilt whenever "
@@ -316,6 +326,13 @@ namespace dualcontact
              "--repeat N solves N times from the same start and reports the "
              "least wall time (timing on a busy machine).\n"
              "Exit code 0: converged, 2: not converged, 1: bad input.";
+    }
+
+
+    void
+    QPSolveDriver::set_base_parameters(const SolverParameters &parameters)
+    {
+      base_parameters = parameters;
     }
 
 
@@ -414,6 +431,8 @@ namespace dualcontact
       try
       {
         options = parse(arguments);
+        if (base_parameters && !options.solver_given)
+          options.solver = base_parameters->solver;
       }
       catch (const UsageError &e)
       {
@@ -433,7 +452,9 @@ namespace dualcontact
       std::unique_ptr<FreeSetAMG>               amg;
       try
       {
-        data       = read_problem(options.problem_file);
+        data = read_problem(options.problem_file);
+        if (base_parameters)
+          prm = *base_parameters;
         prm.solver = options.solver == "cgc" ? "mprgp" : options.solver;
         if (options.tolerance > 0.)
           prm.tolerance = options.tolerance;

@@ -12,6 +12,9 @@
 #ifndef dualcontact_qp_qpsolve_driver_h
 #define dualcontact_qp_qpsolve_driver_h
 
+#include <qp/solver_parameters.h>
+
+#include <optional>
 #include <ostream>
 #include <string>
 #include <vector>
@@ -47,6 +50,18 @@ namespace dualcontact
       /// The usage text.
       static std::string
       usage();
+
+      /**
+       * Start from @p parameters instead of SolverParameters' defaults (the
+       * program's `--prm FILE' and `--set "QP solver/Entry=value"', read
+       * with the .prm names of SolverParameters::declare_parameters()); the
+       * options (--solver, --tol, ...) still override them.
+       */
+      void
+      set_base_parameters(const SolverParameters &parameters);
+
+    private:
+      std::optional<SolverParameters> base_parameters;
     };
   } // namespace qp
 } // namespace dualcontact

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <type_traits>
 
 namespace dualcontact
 {
@@ -111,6 +112,9 @@ namespace dualcontact
       best_criterion     = std::numeric_limits<double>::infinity();
       cost_at_progress   = std::numeric_limits<double>::infinity();
       progress_iteration = 0;
+      progress_problem   = &problem;
+      progress_x         = &x;
+      next_report_time   = 0.;
       if (problem.constraints)
         project(problem, x, stats);
       return stats;
@@ -231,6 +235,7 @@ namespace dualcontact
       const double     relative      = value / stats.norm_b;
       stats.record_criterion(relative, timer.wall_time());
       stats.final_criterion = relative;
+      report_progress(stats);
       if (!std::isfinite(relative))
       {
         stats.reason  = ConvergenceReason::non_finite;
@@ -281,6 +286,40 @@ namespace dualcontact
         return true;
       }
       return false;
+    }
+
+
+    template <typename VectorType>
+    void
+    SolverBase<VectorType>::report_progress(const SolverStatistics &stats)
+    {
+      if (!prm.progress)
+        return;
+      const double now = timer.wall_time();
+      if (now < next_report_time)
+        return;
+      ProgressReport report;
+      report.solver             = solver_name;
+      report.first              = next_report_time == 0.;
+      report.iterations         = stats.iterations;
+      report.n_hessian_products = stats.n_hessian_products;
+      report.criterion          = stats.final_criterion;
+      report.tolerance          = prm.tolerance;
+      report.elapsed            = now;
+      // counting the active blocks of distributed vectors is a reduction,
+      // and the processes report at different times
+      if constexpr (std::is_same_v<VectorType, dealii::Vector<double>>)
+        if (progress_problem != nullptr && progress_problem->constraints &&
+            progress_x != nullptr)
+        {
+          const auto &set = *progress_problem->constraints;
+          report.n_blocks = set.n_blocks();
+          report.n_active = 0;
+          for (const auto n : set.n_active_blocks(*progress_x))
+            report.n_active += n;
+        }
+      prm.progress.report(report);
+      next_report_time = now + std::max(prm.progress.interval, 1e-9);
     }
 
 

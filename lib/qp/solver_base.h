@@ -140,6 +140,13 @@ namespace dualcontact
                  double            value,
                  double cost = std::numeric_limits<double>::quiet_NaN());
 
+      /// Call prm.progress with a ProgressReport on @p stats if one is due:
+      /// at the first checked iterate of this solve, then every
+      /// prm.progress.interval seconds.  check_stop() calls it; solvers
+      /// that record criteria themselves (outer loops) call it too.
+      void
+      report_progress(const SolverStatistics &stats);
+
       /// Wall time since start() [s] (the time stamps of the history).
       double
       elapsed() const;
@@ -161,6 +168,11 @@ namespace dualcontact
       double        best_criterion     = 0.;
       double        cost_at_progress   = 0.;
       unsigned int  progress_iteration = 0;
+      /// what report_progress() looks at: the problem and the iterate of
+      /// the running solve (set by start()), and when to report next
+      const Problem<VectorType> *progress_problem = nullptr;
+      const VectorType          *progress_x       = nullptr;
+      double                     next_report_time = 0.;
     };
   } // namespace qp
 } // namespace dualcontact

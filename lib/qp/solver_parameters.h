@@ -10,6 +10,8 @@
 
 #include <deal.II/base/parameter_handler.h>
 
+#include <qp/solver_progress.h>
+
 #include <string>
 #include <vector>
 
@@ -151,6 +153,14 @@ namespace dualcontact
       /// (true) or from the initial guess (false); a non-finite iterate
       /// always restarts from the initial guess
       bool auto_warm_start = true;
+
+      /// Not a parameter of the .prm: what a program that wants to show
+      /// progress during a long solve sets (see solver_progress.h).  Every
+      /// solver made from these parameters (the chain's attempts,
+      /// SMALSE-M's inner solver) calls it at its first checked iterate
+      /// and then at most every `progress.interval` seconds; unset, no
+      /// report is built.
+      ProgressMonitor progress;
 
       /// The names of @p chain ("a, b, c"), checked: known, not `auto`,
       /// and no mprgp when @p general.  Throws naming @p parameter.

@@ -23,39 +23,105 @@ namespace dualcontact
     }
 
 
+    namespace
+    {
+      /** blas_kernel_choice()'s first answer, for blas_kernel_report(). */
+      std::string first_choice;
+      bool        chosen = false;
+
+      /** The choice itself (see blas_kernel_choice()). */
+      std::string
+      choose_kernels();
+
+      /** An OpenBLAS extension looked up at run time (null: not there). */
+      template <typename Function>
+      Function
+      openblas_function(const char *name)
+      {
+        return reinterpret_cast<Function>(dlsym(RTLD_DEFAULT, name));
+      }
+    } // namespace
+
+
+    std::string
+    blas_kernel_report()
+    {
+      if (!first_choice.empty())
+        return first_choice;
+      const char *user = std::getenv("OPENBLAS_CORETYPE");
+      if (chosen && user != nullptr)
+        return std::string("OPENBLAS_CORETYPE=") + user + " set by the user";
+      return "OpenBLAS' own choice";
+    }
+
+
+    int
+    blas_threads()
+    {
+      const auto get = openblas_function<int (*)()>("openblas_get_num_threads");
+      return get != nullptr ? get() : 0;
+    }
+
+
+    void
+    set_blas_threads(const int n)
+    {
+      const auto set =
+        openblas_function<void (*)(int)>("openblas_set_num_threads");
+      if (set != nullptr)
+        set(n);
+    }
+
+
     std::string
     blas_kernel_choice()
     {
-      if (std::getenv("OPENBLAS_CORETYPE") != nullptr)
-        return "";
-      const std::string before = blas_core_name();
-      if (before != "Prescott" && before != "prescott")
-        return "";
-      __builtin_cpu_init();
-      const char *core = nullptr;
-      if (__builtin_cpu_supports("avx512f") &&
-          __builtin_cpu_supports("avx512cd") &&
-          __builtin_cpu_supports("avx512bw") &&
-          __builtin_cpu_supports("avx512dq") &&
-          __builtin_cpu_supports("avx512vl"))
-        core = "SkylakeX";
-      else if (__builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma"))
-        core = "Haswell";
-      if (core == nullptr)
-        return "";
-      using Function  = void (*)();
-      const auto quit = reinterpret_cast<Function>(
-        dlsym(RTLD_DEFAULT, "gotoblas_dynamic_quit"));
-      const auto init = reinterpret_cast<Function>(
-        dlsym(RTLD_DEFAULT, "gotoblas_dynamic_init"));
-      if (quit == nullptr || init == nullptr ||
-          setenv("OPENBLAS_CORETYPE", core, 1) != 0)
-        return "";
-      // OpenBLAS reads the variable when it chooses its kernels
-      quit();
-      init();
-      return std::string("OPENBLAS_CORETYPE=") + core + " (OpenBLAS chose " +
-             before + ", now " + blas_core_name() + ")";
+      const bool first         = !chosen;
+      chosen                   = true;
+      const std::string choice = choose_kernels();
+      if (first)
+        first_choice = choice;
+      return choice;
     }
-  } // namespace util
+
+
+    namespace
+    {
+      std::string
+      choose_kernels()
+      {
+        if (std::getenv("OPENBLAS_CORETYPE") != nullptr)
+          return "";
+        const std::string before = blas_core_name();
+        if (before != "Prescott" && before != "prescott")
+          return "";
+        __builtin_cpu_init();
+        const char *core = nullptr;
+        if (__builtin_cpu_supports("avx512f") &&
+            __builtin_cpu_supports("avx512cd") &&
+            __builtin_cpu_supports("avx512bw") &&
+            __builtin_cpu_supports("avx512dq") &&
+            __builtin_cpu_supports("avx512vl"))
+          core = "SkylakeX";
+        else if (__builtin_cpu_supports("avx2") &&
+                 __builtin_cpu_supports("fma"))
+          core = "Haswell";
+        if (core == nullptr)
+          return "";
+        using Function  = void (*)();
+        const auto quit = reinterpret_cast<Function>(
+          dlsym(RTLD_DEFAULT, "gotoblas_dynamic_quit"));
+        const auto init = reinterpret_cast<Function>(
+          dlsym(RTLD_DEFAULT, "gotoblas_dynamic_init"));
+        if (quit == nullptr || init == nullptr ||
+            setenv("OPENBLAS_CORETYPE", core, 1) != 0)
+          return "";
+        // OpenBLAS reads the variable when it chooses its kernels
+        quit();
+        init();
+        return std::string("OPENBLAS_CORETYPE=") + core + " (OpenBLAS chose " +
+               before + ", now " + blas_core_name() + ")";
+      }
+    } // namespace
+  }   // namespace util
 } // namespace dualcontact

@@ -47,6 +47,31 @@ namespace dualcontact
      */
     std::string
     blas_kernel_choice();
+
+    /**
+     * What the first blas_kernel_choice() of this process did: its return
+     * value, or "OpenBLAS' own choice" if it changed nothing (also when
+     * OPENBLAS_CORETYPE was set by the user: "OPENBLAS_CORETYPE=X set by
+     * the user").  For the records (statistics.json).
+     */
+    std::string
+    blas_kernel_report();
+
+    /**
+     * The number of threads OpenBLAS uses (openblas_get_num_threads), or 0
+     * if the BLAS is not OpenBLAS.
+     */
+    int
+    blas_threads();
+
+    /**
+     * Have OpenBLAS use @p n threads (openblas_set_num_threads; nothing for
+     * another BLAS).  Under MPI every process runs its own BLAS: the
+     * programs set one thread per process, so that N processes do not start
+     * N times the cores' threads.
+     */
+    void
+    set_blas_threads(const int n);
   } // namespace util
 } // namespace dualcontact
 
