@@ -91,6 +91,7 @@ namespace dualcontact
        */
       void
       check_finite_results() const;
+
       /** Why the contact solver did not converge, with its residuals. */
       std::string
       failure_message() const;

@@ -132,6 +132,8 @@ namespace dualcontact
     std::string
     shorten_for_message(const std::string &text,
                         const std::size_t  max_bytes = 200);
+
+    /**
      * One `--set "Subsection/Entry=value"' of the command line: the
      * subsections (nested with '/'), the entry and its value, and the
      * text as given (for error messages).

@@ -88,6 +88,30 @@ main()
           "fclibsolve " + option + " " + value + " is refused");
   }
 
+  // the .prm names (issue 18): `--set' with the names of subsections `QP
+  // solver' and `Coulomb'; bad entries and values are named, and checked as
+  // the options are
+  for (const auto &[setting, expected] :
+       std::vector<std::array<std::string, 2>>{
+         {{"Coulomb/Tolerence=1e-6", "Tolerence"}},
+         {{"QP solver/Solver=newton", "newton"}},
+         {{"Coulomb/Maximum iterations=-3", "Maximum iterations"}},
+         {{"QP solver/Tolerance=-5", "olerance"}}})
+  {
+    const Run run = fclibsolve({data, "--set", setting});
+    check(run.status == 1 && contains(run.err, expected),
+          "fclibsolve --set \"" + setting + "\" is refused naming it");
+  }
+  {
+    const Run run = fclibsolve({data,
+                                "--set",
+                                "QP solver/Solver=spg-qp",
+                                "--set",
+                                "Coulomb/Tolerance=1e-6"});
+    check(run.status == 0 && contains(run.out, "spg-qp"),
+          "fclibsolve --set \"QP solver/Solver=spg-qp\" solves with spg-qp");
+  }
+
   // a file cut in half: one line naming the file, nothing from HDF5
   const std::string truncated = "bad_input_truncated.hdf5";
   {

@@ -213,6 +213,43 @@ main()
           "--solver auto with equality constraints: SMALSE-M around mprgp");
   }
 
+  // the .prm names (issue 18): `--prm FILE' and `--set', with the options
+  // given after them winning; a bad entry or value is named
+  write("solver.prm", "subsection QP solver\n  set Solver = mpgp\n"
+                      "  set Tolerance = 1e-10\nend\n");
+  {
+    const Result p = run(dir + "/p.json --prm " + dir + "/solver.prm");
+    check(p.code == 0 && contains(p.out, "\"solver\": \"mpgp\"") &&
+            contains(p.out, "\"tolerance\": 1e-10"),
+          "--prm FILE: the QP solver and tolerance of subsection `QP solver'");
+    const Result s = run(dir + "/p.json --prm " + dir +
+                         "/solver.prm --set 'QP solver/Solver=spg-qp' "
+                         "--set 'QP solver/Maximum iterations=3'");
+    check(s.code == 2 && contains(s.out, "\"solver\": \"spg-qp\"") &&
+            contains(s.out, "\"reason\": \"max_iterations\""),
+          "--set after --prm: spg-qp stopped by 3 iterations, exit 2");
+    const Result o = run(dir +
+                         "/p.json --set 'QP solver/Solver=spg-qp' --solver "
+                         "mpgp --tol 1e-10");
+    check(o.code == 0 && contains(o.out, "\"solver\": \"mpgp\""),
+          "--solver wins over --set (the options keep working)");
+  }
+  for (const auto &[args, pieces] :
+       std::vector<std::pair<std::string, std::vector<std::string>>>{
+         {"--set 'QP solver/Tolerence=1e-6'", {"Tolerence", "QP solver"}},
+         {"--set 'QP solver/Solver=newton'", {"Solver", "newton"}},
+         {"--set 'Solver=mpgp'", {"Solver"}},
+         {"--set 'QP solver/Tolerance'", {"QP solver/Tolerance", "="}}})
+  {
+    const Result r  = run(dir + "/p.json " + args);
+    bool         ok = r.code == 1 && r.out.empty();
+    for (const auto &piece : pieces)
+      ok = ok && contains(r.err, piece);
+    check(ok, "bad --set refused with exit 1 naming it: qpsolve " + args);
+    if (!ok)
+      std::cout << "     exit " << r.code << ", stderr: " << r.err;
+  }
+
   // iteration limit
   {
     const Result r = run(dir + "/p.json --solver spg-qp --max-iter 2");
