@@ -25,9 +25,13 @@ namespace dualcontact
         "factorized on its own and floating, glued to its neighbours, held "
         "by its Dirichlet conditions and by contact through multipliers "
         "(free gluing and Dirichlet multipliers, the coarse problem G G' "
-        "in SMALSE-M); one process only for now. automatic: tfeti on one "
+        "in SMALSE-M); under MPI every process assembles and factorizes "
+        "only the subdomains it owns (the mesh stays replicated). "
+        "automatic: tfeti under MPI (mpirun -np N, N > 1), and on one "
         "process when the estimated Cholesky factor of the largest body "
-        "exceeds `Memory limit', none otherwise (and under MPI).");
+        "exceeds `Memory limit'; none otherwise, and none for meshes with "
+        "hanging nodes (local or contact refinement), which TFETI does not "
+        "glue yet.");
       prm.declare_entry(
         "Subdomains per body",
         "",
@@ -99,13 +103,17 @@ namespace dualcontact
 
     DecompositionParameters::Method
     DecompositionParameters::resolve(const unsigned int n_processes,
-                                     const double       factor_megabytes) const
+                                     const double       factor_megabytes,
+                                     const bool         hanging_nodes) const
     {
       if (method != Method::automatic)
         return method;
-      // TFETI runs on one process for now: under MPI the undecomposed dual
-      // (distributed QP vectors) stays
-      return n_processes == 1 && factor_megabytes > memory_limit ?
+      if (hanging_nodes)
+        return Method::none;
+      // under MPI the undecomposed dual needs one distributed solve per
+      // Hessian product (slower on 2 processes than on 1); TFETI keeps
+      // every factorization and solve on its process
+      return n_processes > 1 || factor_megabytes > memory_limit ?
                Method::tfeti :
                Method::none;
     }
