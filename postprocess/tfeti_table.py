@@ -40,9 +40,9 @@ def main():
         if os.path.exists(stats_file):
             contact = json.load(open(stats_file))["contact"]
             solves = contact["qp_solves"]
-            row["outer"] = sum(q.get("n_outer", 0) for q in solves)
+            row["outer"] = sum(q.get("iterations_by_kind", {}).get("outer", 0) for q in solves)
             row["inner"] = sum(q["iterations"] for q in solves)
-            row["products"] = sum(q["n_hessian_products"] for q in solves)
+            row["products"] = sum(q["hessian_products"] for q in solves)
             row["qp_time"] = contact["qp_wall_time_s"]
             row["setup"] = contact["stiffness_setup_time_s"]
             row["multipliers"] = contact["n_multipliers"]
