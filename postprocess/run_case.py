@@ -1,18 +1,22 @@
 #!/usr/bin/env python3
 """Runs one benchmark case of dualcontact and records how it went.
 
-Usage: run_case.py PROGRAM CASE_DIR INPUT.prm [TIME_LIMIT_S] [-- ARGUMENTS...]
+Usage: run_case.py PROGRAM CASE_DIR INPUT.prm [TIME_LIMIT_S] [PROCESSES]
+                   [-- ARGUMENTS...]
 
 Runs PROGRAM INPUT.prm ARGUMENTS... (e.g. --set "QP solver/Tolerance=1e-6")
-in CASE_DIR (stdout and stderr to CASE_DIR/log.txt)
-and writes CASE_DIR/run.json: exit code (0 converged, 2 the contact solver
-failed, other: error), whether the time limit stopped it, wall time of the
-process [s], its peak resident memory [MB] and the load average when it
+in CASE_DIR (stdout and stderr to CASE_DIR/log.txt), under `mpirun -np
+PROCESSES' when PROCESSES > 1, and writes CASE_DIR/run.json: exit code (0
+converged, 2 the contact solver failed, other: error), whether the time
+limit stopped it, wall time [s], the peak resident memory [MB] (of the
+largest process: getrusage of the children, which under mpirun is the
+largest rank), the number of processes and the load average when it
 started.  Prints a one-line summary.
 """
 import json
 import os
 import resource
+import shutil
 import subprocess
 import sys
 import time
@@ -26,12 +30,21 @@ def main():
         argv = argv[:argv.index("--")]
     program, case_dir, prm = argv[0:3]
     limit = float(argv[3]) if len(argv) > 3 and float(argv[3]) > 0 else None
+    processes = int(argv[4]) if len(argv) > 4 else 1
+    command = [program, prm] + extra
+    env = dict(os.environ)
+    if processes > 1:
+        command = [shutil.which("mpirun"), "--allow-run-as-root",
+                   "--oversubscribe", "-np", str(processes)] + command
+        env.update({"OMPI_ALLOW_RUN_AS_ROOT": "1",
+                    "OMPI_ALLOW_RUN_AS_ROOT_CONFIRM": "1",
+                    "OMPI_MCA_rmaps_base_oversubscribe": "1"})
     load = open("/proc/loadavg").read().split()[:3]
     start = time.time()
     timeout = False
     with open(os.path.join(case_dir, "log.txt"), "w") as log:
         try:
-            code = subprocess.run([program, prm] + extra, cwd=case_dir, stdout=log,
+            code = subprocess.run(command, cwd=case_dir, stdout=log, env=env,
                                   stderr=subprocess.STDOUT, timeout=limit).returncode
         except subprocess.TimeoutExpired:
             code, timeout = None, True
@@ -40,7 +53,8 @@ def main():
     # is this run's peak
     peak = resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss / 1024.0
     record = {"exit_code": code, "timeout": timeout, "wall_time_s": wall,
-              "peak_memory_MB": peak, "load_average": load}
+              "peak_memory_MB": peak, "processes": processes,
+              "load_average": load}
     with open(os.path.join(case_dir, "run.json"), "w") as f:
         json.dump(record, f, indent=2)
     if timeout:

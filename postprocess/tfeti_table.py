@@ -3,7 +3,8 @@
 
 Usage: tfeti_table.py BENCH_DIR
 
-One row per run folder (L<level>_<method><subdomains>_tol<tol>): wall time
+One row per run folder (L<level>_<method><subdomains>_tol<tol>_np<processes>;
+without _np: 1 process): processes, wall time
 and peak memory (run.json, postprocess/run_case.py), subdomains, dofs of
 the subdomains, multipliers, coarse problem order, SMALSE-M outer and
 inner iterations, Hessian products, time of the factorizations and of the
@@ -19,7 +20,8 @@ def main():
     bench_dir = sys.argv[1]
     rows = []
     for name in os.listdir(bench_dir):
-        m = re.match(r"L(\d+)_(none|tfeti)(\d*)_tol(.*)$", name)
+        m = re.match(r"L(\d+)_(none|tfeti)(\d*)_tol([^_]*)(?:_np(\d+))?$",
+                     name)
         if not m:
             continue
         case = os.path.join(bench_dir, name)
@@ -30,16 +32,17 @@ def main():
         stats_file = os.path.join(case, "out", "statistics.json")
         row = {"level": int(m.group(1)), "method": m.group(2),
                "subdomains": int(m.group(3)) if m.group(3) else 0,
-               "tol": m.group(4), "wall": run["wall_time_s"],
+               "tol": m.group(4), "np": int(m.group(5) or 1),
+               "wall": run["wall_time_s"],
                "peak": run["peak_memory_MB"], "load": run["load_average"][0],
                "outcome": "timeout" if run["timeout"] else
                {0: "converged", 2: "not converged"}.get(run["exit_code"], "error")}
         if os.path.exists(stats_file):
             contact = json.load(open(stats_file))["contact"]
             solves = contact["qp_solves"]
-            row["outer"] = sum(q.get("n_outer", 0) for q in solves)
+            row["outer"] = sum(q.get("iterations_by_kind", {}).get("outer", 0) for q in solves)
             row["inner"] = sum(q["iterations"] for q in solves)
-            row["products"] = sum(q["n_hessian_products"] for q in solves)
+            row["products"] = sum(q["hessian_products"] for q in solves)
             row["qp_time"] = contact["qp_wall_time_s"]
             row["setup"] = contact["stiffness_setup_time_s"]
             row["multipliers"] = contact["n_multipliers"]
@@ -49,13 +52,15 @@ def main():
             row["coarse"] = decomposition.get("coarse_problem_order", 0)
         rows.append(row)
     rows.sort(key=lambda r: (r["level"], float(r["tol"]), r["method"] != "none",
-                             r["subdomains"]))
-    print("| mesh | tol | method | subdomains | dofs | multipliers | coarse | "
-          "outer / inner / products | factorization s | QP s | wall s | peak MB | load | outcome |")
-    print("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|")
+                             r["subdomains"], r["np"]))
+    print("| mesh | tol | method | processes | subdomains | dofs | multipliers | coarse | "
+          "outer / inner / products | factorization s | QP s | wall s | peak MB "
+          "(largest process) | load | outcome |")
+    print("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|")
     for r in rows:
         L = r["level"]
-        print(f"| {L}x{2*L}x{L} | {r['tol']} | {r['method']} | {r.get('n_sub', '-')} | "
+        print(f"| {L}x{2*L}x{L} | {r['tol']} | {r['method']} | {r['np']} | "
+              f"{r.get('n_sub', '-')} | "
               f"{r.get('dofs', '-')} | {r.get('multipliers', '-')} | {r.get('coarse', '-')} | "
               f"{r.get('outer', '-')} / {r.get('inner', '-')} / {r.get('products', '-')} | "
               f"{r.get('setup', 0):.1f} | {r.get('qp_time', 0):.1f} | {r['wall']:.1f} | "

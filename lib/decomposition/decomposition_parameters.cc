@@ -25,9 +25,15 @@ namespace dualcontact
         "factorized on its own and floating, glued to its neighbours, held "
         "by its Dirichlet conditions and by contact through multipliers "
         "(free gluing and Dirichlet multipliers, the coarse problem G G' "
-        "in SMALSE-M); one process only for now. automatic: tfeti on one "
-        "process when the estimated Cholesky factor of the largest body "
-        "exceeds `Memory limit', none otherwise (and under MPI).");
+        "in SMALSE-M); under MPI every process assembles and factorizes "
+        "only the subdomains it owns (the mesh stays replicated). "
+        "automatic: tfeti when the estimated Cholesky factor of the "
+        "largest body exceeds `Memory limit' (on any number of processes: "
+        "without a dual preconditioner TFETI is slower than the "
+        "undecomposed dual where that fits); none otherwise, and none for "
+        "meshes with "
+        "hanging nodes (local or contact refinement), which TFETI does not "
+        "glue yet.");
       prm.declare_entry(
         "Subdomains per body",
         "",
@@ -98,16 +104,19 @@ namespace dualcontact
 
 
     DecompositionParameters::Method
-    DecompositionParameters::resolve(const unsigned int n_processes,
-                                     const double       factor_megabytes) const
+    DecompositionParameters::resolve(const double factor_megabytes,
+                                     const bool   hanging_nodes) const
     {
       if (method != Method::automatic)
         return method;
-      // TFETI runs on one process for now: under MPI the undecomposed dual
-      // (distributed QP vectors) stays
-      return n_processes == 1 && factor_megabytes > memory_limit ?
-               Method::tfeti :
-               Method::none;
+      if (hanging_nodes)
+        return Method::none;
+      // TFETI only where the global factor does not fit: under MPI too,
+      // because without a dual preconditioner it needs thousands of
+      // iterations where the undecomposed dual needs tens (the brick at
+      // 10 x 20 x 10 on 2 processes: 104 s against 10 s,
+      // doc/benchmarks/tfeti.md)
+      return factor_megabytes > memory_limit ? Method::tfeti : Method::none;
     }
 
 

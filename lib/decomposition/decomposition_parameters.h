@@ -17,8 +17,8 @@ namespace dualcontact
     {
       enum class Method
       {
-        /** tfeti on one process when the global factor exceeds the
-         *  memory limit, else none (see resolve()) */
+        /** tfeti when the global factor exceeds the memory limit; else
+         *  none (see resolve()) */
         automatic,
         /** the undecomposed dual (contact::DualProblem) */
         none,
@@ -53,13 +53,16 @@ namespace dualcontact
       n_subdomains(const unsigned int body, const unsigned int n_cells) const;
 
       /**
-       * The method `automatic' stands for: tfeti on one process when the
-       * estimated factor (@p factor_megabytes) exceeds memory_limit, else
-       * none (also under MPI, as long as TFETI runs on one process).
+       * The method `automatic' stands for: tfeti when the estimated factor
+       * (@p factor_megabytes) exceeds memory_limit, on any number of
+       * processes; none otherwise (also under MPI: without a dual
+       * preconditioner TFETI is slower than the undecomposed dual where
+       * that fits), and none for a scene with @p hanging_nodes (which TFETI
+       * does not glue yet).
        */
       Method
-      resolve(const unsigned int n_processes,
-              const double       factor_megabytes) const;
+      resolve(const double factor_megabytes,
+              const bool         hanging_nodes = false) const;
 
       /**
        * An estimate [MB] of the nonzeros of the sparse Cholesky factor of a

@@ -1,4 +1,5 @@
 #include <deal.II/base/exceptions.h>
+#include <deal.II/base/mpi.h>
 #include <deal.II/base/timer.h>
 #include <deal.II/dofs/dof_tools.h>
 
@@ -93,6 +94,33 @@ namespace dualcontact
             x(i) = L(i, i) != 0 ? sum / L(i, i) : 0.;
           }
       }
+
+      /**
+       * The concatenation, in process order, of @p local of every process
+       * of @p communicator (on every process).
+       */
+      std::vector<double>
+      all_gather(const std::vector<double> &local, const MPI_Comm communicator)
+      {
+        const std::vector<unsigned int> sizes =
+          Utilities::MPI::all_gather(communicator,
+                                     static_cast<unsigned int>(local.size()));
+        std::vector<int> counts(sizes.begin(), sizes.end()),
+          offsets(sizes.size(), 0);
+        for (unsigned int p = 1; p < sizes.size(); ++p)
+          offsets[p] = offsets[p - 1] + counts[p - 1];
+        std::vector<double> all(offsets.back() + counts.back());
+        const int           ierr = MPI_Allgatherv(local.data(),
+                                        local.size(),
+                                        MPI_DOUBLE,
+                                        all.data(),
+                                        counts.data(),
+                                        offsets.data(),
+                                        MPI_DOUBLE,
+                                        communicator);
+        AssertThrowMPI(ierr);
+        return all;
+      }
     } // namespace
 
 
@@ -101,8 +129,17 @@ namespace dualcontact
       const std::vector<const fem::ElasticBody<dim> *>             &bodies,
       const contact::ContactDiscretization<dim>                    &contact,
       const DecompositionParameters                                &parameters,
-      const std::function<std::unique_ptr<fem::StiffnessSolver>()> &make_solver)
+      const std::function<std::unique_ptr<fem::StiffnessSolver>()> &make_solver,
+      const MPI_Comm communicator)
         : contact::DualFormulation<dim>(contact)
+        , communicator_(communicator)
+        // a program that never initialized MPI (a test) runs on one process
+        , n_processes_(Utilities::MPI::job_supports_mpi() ?
+                         Utilities::MPI::n_mpi_processes(communicator) :
+                         1)
+        , rank_(Utilities::MPI::job_supports_mpi() ?
+                  Utilities::MPI::this_mpi_process(communicator) :
+                  0)
         , bodies_(bodies)
     {
       for (const auto *body : bodies_)
@@ -117,23 +154,24 @@ namespace dualcontact
                         "scene."));
       Timer timer;
       decompose(parameters);
-      decomposition_time_ = timer.wall_time();
+      decomposition_time_ = max_over_processes(timer.wall_time());
 
       timer.restart();
-      for (auto &subdomain : subdomains_)
-        subdomain->factorize(make_solver());
-      setup_time_ = timer.wall_time();
+      for (const unsigned int s : owned_)
+        subdomains_[s]->factorize(make_solver());
+      setup_time_ = max_over_processes(timer.wall_time());
 
       build_constraint_rows();
       build_coarse_problem();
 
       // d = B K^# f - c
       std::vector<VectorType> f(subdomains_.size()), u;
-      for (unsigned int s = 0; s < subdomains_.size(); ++s)
+      for (const unsigned int s : owned_)
         f[s] = subdomains_[s]->load();
       apply_K_inverse(f, u);
       d_.reinit(n_multipliers());
       add_B(u, d_);
+      sum_over_processes(d_);
       for (unsigned int r = 0; r < n_multipliers(); ++r)
         d_(r) -= c_[r];
 
@@ -152,7 +190,18 @@ namespace dualcontact
       std::ostringstream description;
       description << "TFETI, implicit: local solves with the factors of "
                   << subdomains_.size() << " subdomains (K_s^# by "
-                  << subdomains_[0]->solver().name() << ")";
+                  << (owned_.empty() ? std::string("none on process 0") :
+                                       subdomains_[owned_[0]]->solver().name())
+                  << ")";
+      if (n_processes_ > 1)
+      {
+        description << " on " << n_processes_
+                    << " processes (subdomains per process";
+        const std::vector<unsigned int> per_process = subdomains_per_process();
+        for (unsigned int p = 0; p < per_process.size(); ++p)
+          description << (p == 0 ? " " : ", ") << per_process[p];
+        description << "), F lambda summed by MPI_Allreduce";
+      }
       operator_description_ = description.str();
     }
 
@@ -161,20 +210,72 @@ namespace dualcontact
     void
     TFETIDual<dim>::decompose(const DecompositionParameters &parameters)
     {
+      // the cells of every subdomain, on every process (the mesh is
+      // replicated); the first process' partition is broadcast, so that
+      // every process has the same one whatever METIS' seeding
+      std::vector<std::vector<typename Subdomain<dim>::CellIterator>> cells;
+      std::vector<std::string>                                        names;
+      std::vector<unsigned int>                                       body_of;
       first_copy_.resize(bodies_.size());
       for (unsigned int b = 0; b < bodies_.size(); ++b)
       {
         const fem::ElasticBody<dim> &body = *bodies_[b];
         const unsigned int           n_parts =
           parameters.n_subdomains(b, body.triangulation().n_active_cells());
-        const std::vector<unsigned int> part =
+        // every process partitions (so that an error is thrown on every
+        // process alike) and takes the first one's partition
+        std::vector<unsigned int> part =
           partition_cells(body.triangulation(), n_parts, body.name());
+        if (n_processes_ > 1)
+          part = Utilities::MPI::broadcast(communicator_, part, 0);
         const unsigned int n_pieces =
           *std::max_element(part.begin(), part.end()) + 1;
-        std::vector<std::vector<typename Subdomain<dim>::CellIterator>> cells(
-          n_pieces);
+        first_subdomain_.push_back(cells.size());
+        cells.resize(cells.size() + n_pieces);
         for (const auto &cell : body.dof_handler().active_cell_iterators())
-          cells[part[cell->active_cell_index()]].push_back(cell);
+          cells[first_subdomain_.back() + part[cell->active_cell_index()]]
+            .push_back(cell);
+        for (unsigned int p = 0; p < n_pieces; ++p)
+        {
+          names.push_back(body.name() + ", subdomain " + std::to_string(p + 1));
+          body_of.push_back(b);
+        }
+      }
+      first_subdomain_.push_back(cells.size());
+
+      dofs_.resize(cells.size());
+      for (unsigned int s = 0; s < cells.size(); ++s)
+      {
+        const fem::ElasticBody<dim>         &body = *bodies_[body_of[s]];
+        std::vector<types::global_dof_index> cell_dofs(
+          body.fe().n_dofs_per_cell());
+        for (const auto &cell : cells[s])
+        {
+          cell->get_dof_indices(cell_dofs);
+          dofs_[s].insert(dofs_[s].end(), cell_dofs.begin(), cell_dofs.end());
+        }
+        std::sort(dofs_[s].begin(), dofs_[s].end());
+        dofs_[s].erase(std::unique(dofs_[s].begin(), dofs_[s].end()),
+                       dofs_[s].end());
+      }
+      assign_owners();
+
+      subdomains_.resize(cells.size());
+      for (unsigned int b = 0; b < bodies_.size(); ++b)
+      {
+        const fem::ElasticBody<dim> &body = *bodies_[b];
+        first_copy_[b].assign(body.n_dofs(), {invalid, invalid});
+        for (unsigned int s = first_subdomain_[b]; s < first_subdomain_[b + 1];
+             ++s)
+          for (unsigned int l = 0; l < dofs_[s].size(); ++l)
+            if (first_copy_[b][dofs_[s][l]].first == invalid)
+              first_copy_[b][dofs_[s][l]] = {s, l};
+        bool owns_some = false;
+        for (unsigned int s = first_subdomain_[b]; s < first_subdomain_[b + 1];
+             ++s)
+          owns_some = owns_some || owner_[s] == rank_;
+        if (!owns_some)
+          continue;
 
         std::vector<Point<dim>> points(body.n_dofs());
         DoFTools::map_dofs_to_support_points(body.mapping(),
@@ -188,27 +289,66 @@ namespace dualcontact
           for (unsigned int i = 0; i < dofs.size(); ++i)
             components[dofs[i]] = body.fe().system_to_component_index(i).first;
         }
-
-        first_subdomain_.push_back(subdomains_.size());
-        first_copy_[b].assign(body.n_dofs(), {invalid, invalid});
-        for (unsigned int p = 0; p < n_pieces; ++p)
-        {
-          const unsigned int s = subdomains_.size();
-          subdomains_.push_back(
-            std::make_unique<Subdomain<dim>>(body,
-                                             b,
-                                             cells[p],
-                                             points,
-                                             components,
-                                             body.name() + ", subdomain " +
-                                               std::to_string(p + 1)));
-          const auto &local = subdomains_.back()->dofs();
-          for (unsigned int l = 0; l < local.size(); ++l)
-            if (first_copy_[b][local[l]].first == invalid)
-              first_copy_[b][local[l]] = {s, l};
-        }
+        for (unsigned int s = first_subdomain_[b]; s < first_subdomain_[b + 1];
+             ++s)
+          if (owner_[s] == rank_)
+          {
+            subdomains_[s] = std::make_unique<Subdomain<dim>>(
+              body, b, cells[s], points, components, names[s]);
+            Assert(subdomains_[s]->dofs() == dofs_[s], ExcInternalError());
+          }
       }
-      first_subdomain_.push_back(subdomains_.size());
+    }
+
+
+    template <int dim>
+    void
+    TFETIDual<dim>::assign_owners()
+    {
+      // longest processing time first: a subdomain's local solves cost
+      // about its dofs (times a factor-size power that is the same for
+      // subdomains of one scene)
+      const unsigned int        n_subdomains = dofs_.size();
+      std::vector<unsigned int> order(n_subdomains);
+      for (unsigned int s = 0; s < n_subdomains; ++s)
+        order[s] = s;
+      std::stable_sort(order.begin(),
+                       order.end(),
+                       [this](const unsigned int a, const unsigned int b)
+                       { return dofs_[a].size() > dofs_[b].size(); });
+      std::vector<unsigned long> load(n_processes_, 0);
+      owner_.assign(n_subdomains, 0);
+      for (const unsigned int s : order)
+      {
+        const unsigned int p =
+          std::min_element(load.begin(), load.end()) - load.begin();
+        owner_[s] = p;
+        load[p] += dofs_[s].size();
+      }
+      owned_.clear();
+      for (unsigned int s = 0; s < n_subdomains; ++s)
+        if (owner_[s] == rank_)
+          owned_.push_back(s);
+    }
+
+
+    template <int dim>
+    double
+    TFETIDual<dim>::max_over_processes(const double x) const
+    {
+      return n_processes_ > 1 ? Utilities::MPI::max(x, communicator_) : x;
+    }
+
+
+    template <int dim>
+    void
+    TFETIDual<dim>::sum_over_processes(VectorType &v) const
+    {
+      if (n_processes_ == 1)
+        return;
+      const int ierr = MPI_Allreduce(
+        MPI_IN_PLACE, v.data(), v.size(), MPI_DOUBLE, MPI_SUM, communicator_);
+      AssertThrowMPI(ierr);
     }
 
 
@@ -228,7 +368,10 @@ namespace dualcontact
                               const unsigned int local,
                               const double       value)
     {
-      entries_[s].push_back({row, local, value});
+      // the rows are numbered alike on every process; only the owner of
+      // subdomain s keeps the entries of B_s
+      if (owner_[s] == rank_)
+        entries_[s].push_back({row, local, value});
     }
 
 
@@ -279,8 +422,8 @@ namespace dualcontact
         copies[b].resize(bodies_[b]->n_dofs());
         for (unsigned int s = first_subdomain_[b]; s < first_subdomain_[b + 1];
              ++s)
-          for (unsigned int l = 0; l < subdomains_[s]->n_dofs(); ++l)
-            copies[b][subdomains_[s]->dofs()[l]].push_back({s, l});
+          for (unsigned int l = 0; l < dofs_[s].size(); ++l)
+            copies[b][dofs_[s][l]].push_back({s, l});
       }
       // gluing rows: a chain through the copies of every free dof
       for (unsigned int b = 0; b < bodies_.size(); ++b)
@@ -320,7 +463,10 @@ namespace dualcontact
       n_modes_                   = subdomains_.size() * n_rigid;
       G_columns_.assign(n_multipliers(), {});
       e_.reinit(n_modes_);
-      for (unsigned int s = 0; s < subdomains_.size(); ++s)
+      // R_s'f_s and the entries of R_s'B_s' of the owned subdomains, as
+      // (row, mode, value) triples, gathered on every process
+      std::vector<double> triples;
+      for (const unsigned int s : owned_)
       {
         const auto &modes = subdomains_[s]->modes();
         AssertDimension(modes.size(), n_rigid);
@@ -328,18 +474,26 @@ namespace dualcontact
           e_(s * n_rigid + k) = modes[k] * subdomains_[s]->load();
         for (const Entry &entry : entries_[s])
           for (unsigned int k = 0; k < n_rigid; ++k)
-            G_columns_[entry.row].emplace_back(s * n_rigid + k,
-                                               entry.value *
-                                                 modes[k](entry.local));
+            triples.insert(triples.end(),
+                           {static_cast<double>(entry.row),
+                            static_cast<double>(s * n_rigid + k),
+                            entry.value * modes[k](entry.local)});
       }
+      sum_over_processes(e_);
+      if (n_processes_ > 1)
+        triples = all_gather(triples, communicator_);
+      for (unsigned int t = 0; t < triples.size(); t += 3)
+        G_columns_[static_cast<unsigned int>(triples[t])].emplace_back(
+          static_cast<unsigned int>(triples[t + 1]), triples[t + 2]);
       // merge the entries of a mode in a column (a contact row may touch
-      // several dofs of one subdomain)
+      // several dofs of one subdomain), in their order (stable: the same
+      // sums on any number of processes)
       for (auto &column : G_columns_)
       {
-        std::sort(column.begin(),
-                  column.end(),
-                  [](const auto &a, const auto &b)
-                  { return a.first < b.first; });
+        std::stable_sort(column.begin(),
+                         column.end(),
+                         [](const auto &a, const auto &b)
+                         { return a.first < b.first; });
         unsigned int n = 0;
         for (unsigned int q = 0; q < column.size(); ++q)
           if (n > 0 && column[n - 1].first == column[q].first)
@@ -379,7 +533,7 @@ namespace dualcontact
                              std::vector<VectorType> &w) const
     {
       w.resize(subdomains_.size());
-      for (unsigned int s = 0; s < subdomains_.size(); ++s)
+      for (const unsigned int s : owned_)
       {
         w[s].reinit(subdomains_[s]->n_dofs());
         for (const Entry &entry : entries_[s])
@@ -393,7 +547,7 @@ namespace dualcontact
     TFETIDual<dim>::add_B(const std::vector<VectorType> &u,
                           VectorType                    &lambda) const
     {
-      for (unsigned int s = 0; s < subdomains_.size(); ++s)
+      for (const unsigned int s : owned_)
         for (const Entry &entry : entries_[s])
           lambda(entry.row) += entry.value * u[s](entry.local);
     }
@@ -406,7 +560,7 @@ namespace dualcontact
     {
       Timer timer;
       u.resize(subdomains_.size());
-      for (unsigned int s = 0; s < subdomains_.size(); ++s)
+      for (const unsigned int s : owned_)
       {
         u[s].reinit(subdomains_[s]->n_dofs());
         subdomains_[s]->apply_generalized_inverse(u[s], w[s]);
@@ -424,6 +578,7 @@ namespace dualcontact
       apply_K_inverse(work_, work_x_);
       dst.reinit(n_multipliers());
       add_B(work_x_, dst);
+      sum_over_processes(dst);
     }
 
 
@@ -486,7 +641,7 @@ namespace dualcontact
       AssertDimension(lambda.size(), n_multipliers());
       std::vector<VectorType> w, u;
       apply_Bt(lambda, w);
-      for (unsigned int s = 0; s < subdomains_.size(); ++s)
+      for (const unsigned int s : owned_)
         w[s].sadd(-1., 1., subdomains_[s]->load());
       apply_K_inverse(w, u);
 
@@ -495,6 +650,7 @@ namespace dualcontact
       // rows)
       VectorType residual(n_multipliers());
       add_B(u, residual);
+      sum_over_processes(residual);
       const unsigned int n_contact = this->n_contact_multipliers();
       double             scale     = 0;
       for (unsigned int i = 0; i < this->n_contact_nodes(); ++i)
@@ -522,11 +678,12 @@ namespace dualcontact
       triangular_solve(GGt, alpha, false);
       triangular_solve(GGt, alpha, true);
       const unsigned int n_rigid = dim * (dim + 1) / 2;
-      for (unsigned int s = 0; s < subdomains_.size(); ++s)
+      for (const unsigned int s : owned_)
         for (unsigned int k = 0; k < n_rigid; ++k)
           u[s].add(alpha(s * n_rigid + k), subdomains_[s]->modes()[k]);
 
-      // the glued field: every dof from its first copy
+      // the glued field: every dof from its first copy (on the process
+      // that owns that copy's subdomain, summed over the processes)
       displacements.resize(bodies_.size());
       max_jump_    = 0;
       double u_max = 0;
@@ -535,19 +692,25 @@ namespace dualcontact
         displacements[b].reinit(bodies_[b]->n_dofs());
         for (unsigned int i = 0; i < bodies_[b]->n_dofs(); ++i)
         {
-          const auto [s, l]   = first_copy_[b][i];
-          displacements[b](i) = u[s](l);
-          u_max               = std::max(u_max, std::abs(u[s](l)));
+          const auto [s, l] = first_copy_[b][i];
+          if (owner_[s] == rank_)
+            displacements[b](i) = u[s](l);
         }
+        sum_over_processes(displacements[b]);
         for (unsigned int s = first_subdomain_[b]; s < first_subdomain_[b + 1];
              ++s)
-          for (unsigned int l = 0; l < subdomains_[s]->n_dofs(); ++l)
-            max_jump_ =
-              std::max(max_jump_,
-                       std::abs(u[s](l) -
-                                displacements[b](subdomains_[s]->dofs()[l])));
+          if (owner_[s] == rank_)
+            for (unsigned int l = 0; l < dofs_[s].size(); ++l)
+            {
+              u_max = std::max(u_max, std::abs(u[s](l)));
+              max_jump_ =
+                std::max(max_jump_,
+                         std::abs(u[s](l) - displacements[b](dofs_[s][l])));
+            }
         bodies_[b]->distribute(displacements[b]);
       }
+      max_jump_      = max_over_processes(max_jump_);
+      u_max          = max_over_processes(u_max);
       relative_jump_ = u_max > 0 ? max_jump_ / u_max : 0.;
       return determined;
     }
@@ -642,10 +805,53 @@ namespace dualcontact
 
 
     template <int dim>
+    bool
+    TFETIDual<dim>::is_owned(const unsigned int s) const
+    {
+      AssertIndexRange(s, owner_.size());
+      return owner_[s] == rank_;
+    }
+
+
+    template <int dim>
     const Subdomain<dim> &
     TFETIDual<dim>::subdomain(const unsigned int s) const
     {
+      Assert(is_owned(s),
+             ExcMessage("Subdomain " + std::to_string(s) +
+                        " belongs to another process."));
       return *subdomains_[s];
+    }
+
+
+    template <int dim>
+    const std::vector<types::global_dof_index> &
+    TFETIDual<dim>::subdomain_dofs(const unsigned int s) const
+    {
+      AssertIndexRange(s, dofs_.size());
+      return dofs_[s];
+    }
+
+
+    template <int dim>
+    std::vector<unsigned int>
+    TFETIDual<dim>::subdomains_per_process() const
+    {
+      std::vector<unsigned int> count(n_processes_, 0);
+      for (const unsigned int p : owner_)
+        ++count[p];
+      return count;
+    }
+
+
+    template <int dim>
+    std::vector<unsigned int>
+    TFETIDual<dim>::subdomain_dofs_per_process() const
+    {
+      std::vector<unsigned int> count(n_processes_, 0);
+      for (unsigned int s = 0; s < owner_.size(); ++s)
+        count[owner_[s]] += dofs_[s].size();
+      return count;
     }
 
 
@@ -662,8 +868,8 @@ namespace dualcontact
     TFETIDual<dim>::n_primal_dofs() const
     {
       unsigned int n = 0;
-      for (const auto &subdomain : subdomains_)
-        n += subdomain->n_dofs();
+      for (const auto &dofs : dofs_)
+        n += dofs.size();
       return n;
     }
 

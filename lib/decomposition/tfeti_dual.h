@@ -1,5 +1,6 @@
 #pragma once
 
+#include <deal.II/base/mpi.h>
 #include <deal.II/lac/full_matrix.h>
 #include <deal.II/lac/vector.h>
 
@@ -20,9 +21,9 @@ namespace dualcontact
   namespace decomposition
   {
     /**
-     * The TFETI (total FETI) dual of a contact scene on one process: every
-     * body is cut into subdomains (partition_cells()), each with its own
-     * copy of its dofs (Subdomain), and
+     * The TFETI (total FETI) dual of a contact scene: every body is cut
+     * into subdomains (partition_cells()), each with its own copy of its
+     * dofs (Subdomain), and
      *
      *   K = diag(K_s), f = [f_s], R = diag(R_s),
      *   B = [B_contact; B_gluing; B_dirichlet],
@@ -71,6 +72,21 @@ namespace dualcontact
      * max_interface_jump() is the largest difference between two copies
      * of a dof (the gluing residual).
      *
+     * <b>Processes.</b> Under MPI every process owns whole subdomains
+     * (balanced by their dofs, largest first onto the least loaded
+     * process) and assembles, factorizes and solves only these; no process
+     * holds a global stiffness matrix or all of B.  The multipliers and
+     * the coarse problem are replicated: every process keeps lambda, d, c,
+     * G (gathered once from the processes' R_s'B_s') and the Cholesky
+     * factor of G G', and F lambda is the sum over the owned subdomains
+     * followed by one MPI_Allreduce of the multiplier vector.  So the QP
+     * runs on dealii::Vector on every process in lockstep (the reductions
+     * give every process the same bits), and its result does not depend on
+     * the number of processes beyond round-off.  The recovered field is
+     * assembled from the owned subdomains and summed over the processes:
+     * every process gets the whole field of every body (the mesh is
+     * replicated, parallel::shared, and each process writes its cells).
+     *
      * Hanging-node constraints (adaptive refinement) are refused.
      */
     template <int dim>
@@ -82,14 +98,17 @@ namespace dualcontact
 
       /**
        * Cuts the bodies (counts from @p parameters), assembles and
-       * factorizes the subdomains with solvers made by @p make_solver,
-       * builds B, d, G, e and the coarse problem.
+       * factorizes the subdomains this process owns (of the processes of
+       * @p communicator) with solvers made by @p make_solver (serial ones:
+       * each factor stays on its process), builds B, d, G, e and the
+       * coarse problem.  Collective.
        */
       TFETIDual(const std::vector<const fem::ElasticBody<dim> *> &bodies,
                 const contact::ContactDiscretization<dim>        &contact,
                 const DecompositionParameters                    &parameters,
                 const std::function<std::unique_ptr<fem::StiffnessSolver>()>
-                  &make_solver);
+                        &make_solver,
+                MPI_Comm communicator = MPI_COMM_WORLD);
 
       unsigned int
       n_multipliers() const override;
@@ -116,7 +135,7 @@ namespace dualcontact
       double
       assembly_time() const override;
 
-      /** dst = F src. */
+      /** dst = F src (collective). */
       void
       apply_F(VectorType &dst, const VectorType &src) const;
       const VectorType &
@@ -126,8 +145,21 @@ namespace dualcontact
       /** @{ */
       unsigned int
       n_subdomains() const;
+      /** Whether this process owns subdomain @p s. */
+      bool
+      is_owned(const unsigned int s) const;
+      /** Subdomain @p s, which this process must own. */
       const Subdomain<dim> &
       subdomain(const unsigned int s) const;
+      /** The body dofs of subdomain @p s (sorted; on every process). */
+      const std::vector<dealii::types::global_dof_index> &
+      subdomain_dofs(const unsigned int s) const;
+      /** Number of subdomains each process owns. */
+      std::vector<unsigned int>
+      subdomains_per_process() const;
+      /** Subdomain dofs (copies counted) each process owns. */
+      std::vector<unsigned int>
+      subdomain_dofs_per_process() const;
       /** Subdomains of body @p b. */
       unsigned int
       n_subdomains_of_body(const unsigned int b) const;
@@ -138,7 +170,8 @@ namespace dualcontact
       n_gluing_multipliers() const;
       unsigned int
       n_dirichlet_multipliers() const;
-      /** Wall time [s] of partitioning and assembling the subdomains. */
+      /** Wall time [s] of partitioning and assembling the subdomains
+       *  (the slowest process). */
       double
       decomposition_time() const;
       /**
@@ -163,9 +196,23 @@ namespace dualcontact
         double       value;
       };
 
-      /** partition_cells() and the Subdomain objects of every body. */
+      /**
+       * partition_cells() (the first process' partition, broadcast), the dofs
+       * of every subdomain, the owner of each, and the Subdomain objects of the
+       * owned ones.
+       */
       void
       decompose(const DecompositionParameters &parameters);
+      /** The owner of every subdomain: largest first onto the process with
+       *  the fewest dofs so far. */
+      void
+      assign_owners();
+      /** The largest @p x over the processes. */
+      double
+      max_over_processes(const double x) const;
+      /** v := the sum of v over the processes. */
+      void
+      sum_over_processes(VectorType &v) const;
       /** Contact, gluing and Dirichlet rows (entries_, c_). */
       void
       build_constraint_rows();
@@ -182,13 +229,13 @@ namespace dualcontact
                 const unsigned int local,
                 const double       value);
 
-      /** w_s = B_s' lambda for every subdomain. */
+      /** w_s = B_s' lambda for every owned subdomain. */
       void
       apply_Bt(const VectorType &lambda, std::vector<VectorType> &w) const;
-      /** lambda += B_s u_s over the subdomains. */
+      /** lambda += B_s u_s over the owned subdomains (no reduction). */
       void
       add_B(const std::vector<VectorType> &u, VectorType &lambda) const;
-      /** u_s = K_s^# w_s for every subdomain. */
+      /** u_s = K_s^# w_s for every owned subdomain. */
       void
       apply_K_inverse(const std::vector<VectorType> &w,
                       std::vector<VectorType>       &u) const;
@@ -197,10 +244,18 @@ namespace dualcontact
       void
       coarse_solve(VectorType &x, const bool transpose) const;
 
-      std::vector<const fem::ElasticBody<dim> *>   bodies_;
+      MPI_Comm                                   communicator_;
+      unsigned int                               n_processes_ = 1, rank_ = 0;
+      std::vector<const fem::ElasticBody<dim> *> bodies_;
+      /** Per subdomain: the Subdomain if owned here, else null. */
       std::vector<std::unique_ptr<Subdomain<dim>>> subdomains_;
-      std::vector<unsigned int>                    first_subdomain_;
-      /** Per subdomain, the entries of B_s. */
+      /** Per subdomain (on every process): its body dofs and its owner. */
+      std::vector<std::vector<dealii::types::global_dof_index>> dofs_;
+      std::vector<unsigned int>                                 owner_;
+      /** The owned subdomains, ascending. */
+      std::vector<unsigned int> owned_;
+      std::vector<unsigned int> first_subdomain_;
+      /** Per subdomain (owned ones only), the entries of B_s. */
       std::vector<std::vector<Entry>> entries_;
       /** Per multiplier, the right-hand side c of its row. */
       std::vector<double> c_;

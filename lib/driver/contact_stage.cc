@@ -88,18 +88,13 @@ namespace dualcontact
       dealii::ParameterHandler                        &prm    = prm_;
       if (decomposed())
       {
-        AssertThrow(dealii::Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD) ==
-                      1,
-                    dealii::ExcMessage(
-                      "TFETI runs on one process for now: `set Method = "
-                      "none' in `subsection Decomposition' under MPI."));
         dual_ = std::make_unique<decomposition::TFETIDual<dim>>(
           bodies,
           *contact_,
           decomposition_parameters_,
           [&prm, log = run_log_]()
           {
-            auto solver = fem::StiffnessSolver::create(prm);
+            auto solver = decomposition::make_subdomain_solver(prm);
             if (log != nullptr)
               solver->set_monitor(log->monitor());
             return solver;
@@ -150,14 +145,19 @@ namespace dualcontact
     bool
     ContactStage<dim>::decomposed() const
     {
-      using Method   = decomposition::DecompositionParameters::Method;
-      double largest = 0;
+      using Method         = decomposition::DecompositionParameters::Method;
+      double largest       = 0;
+      bool   hanging_nodes = false;
       for (const auto *body : scene_.bodies())
+      {
         largest = std::max<double>(largest, body->n_dofs());
+        hanging_nodes =
+          hanging_nodes || body->triangulation().has_hanging_nodes();
+      }
       return decomposition_parameters_.resolve(
-               dealii::Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD),
                decomposition::DecompositionParameters::
-                 estimate_factor_megabytes(dim, largest)) == Method::tfeti;
+                 estimate_factor_megabytes(dim, largest),
+               hanging_nodes) == Method::tfeti;
     }
 
 
@@ -180,9 +180,20 @@ namespace dualcontact
            << tfeti.n_gluing_multipliers() << " gluing, "
            << tfeti.n_dirichlet_multipliers()
            << " Dirichlet), coarse problem G G' of order "
-           << tfeti.n_rigid_body_modes() << "; partition and assembly "
-           << tfeti.decomposition_time() << " s, factorizations "
-           << tfeti.stiffness_setup_time() << " s";
+           << tfeti.n_rigid_body_modes();
+      const std::vector<unsigned int> per_process =
+        tfeti.subdomains_per_process();
+      if (per_process.size() > 1)
+      {
+        const std::vector<unsigned int> dofs =
+          tfeti.subdomain_dofs_per_process();
+        line << "; subdomains (dofs) per process";
+        for (unsigned int p = 0; p < per_process.size(); ++p)
+          line << (p == 0 ? " " : ", ") << per_process[p] << " (" << dofs[p]
+               << ")";
+      }
+      line << "; partition and assembly " << tfeti.decomposition_time()
+           << " s, factorizations " << tfeti.stiffness_setup_time() << " s";
       details.push_back(line.str());
     }
 

@@ -8,6 +8,7 @@
 #include <contact/contact_solver.h>
 #include <contact/dual_problem.h>
 #include <decomposition/decomposition_parameters.h>
+#include <decomposition/subdomain_solver.h>
 #include <decomposition/tfeti_dual.h>
 #include <driver/run_log.h>
 #include <driver/scene.h>

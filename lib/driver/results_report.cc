@@ -306,6 +306,8 @@ namespace dualcontact
             {"n_subdomains", tfeti->n_subdomains()},
             {"subdomains_per_body", per_body},
             {"n_subdomain_dofs", tfeti->n_primal_dofs()},
+            {"subdomains_per_process", tfeti->subdomains_per_process()},
+            {"subdomain_dofs_per_process", tfeti->subdomain_dofs_per_process()},
             {"n_contact_multipliers", tfeti->n_contact_multipliers()},
             {"n_gluing_multipliers", tfeti->n_gluing_multipliers()},
             {"n_dirichlet_multipliers", tfeti->n_dirichlet_multipliers()},

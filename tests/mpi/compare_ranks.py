@@ -3,7 +3,7 @@
 and asserts that the answers agree.
 
 Usage: compare_ranks.py DUALCONTACT MPIRUN INPUT.prm WORKDIR [TOLERANCE]
-                        [--ranks=1,2,4]
+                        [--ranks=1,2,4] [--method-N=none|tfeti ...]
 
 The runs (1 and 2 processes unless --ranks says otherwise; the first
 count must be 1) must converge (exit 0, contact.converged = 1).  Each run
@@ -15,14 +15,24 @@ relative tolerance TOLERANCE (default 1e-8) for the reals:
     (results.txt) and the Euclidean norm of the displacement vector
     (statistics.json, bodies[].results.displacement_l2_norm);
   - the total normal force of the first pair equals the applied load
-    (body_1.applied_force, its norm) to TOLERANCE in both runs, when the
-    scene has one body and one pair (a Hertz scene);
+    (body_1.applied_force, its largest component: the scenes with one
+    body and one pair press onto an axis-aligned plane) to TOLERANCE in
+    both runs, when the scene has one body and one pair;
   - the dual QP ran on the vectors it should (statistics.json,
-    contact.qp_vectors): dealii::Vector<double> on 1 process,
-    dealii::TrilinosWrappers::MPI::Vector on N > 1, split over at least two
+    contact.qp_vectors): dealii::Vector<double> on 1 process; on N > 1
+    with the undecomposed dual (contact.decomposition.method = none)
+    dealii::TrilinosWrappers::MPI::Vector, split over at least two
     processes (contact.multipliers_per_process, contact_nodes_per_process:
     N counts adding up to n_multipliers and n_nodes, two or more of them
-    positive; a METIS subdomain may hold no contact node);
+    positive; a METIS subdomain may hold no contact node); with TFETI
+    (method = tfeti) dealii::Vector<double> replicated on every process
+    and the subdomains split over the processes
+    (decomposition.subdomains_per_process: N counts adding up to
+    n_subdomains, each positive when there are at least N subdomains),
+    the glued field continuous (relative_interface_jump below TOLERANCE);
+  - --method-N=none|tfeti: the dual the N-process run must have used
+    (decomposition.method), e.g. --method-1=none --method-2=tfeti for an
+    input with `Method = automatic';
   - the N-process run wrote one piece of every body per process
     (body_N_rank_R.vtu) and solution.pvtu refers to all of them, and one
     piece of every contact surface per process (contact_N_rank_R.vtu, the
@@ -92,11 +102,15 @@ def run(app, mpirun, prm, workdir, ranks):
 
 
 def main():
-    arguments = [a for a in sys.argv[1:] if not a.startswith("--ranks=")]
+    arguments = [a for a in sys.argv[1:] if not a.startswith("--")]
     counts = [1, 2]
+    methods = {}
     for a in sys.argv[1:]:
         if a.startswith("--ranks="):
             counts = [int(n) for n in a[len("--ranks="):].split(",")]
+        m = re.match(r"--method-(\d+)=(none|tfeti)$", a)
+        if m:
+            methods[int(m.group(1))] = m.group(2)
     if counts[0] != 1 or len(counts) < 2:
         sys.exit("compare_ranks.py: --ranks must start with 1 and name more")
     app, mpirun, prm, workdir = arguments[0:4]
@@ -112,6 +126,12 @@ def main():
     out1, r1, s1 = runs[0]
     check(s1["contact"]["qp_vectors"] == "dealii::Vector<double>",
           f"1 process: the QP ran on {s1['contact']['qp_vectors']}")
+    for ranks, (_, _, s) in zip(counts, runs):
+        if ranks in methods:
+            method = s["contact"]["decomposition"]["method"]
+            check(method == methods[ranks],
+                  f"{ranks} process(es): the dual was {method}, expected "
+                  f"{methods[ranks]}")
     for ranks, (out2, r2, s2) in zip(counts[1:], runs[1:]):
         print(f"--- 1 process against {ranks} processes")
         compare(check, tolerance, ranks, (out1, r1, s1), (out2, r2, s2))
@@ -133,16 +153,33 @@ def compare(check, tolerance, ranks, first, second):
     nodes_per_process = c2.get("contact_nodes_per_process", [])
     n_nodes = sum(v[0] for k, v in r2.items()
                   if re.match(r"pair_\d+\.n_nodes$", k))
-    check(c2.get("qp_vectors") == "dealii::TrilinosWrappers::MPI::Vector"
-          and len(per_process) == ranks
-          and sum(1 for n in per_process if n > 0) >= 2
-          and sum(per_process) == c2["n_multipliers"]
-          and len(nodes_per_process) == ranks
-          and sum(nodes_per_process) == n_nodes,
-          f"{ranks} processes: the QP ran on {c2.get('qp_vectors')}, "
-          f"multipliers per process {per_process} (of "
-          f"{c2['n_multipliers']}), contact nodes per process "
-          f"{nodes_per_process} (of {n_nodes:g})")
+    decomposition = c2.get("decomposition", {"method": "none"})
+    if decomposition["method"] == "tfeti":
+        subdomains = decomposition.get("subdomains_per_process", [])
+        n_subdomains = decomposition["n_subdomains"]
+        check(c2.get("qp_vectors") == "dealii::Vector<double>"
+              and per_process == [c2["n_multipliers"]]
+              and len(subdomains) == ranks
+              and sum(subdomains) == n_subdomains
+              and (n_subdomains < ranks or min(subdomains) > 0),
+              f"{ranks} processes, TFETI: the QP ran on "
+              f"{c2.get('qp_vectors')} (replicated), multipliers "
+              f"{per_process} (of {c2['n_multipliers']}), subdomains per "
+              f"process {subdomains} (of {n_subdomains})")
+        jump = decomposition["relative_interface_jump"]
+        check(jump <= tolerance, f"{ranks} processes, TFETI: relative "
+              f"interface jump {jump:.2e}")
+    else:
+        check(c2.get("qp_vectors") == "dealii::TrilinosWrappers::MPI::Vector"
+              and len(per_process) == ranks
+              and sum(1 for n in per_process if n > 0) >= 2
+              and sum(per_process) == c2["n_multipliers"]
+              and len(nodes_per_process) == ranks
+              and sum(nodes_per_process) == n_nodes,
+              f"{ranks} processes: the QP ran on {c2.get('qp_vectors')}, "
+              f"multipliers per process {per_process} (of "
+              f"{c2['n_multipliers']}), contact nodes per process "
+              f"{nodes_per_process} (of {n_nodes:g})")
 
     exact = re.compile(r"pair_\d+\.n_(nodes|separated|stick|slip|contact)$")
     real = re.compile(r"(pair_\d+\.(normal_force|tangential_force|"
@@ -168,7 +205,7 @@ def compare(check, tolerance, ranks, first, second):
     if "pair_1.normal_force" in r1 and "pair_2.normal_force" not in r1 \
             and "body_2.n_dofs" not in r1:
         for n, r in ((1, r1), (ranks, r2)):
-            load = sum(v * v for v in r["body_1.applied_force"]) ** 0.5
+            load = max(abs(v) for v in r["body_1.applied_force"])
             force = r["pair_1.normal_force"][0]
             diff = abs(force - load) / load
             check(diff <= tolerance, f"{n} process(es): normal force "
