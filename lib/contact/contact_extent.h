@@ -88,6 +88,26 @@ namespace dualcontact
       void
       compute_level_function(const std::vector<Node> &nodes);
 
+      /**
+       * The contact neighbour k of node @p c whose direction from c is most
+       * nearly opposite to @p direction (within 45 degrees), or -1.
+       */
+      int
+      far_neighbour(const std::vector<Node>     &nodes,
+                    const unsigned int           c,
+                    const dealii::Tensor<1, dim> &direction) const;
+
+      /**
+       * @p psi extrapolated linearly along the line from node @p inner
+       * through node @p outer to @p target.
+       */
+      static double
+      extrapolate(const std::vector<Node>   &nodes,
+                  const std::vector<double> &psi,
+                  const unsigned int         inner,
+                  const unsigned int         outer,
+                  const dealii::Point<dim>  &target);
+
       /** The measure of {psi_h > 0} over the slave faces. */
       void
       integrate_zone(const fem::ElasticBody<dim>     &slave,
