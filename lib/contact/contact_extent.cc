@@ -88,7 +88,8 @@ namespace dualcontact
         if (nodes[k].in_contact)
         {
           const Tensor<1, dim> to_k = nodes[k].position - nodes[c].position;
-          const double cos = to_k * direction / (to_k.norm() * direction.norm());
+          const double         cos =
+            to_k * direction / (to_k.norm() * direction.norm());
           if (cos < best_cos)
           {
             best_cos = cos;
@@ -107,10 +108,10 @@ namespace dualcontact
                                     const unsigned int         outer,
                                     const dealii::Point<dim>  &target)
     {
-      return psi[outer] + (psi[outer] - psi[inner]) *
-                            (target - nodes[outer].position).norm() /
-                            (nodes[outer].position - nodes[inner].position)
-                              .norm();
+      return psi[outer] +
+             (psi[outer] - psi[inner]) *
+               (target - nodes[outer].position).norm() /
+               (nodes[outer].position - nodes[inner].position).norm();
     }
 
 
@@ -148,14 +149,14 @@ namespace dualcontact
                 far_neighbour(nodes, c, nodes[j].position - nodes[c].position);
               if (c1 < 0)
                 continue;
-              const int c2 = far_neighbour(nodes,
-                                           c1,
-                                           nodes[c].position -
-                                             nodes[c1].position);
+              const int c2 =
+                far_neighbour(nodes,
+                              c1,
+                              nodes[c].position - nodes[c1].position);
               if (c2 < 0)
                 continue;
-              sum += extrapolate(
-                nodes, pressure_squared, c2, c1, nodes[c].position);
+              sum +=
+                extrapolate(nodes, pressure_squared, c2, c1, nodes[c].position);
               ++count;
             }
           if (count > 0 && sum < 0)
