@@ -75,20 +75,95 @@ namespace dualcontact
 
 
     template <int dim>
+    int
+    ContactExtent<dim>::far_neighbour(const std::vector<Node> &nodes,
+                                      const unsigned int       c,
+                                      const Tensor<1, dim>    &direction) const
+    {
+      // within 45 degrees of the line
+      const double cos_limit = -std::sqrt(0.5);
+      double       best_cos  = cos_limit;
+      int          far       = -1;
+      for (const unsigned int k : neighbours_[c])
+        if (nodes[k].in_contact)
+        {
+          const Tensor<1, dim> to_k = nodes[k].position - nodes[c].position;
+          const double         cos =
+            to_k * direction / (to_k.norm() * direction.norm());
+          if (cos < best_cos)
+          {
+            best_cos = cos;
+            far      = k;
+          }
+        }
+      return far;
+    }
+
+
+    template <int dim>
+    double
+    ContactExtent<dim>::extrapolate(const std::vector<Node>   &nodes,
+                                    const std::vector<double> &psi,
+                                    const unsigned int         inner,
+                                    const unsigned int         outer,
+                                    const dealii::Point<dim>  &target)
+    {
+      return psi[outer] +
+             (psi[outer] - psi[inner]) *
+               (target - nodes[outer].position).norm() /
+               (nodes[outer].position - nodes[inner].position).norm();
+    }
+
+
+    template <int dim>
     void
     ContactExtent<dim>::compute_level_function(const std::vector<Node> &nodes)
     {
-      const unsigned int n = nodes.size();
-      psi_.assign(n, 0.);
-      double max_psi = 0;
+      const unsigned int  n = nodes.size();
+      std::vector<double> pressure_squared(n, 0.);
+      double              max_psi = 0;
       for (unsigned int i = 0; i < n; ++i)
         if (nodes[i].in_contact)
         {
-          psi_[i] = nodes[i].pressure * nodes[i].pressure;
-          max_psi = std::max(max_psi, psi_[i]);
+          pressure_squared[i] = nodes[i].pressure * nodes[i].pressure;
+          max_psi             = std::max(max_psi, pressure_squared[i]);
         }
-      // the far-side neighbour must lie within 45 degrees of the line
-      const double cos_limit = -std::sqrt(0.5);
+      psi_ = pressure_squared;
+
+      // Contact nodes beyond the edge: at a contact node c next to a
+      // separated node j, p^2 extrapolated from the two contact nodes c'',
+      // c' behind c on the line from j through c.  If it is negative, the
+      // interior puts the edge before c: c is in contact only through the
+      // force of the element that straddles the edge, lumped onto it, and
+      // its p_c^2 is no value of p^2 at x_c; psi_c is then the
+      // extrapolated value (the mean over c's separated neighbours).
+      for (unsigned int c = 0; c < n; ++c)
+        if (nodes[c].in_contact && pressure_squared[c] < max_psi)
+        {
+          double       sum   = 0;
+          unsigned int count = 0;
+          for (const unsigned int j : neighbours_[c])
+            if (!nodes[j].in_contact)
+            {
+              const int c1 =
+                far_neighbour(nodes, c, nodes[j].position - nodes[c].position);
+              if (c1 < 0)
+                continue;
+              const int c2 =
+                far_neighbour(nodes,
+                              c1,
+                              nodes[c].position - nodes[c1].position);
+              if (c2 < 0)
+                continue;
+              sum +=
+                extrapolate(nodes, pressure_squared, c2, c1, nodes[c].position);
+              ++count;
+            }
+          if (count > 0 && sum < 0)
+            psi_[c] = sum / count;
+        }
+
+      // separated nodes next to the zone: psi extrapolated from c' through c
       for (unsigned int j = 0; j < n; ++j)
         if (!nodes[j].in_contact)
         {
@@ -97,26 +172,11 @@ namespace dualcontact
           for (const unsigned int c : neighbours_[j])
             if (nodes[c].in_contact)
             {
-              const Tensor<1, dim> to_j = nodes[j].position - nodes[c].position;
-              double               best_cos = cos_limit;
-              int                  far      = -1;
-              for (const unsigned int k : neighbours_[c])
-                if (nodes[k].in_contact)
-                {
-                  const Tensor<1, dim> to_k =
-                    nodes[k].position - nodes[c].position;
-                  const double cos = to_k * to_j / (to_k.norm() * to_j.norm());
-                  if (cos < best_cos)
-                  {
-                    best_cos = cos;
-                    far      = k;
-                  }
-                }
-              sum +=
-                far >= 0 ?
-                  psi_[c] + (psi_[c] - psi_[far]) * to_j.norm() /
-                              (nodes[far].position - nodes[c].position).norm() :
-                  -psi_[c];
+              const int far =
+                far_neighbour(nodes, c, nodes[j].position - nodes[c].position);
+              sum += far >= 0 ?
+                       extrapolate(nodes, psi_, far, c, nodes[j].position) :
+                       -psi_[c];
               ++count;
             }
           psi_[j] =

@@ -29,7 +29,16 @@ namespace dualcontact
      * the mean over j's contact neighbours, and at most -1e-12 max psi (if
      * the pressure does not fall towards j, the edge is put at j).  Without
      * such a c' (no contact node on the far side within 45 degrees of the
-     * line) psi_j = -psi_c, the edge at the midpoint.  Separated nodes away
+     * line) psi_j = -psi_c, the edge at the midpoint.  Before that, every
+     * contact node c next to a separated node is checked against its
+     * interior: p^2 extrapolated to x_c from the two contact nodes c'', c'
+     * behind it on the line from the separated node through c (each the far
+     * neighbour as above).  If that is negative (the mean over c's
+     * separated neighbours), the interior puts the edge before c: c is in
+     * contact only through the force of the element that straddles the
+     * edge, lumped onto it (seen on the Hertz meshes: a node at 1.010 a
+     * with 0.039 p0), its p_c^2 is no value of p^2 at x_c, and psi_c is the
+     * extrapolated value instead.  Separated nodes away
      * from the contact zone get -max psi.  The contact zone is {psi_h > 0},
      * psi_h the finite element interpolant of the nodal psi on the slave
      * faces (hanging nodes from their parents): faces with psi >= 0 at all
@@ -87,6 +96,26 @@ namespace dualcontact
       /** psi at the nodes (see the class documentation). */
       void
       compute_level_function(const std::vector<Node> &nodes);
+
+      /**
+       * The contact neighbour k of node @p c whose direction from c is most
+       * nearly opposite to @p direction (within 45 degrees), or -1.
+       */
+      int
+      far_neighbour(const std::vector<Node>      &nodes,
+                    const unsigned int            c,
+                    const dealii::Tensor<1, dim> &direction) const;
+
+      /**
+       * @p psi extrapolated linearly along the line from node @p inner
+       * through node @p outer to @p target.
+       */
+      static double
+      extrapolate(const std::vector<Node>   &nodes,
+                  const std::vector<double> &psi,
+                  const unsigned int         inner,
+                  const unsigned int         outer,
+                  const dealii::Point<dim>  &target);
 
       /** The measure of {psi_h > 0} over the slave faces. */
       void

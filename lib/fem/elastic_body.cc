@@ -501,7 +501,7 @@ namespace dualcontact
         }
       }
       summary.max_displacement    = std::sqrt(max_norm2);
-      summary.traction_resultants = traction_resultants();
+      summary.traction_resultants = traction_resultants(scratch);
 
       // A dof on two supports is counted once, for the first condition that
       // names it (the one that won in setup()).
@@ -569,25 +569,50 @@ namespace dualcontact
     std::vector<typename ElasticBody<dim>::TractionResultant>
     ElasticBody<dim>::traction_resultants() const
     {
+      if (tractions_.empty())
+        return {};
+      CellScratch scratch(mapping_, curved_mapping_, fe_);
+      return traction_resultants(scratch);
+    }
+
+
+    template <int dim>
+    std::vector<typename ElasticBody<dim>::TractionResultant>
+    ElasticBody<dim>::traction_resultants(CellScratch &scratch) const
+    {
       std::vector<TractionResultant> resultants(tractions_.size());
       if (tractions_.empty())
         return resultants;
-      CellScratch           scratch(mapping_, curved_mapping_, fe_);
-      const MappingQ<dim>   nominal_mapping(nominal_mapping_degree);
       const QGauss<dim - 1> nominal_quadrature(nominal_mapping_degree + 2);
       // faces without a curved manifold are exact with the isoparametric
       // mapping (and much cheaper with it)
-      FEFaceValues<dim> nominal_curved_values(nominal_mapping,
-                                              fe_,
-                                              nominal_quadrature,
-                                              update_quadrature_points |
-                                                update_JxW_values);
       FEFaceValues<dim> nominal_flat_values(mapping_,
                                             fe_,
                                             nominal_quadrature,
                                             update_quadrature_points |
                                               update_JxW_values);
-      Vector<double>    force(dim);
+      // The high-degree mapping and its face values are set up only when a
+      // loaded face touches a curved manifold: their setup (shape functions
+      // of (degree + 1)^dim support points at the quadrature points of every
+      // face) costs seconds in 3D, whatever the number of such faces.
+      std::unique_ptr<const MappingQ<dim>> nominal_mapping;
+      std::unique_ptr<FEFaceValues<dim>>   nominal_curved_values;
+      const auto curved_values = [&]() -> FEFaceValues<dim> &
+      {
+        if (!nominal_curved_values)
+        {
+          nominal_mapping =
+            std::make_unique<const MappingQ<dim>>(nominal_mapping_degree);
+          nominal_curved_values =
+            std::make_unique<FEFaceValues<dim>>(*nominal_mapping,
+                                                fe_,
+                                                nominal_quadrature,
+                                                update_quadrature_points |
+                                                  update_JxW_values);
+        }
+        return *nominal_curved_values;
+      };
+      Vector<double> force(dim);
       // the integral of t over the faces of @p values; shape functions of one
       // component sum to one, so for the assembly's face values this is the
       // sum of the traction's load entries
@@ -617,9 +642,8 @@ namespace dualcontact
                           traction_face_values(cell, f, scratch),
                           resultant.applied);
                 FEFaceValues<dim> &nominal =
-                  touches_curved_manifold(cell->face(f)) ?
-                    nominal_curved_values :
-                    nominal_flat_values;
+                  touches_curved_manifold(cell->face(f)) ? curved_values() :
+                                                           nominal_flat_values;
                 nominal.reinit(cell, f);
                 integrate(condition, nominal, resultant.nominal);
               }
