@@ -62,6 +62,11 @@ def scenarios(quick):
         return [(("Body 1", "Material 1"), "Young's modulus", "1e9"),
                 (("Body 2", "Material 1"), "Young's modulus", "%g" % (1e9 * c))]
 
+    def gap(g):
+        # the steel cylinder (E = 2.1e5 MPa) lifted off both walls by g
+        return [(("Body 1", "Material 1"), "Young's modulus", "2.1e11"),
+                (("Body 1", "Placement"), "Translation", "%g, %g" % (2.18 + g, 2.18 + g))]
+
     def mesh(level):
         return [(("Body 1", "Mesh"), "Global refinements", str(level)),
                 (("Body 1", "Mesh"), "Local refinements", "0")]
@@ -69,6 +74,8 @@ def scenarios(quick):
     full = [
         ("cylinder", "floating cylinder in a corner (2D, SMALSE-M)", "cylinder.prm",
          "E", "MPa", [1, 10, 100, 1e4, 1e6, 1e8], cylinder),
+        ("gap", "floating steel cylinder (E = 2.1e5 MPa) at a gap g from both walls",
+         "cylinder.prm", "g", "m", [0, 1, 10, 99], gap),
         ("brick", "brick, orthotropic Tresca, 4 x 8 x 4 (3D ellipses)", "brick.prm",
          "phi", "Pa", [10, 30, 100, 500], brick),
         ("orthotropic", "brick, slip bounds (10, 10/r) Pa, 4 x 8 x 4", "brick.prm",

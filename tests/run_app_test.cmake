@@ -5,7 +5,8 @@
 #                REF by numdiff (relative 1e-8, absolute 1e-12), where <output>
 #                is the only folder the run created.
 #  MODE=nonconverged: must exit with 2 (the contact solver failed) and still
-#                write results.txt containing `contact.converged = 0'.
+#                write results.txt containing `contact.converged = 0' (and
+#                print EXPECT, when given).
 #  MODE=fail:    must exit non-zero, print EXPECT (stdout or stderr), and leave
 #                WORKDIR empty (no partial output).
 #  MODE=clean:   must exit 0, print every line of EXPECT_FILE, and leave
@@ -79,6 +80,12 @@ elseif(MODE STREQUAL "nonconverged")
   string(FIND "${_out}${_err}" "did NOT converge" _pos)
   if(_pos EQUAL -1)
     message(FATAL_ERROR "the run did not report the failure")
+  endif()
+  if(EXPECT)
+    string(FIND "${_out}${_err}" "${EXPECT}" _pos)
+    if(_pos EQUAL -1)
+      message(FATAL_ERROR "the failure report does not contain: ${EXPECT}")
+    endif()
   endif()
 else()
   if(NOT _rc EQUAL 0)

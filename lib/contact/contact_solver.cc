@@ -50,11 +50,13 @@ namespace dualcontact
       DualFormulation<dim>        &dual,
       const qp::SolverParameters  &qp_parameters,
       const qp::SMALSEMParameters &smalse_parameters,
-      const CoulombParameters     &coulomb_parameters)
+      const CoulombParameters     &coulomb_parameters,
+      const WorkingSetParameters  &working_set_parameters)
         : dual_(dual)
         , qp_parameters_(qp_parameters)
         , smalse_parameters_(smalse_parameters)
         , coulomb_parameters_(coulomb_parameters)
+        , working_set_parameters_(working_set_parameters)
     {
     }
 
@@ -114,9 +116,9 @@ namespace dualcontact
     template <int dim>
     template <typename V>
     qp::SolverStatistics
-    ContactSolver<dim>::solve_qp(V &lambda) const
+    ContactSolver<dim>::run_solver(const qp::Problem<V> &problem,
+                                   V                    &lambda) const
     {
-      const qp::Problem<V> problem = make_problem(dual_, lambda);
       if (qp_parameters_.solver == "auto")
       {
         // by the constraint types, with fall-back (SMALSE-M inside)
@@ -139,6 +141,86 @@ namespace dualcontact
       std::function<void(const Result &)> monitor)
     {
       coulomb_monitor_ = std::move(monitor);
+    }
+
+
+    template <int dim>
+    template <typename V>
+    qp::SolverStatistics
+    ContactSolver<dim>::solve_qp(V &lambda, WorkingSetRecord &record) const
+    {
+      if constexpr (std::is_same_v<V, Replicated>)
+        return solve_on_working_set(lambda, record);
+      record = WorkingSetRecord();
+      return run_solver(make_problem(dual_, lambda), lambda);
+    }
+
+
+    namespace
+    {
+      /** @p total with the work of @p next added, and @p next's outcome. */
+      qp::SolverStatistics
+      accumulate(const qp::SolverStatistics &total, qp::SolverStatistics next)
+      {
+        next.iterations += total.iterations;
+        next.n_outer += total.n_outer;
+        next.n_hessian_products += total.n_hessian_products;
+        next.n_projections += total.n_projections;
+        next.wall_time += total.wall_time;
+        return next;
+      }
+    } // namespace
+
+
+    template <int dim>
+    qp::SolverStatistics
+    ContactSolver<dim>::solve_on_working_set(Replicated       &lambda,
+                                             WorkingSetRecord &record) const
+    {
+      const qp::Problem<Replicated> full = dual_.make_problem();
+      WorkingSet<dim> working_set(dual_, full, working_set_parameters_);
+      if (!working_set.drops_rows())
+      {
+        record = working_set.record();
+        return run_solver(full, lambda);
+      }
+
+      qp::SolverStatistics                total;
+      std::vector<dealii::Vector<double>> displacements;
+      for (;;)
+      {
+        Replicated kept;
+        working_set.gather(lambda, kept);
+        const qp::SolverStatistics round =
+          run_solver(working_set.reduced_problem(), kept);
+        total =
+          working_set.record().n_rounds == 0 ? round : accumulate(total, round);
+        ++working_set.record().n_rounds;
+        working_set.scatter(kept, lambda);
+        if (!round.converged())
+          working_set.record().fall_back =
+            "the QP on the working set did not converge (" +
+            qp::to_string(round.reason) + ")";
+        else if (!dual_.recover(lambda, displacements, false))
+          working_set.record().fall_back =
+            "the working set leaves a rigid-body motion undetermined";
+        else if (working_set.add_violated_rows(displacements) == 0)
+          break;
+        else if (working_set.record().n_rounds >=
+                 working_set_parameters_.max_rounds)
+          working_set.record().fall_back =
+            "rows still added back after " +
+            std::to_string(working_set.record().n_rounds) + " rounds";
+        if (!working_set.record().fall_back.empty())
+        {
+          // all rows, warm started: never worse than without the set
+          total = accumulate(total, run_solver(full, lambda));
+          working_set.record().n_dropped_final = 0;
+          break;
+        }
+      }
+      record = working_set.record();
+      return total;
     }
 
 
@@ -181,7 +263,9 @@ namespace dualcontact
 
       const bool has_coulomb = dual_.has_coulomb_friction();
 
-      result.qp_statistics.push_back(solve_qp(lambda));
+      result.working_sets.emplace_back();
+      result.qp_statistics.push_back(
+        solve_qp(lambda, result.working_sets.back()));
       if (!result.qp_statistics.back().converged())
       {
         result.reason = "QP solver did not converge: " +
@@ -263,7 +347,9 @@ namespace dualcontact
                             std::to_string(relative);
             break;
           }
-          result.qp_statistics.push_back(solve_qp(lambda));
+          result.working_sets.emplace_back();
+          result.qp_statistics.push_back(
+            solve_qp(lambda, result.working_sets.back()));
           if (!result.qp_statistics.back().converged())
           {
             result.reason = "QP solver did not converge in Coulomb iteration " +

@@ -4,6 +4,7 @@
 #include <deal.II/lac/vector.h>
 
 #include <contact/dual_formulation.h>
+#include <contact/working_set.h>
 #include <qp/smalse_m.h>
 #include <qp/solver_parameters.h>
 #include <qp/solver_statistics.h>
@@ -77,12 +78,16 @@ namespace dualcontact
          * owned size, gathered; one entry when replicated).
          */
         std::vector<unsigned int> multipliers_per_process;
+        /** What the working set did, one record per QP (as qp_statistics). */
+        std::vector<WorkingSetRecord> working_sets;
       };
 
       ContactSolver(DualFormulation<dim>        &dual,
                     const qp::SolverParameters  &qp_parameters,
                     const qp::SMALSEMParameters &smalse_parameters,
-                    const CoulombParameters     &coulomb_parameters);
+                    const CoulombParameters     &coulomb_parameters,
+                    const WorkingSetParameters  &working_set_parameters =
+                      WorkingSetParameters());
 
       /** Solve; @p on_iterate (if set) sees every Coulomb iterate. */
       Result
@@ -104,15 +109,29 @@ namespace dualcontact
       Result
       solve_on(const std::function<void(const Result &)> &on_iterate);
 
-      /** One QP from the dual's current slip bounds, warm started. */
+      /**
+       * One QP from the dual's current slip bounds, warm started; on
+       * replicated vectors through the WorkingSet (recorded in @p record).
+       */
       template <typename V>
       qp::SolverStatistics
-      solve_qp(V &lambda) const;
+      solve_qp(V &lambda, WorkingSetRecord &record) const;
+
+      /** The chosen solver (or the chain auto) on @p problem. */
+      template <typename V>
+      qp::SolverStatistics
+      run_solver(const qp::Problem<V> &problem, V &lambda) const;
+
+      /** The outer working-set loop (see WorkingSet). */
+      qp::SolverStatistics
+      solve_on_working_set(dealii::Vector<double> &lambda,
+                           WorkingSetRecord       &record) const;
 
       DualFormulation<dim>               &dual_;
       qp::SolverParameters                qp_parameters_;
       qp::SMALSEMParameters               smalse_parameters_;
       CoulombParameters                   coulomb_parameters_;
+      WorkingSetParameters                working_set_parameters_;
       std::function<void(const Result &)> coulomb_monitor_;
     };
   } // namespace contact

@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <limits>
+#include <numeric>
 
 namespace dualcontact
 {
@@ -181,26 +182,48 @@ namespace dualcontact
     DualFormulation<dim>::add_contact_blocks(
       qp::SeparableSet<VectorType> &set) const
     {
+      std::vector<int> identity(n_contact_multipliers());
+      std::iota(identity.begin(), identity.end(), 0);
+      add_contact_blocks(set, identity);
+    }
+
+
+    template <int dim>
+    void
+    DualFormulation<dim>::add_contact_blocks(
+      qp::SeparableSet<VectorType> &set,
+      const std::vector<int>       &new_index) const
+    {
       const unsigned int n_nodes = contact_.n_nodes();
       for (unsigned int i = 0; i < n_nodes; ++i)
-        set.add_bound(i, 0.);
+        if (new_index[i] >= 0)
+          set.add_bound(new_index[i], 0.);
       for (unsigned int j = 0; j < frictional_nodes_.size(); ++j)
       {
-        const unsigned int first = n_nodes + (dim - 1) * j;
+        const int first = new_index[n_nodes + (dim - 1) * j];
+        if (first < 0)
+          continue;
         const FrictionLaw &law =
           contact_.pairs()[contact_.nodes()[frictional_nodes_[j]].pair]
             .friction;
         if (std::isinf(psi_first_[j]) || std::isinf(psi_second_[j]))
-          continue; // bonded: tangential multipliers free
+          continue;
         if (dim == 2)
           set.add_box(first, -psi_first_[j], psi_first_[j]);
         else if (law.is_orthotropic() && psi_first_[j] > 0 &&
                  psi_second_[j] > 0)
           set.add_ellipse(first, psi_first_[j], psi_second_[j]);
         else
-          // isotropic, or a node without normal force (all bounds zero)
           set.add_disc(first, std::min(psi_first_[j], psi_second_[j]));
       }
+    }
+
+
+    template <int dim>
+    const ContactDiscretization<dim> &
+    DualFormulation<dim>::contact() const
+    {
+      return contact_;
     }
 
 

@@ -80,6 +80,9 @@ namespace dualcontact
       /** Number of rigid-body modes of the primal side (rows of G). */
       virtual unsigned int
       n_rigid_body_modes() const = 0;
+      /** The contact rows (nodes, gaps, B_N, B_T) the dual is built on. */
+      const ContactDiscretization<dim> &
+      contact() const;
       /** @} */
 
       /** @name Slip bounds (see the class documentation) */
@@ -189,6 +192,19 @@ namespace dualcontact
       void
       add_contact_blocks(qp::SeparableSet<VectorType> &set) const;
 
+    public:
+      /**
+       * The friction sets of add_contact_blocks() for a QP on some of the
+       * multipliers only (contact::WorkingSet): multiplier r is at
+       * @p new_index[r] of the smaller QP, or dropped (fixed at zero) when
+       * that is negative.  A node's tangential block is kept or dropped
+       * whole (the first of its rows decides).
+       */
+      void
+      add_contact_blocks(qp::SeparableSet<VectorType> &set,
+                         const std::vector<int>       &new_index) const;
+
+    protected:
       /** friction_utilization() from the node's dim - 1 tangential values. */
       double
       friction_utilization(const unsigned int j,

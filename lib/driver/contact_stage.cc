@@ -1,6 +1,7 @@
 #include <deal.II/base/mpi.h>
 
 #include <contact/contact_extent.h>
+#include <contact/friction_capacity.h>
 #include <driver/contact_stage.h>
 #include <primal/uzawa_cgc.h>
 
@@ -30,6 +31,7 @@ namespace dualcontact
       smalse_parameters_.parse_parameters(prm);
       coulomb_parameters_.parse_parameters(prm);
       dual_parameters_.parse_parameters(prm);
+      working_set_parameters_.parse_parameters(prm);
       decomposition_parameters_.parse_parameters(prm);
       primal_parameters_.parse_parameters(prm);
     }
@@ -244,7 +246,8 @@ namespace dualcontact
       contact::ContactSolver<dim> solver(*dual_,
                                          qp_parameters,
                                          smalse_parameters_,
-                                         coulomb_parameters_);
+                                         coulomb_parameters_,
+                                         working_set_parameters_);
       if (run_log_ != nullptr)
       {
         const auto start = std::chrono::steady_clock::now();
@@ -271,6 +274,8 @@ namespace dualcontact
             contact_surfaces(iterate.lambda, iterate.displacements));
         };
       result_ = solver.solve(on_iterate);
+      if (!result_.converged)
+        explain_failure();
       {
         std::ostringstream line;
         line << "QP vectors: " << result_.qp_vectors << ", multipliers per "
@@ -296,6 +301,19 @@ namespace dualcontact
         if (k < result_.coulomb_changes.size())
           line << ", Coulomb change of psi " << result_.coulomb_changes[k];
         details.push_back(line.str());
+        if (k < result_.working_sets.size() && result_.working_sets[k].used)
+        {
+          const auto        &w = result_.working_sets[k];
+          std::ostringstream set;
+          set << std::setprecision(3) << "  working set: " << w.n_dropped
+              << " of " << w.n_normal_rows
+              << " normal rows left out (bound beyond the reach " << w.reach
+              << " m), " << w.n_added << " added back, " << w.n_rounds
+              << " round" << (w.n_rounds == 1 ? "" : "s") << ", "
+              << w.n_dropped_final << " checked free of penetration"
+              << (w.fall_back.empty() ? "" : "; all rows: " + w.fall_back);
+          details.push_back(set.str());
+        }
         // solver auto: every attempt of the fall-back chain
         for (unsigned int a = 0; a < q.attempts.size(); ++a)
         {
@@ -326,6 +344,25 @@ namespace dualcontact
              << tfeti()->relative_interface_jump() << " of the largest |u|)";
         details.push_back(line.str());
       }
+    }
+
+
+    template <int dim>
+    void
+    ContactStage<dim>::explain_failure()
+    {
+      // a frictional QP of a floating body that cannot meet its force
+      // balance inside the friction sets: say which load is too large
+      if (!dual_->n_frictional_nodes())
+        return;
+      std::vector<typename contact::FrictionCapacity<dim>::Body> bodies;
+      for (unsigned int b = 0; b < scene_.bodies().size(); ++b)
+        bodies.push_back({scene_.bodies()[b]->name(),
+                          scene_.bodies()[b]->applied_force(),
+                          scene_.body_parameters()[b].dirichlet.empty()});
+      const contact::FrictionCapacity<dim> capacity(*contact_, bodies);
+      for (const std::string &finding : capacity.findings())
+        result_.reason += ". " + finding;
     }
 
 

@@ -177,6 +177,14 @@ namespace dualcontact
       }
 
     private:
+      /**
+       * Appends to the failure reason what makes a frictional scene
+       * unsolvable, when contact::FrictionCapacity finds it (no static
+       * equilibrium of a floating body).
+       */
+      void
+      explain_failure();
+
       /** Whether `Decomposition/Method' resolves to tfeti for this scene. */
       bool
       decomposed() const;
@@ -199,6 +207,7 @@ namespace dualcontact
       qp::SolverParameters           qp_parameters_;
       qp::SMALSEMParameters          smalse_parameters_;
       contact::CoulombParameters     coulomb_parameters_;
+      contact::WorkingSetParameters  working_set_parameters_;
       contact::DualProblemParameters dual_parameters_;
       /** `Decomposition': the undecomposed dual or TFETI. */
       decomposition::DecompositionParameters decomposition_parameters_;

@@ -296,6 +296,18 @@ namespace dualcontact
         contact["contact_nodes_per_process"] =
           contact_->dual().contact_nodes_per_process();
         contact["coulomb_changes"] = contact_->result().coulomb_changes;
+        // the working set over the normal rows, per QP (WorkingSet)
+        nlohmann::json working_sets = nlohmann::json::array();
+        for (const auto &w : contact_->result().working_sets)
+          working_sets.push_back({{"used", w.used},
+                                  {"n_normal_rows", w.n_normal_rows},
+                                  {"n_dropped", w.n_dropped},
+                                  {"n_added_back", w.n_added},
+                                  {"n_dropped_final", w.n_dropped_final},
+                                  {"n_rounds", w.n_rounds},
+                                  {"reach_m", w.reach},
+                                  {"fall_back", w.fall_back}});
+        contact["working_sets"] = working_sets;
         if (const auto *tfeti = contact_->tfeti())
         {
           std::vector<unsigned int> per_body;

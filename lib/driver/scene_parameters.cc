@@ -1,6 +1,7 @@
 #include <deal.II/base/patterns.h>
 
 #include <contact/contact_solver.h>
+#include <contact/working_set.h>
 #include <decomposition/decomposition_parameters.h>
 #include <driver/body_parameters.h>
 #include <driver/contact_pair_parameters.h>
@@ -180,6 +181,7 @@ namespace dualcontact
 
       fem::StiffnessSolver::declare_parameters(prm);
       contact::DualProblemParameters::declare_parameters(prm);
+      contact::WorkingSetParameters::declare_parameters(prm);
       decomposition::DecompositionParameters::declare_parameters(prm);
       qp::SolverParameters::declare_parameters(prm);
       qp::SMALSEMParameters::declare_parameters(prm);

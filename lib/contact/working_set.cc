@@ -1,0 +1,323 @@
+#include <deal.II/base/exceptions.h>
+
+#include <contact/working_set.h>
+#include <qp/separable_set.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <memory>
+
+namespace dualcontact
+{
+  namespace contact
+  {
+    void
+    WorkingSetParameters::declare_parameters(dealii::ParameterHandler &prm)
+    {
+      prm.enter_subsection("Dual problem");
+      prm.enter_subsection("Working set");
+      prm.declare_entry(
+        "Enabled",
+        "true",
+        dealii::Patterns::Bool(),
+        "Solve the dual first on the normal contact rows that can close: a "
+        "slave node whose bound (gap) exceeds the smallest of its pair by "
+        "more than the reach is left out (multiplier fixed at 0), the "
+        "displacement is then checked at every left-out node and any that "
+        "penetrates is added back and the QP solved again, until none does. "
+        "The answer is that of the whole problem; without it the gaps of "
+        "far nodes dominate the dual's right-hand side and stiff or far-apart "
+        "bodies do not converge (doc/stability.md). Rows dropped and added "
+        "back are in statistics.json (contact.working_sets).");
+      prm.declare_entry("Reach factor",
+                        "10",
+                        dealii::Patterns::Double(0.),
+                        "reach = factor * (largest normal displacement of a "
+                        "slave node under the loads alone, without contact, "
+                        "+ largest prescribed normal displacement) [-]; "
+                        "rows with a bound within the reach of their pair's "
+                        "smallest (or of 0) are kept from the start.");
+      prm.declare_entry("Maximum rounds",
+                        "20",
+                        dealii::Patterns::Integer(1),
+                        "Limit on the solve / check / add-back rounds of one "
+                        "QP; beyond it the QP is solved on all rows.");
+      prm.leave_subsection();
+      prm.leave_subsection();
+    }
+
+
+    void
+    WorkingSetParameters::parse_parameters(dealii::ParameterHandler &prm)
+    {
+      prm.enter_subsection("Dual problem");
+      prm.enter_subsection("Working set");
+      enabled      = prm.get_bool("Enabled");
+      reach_factor = prm.get_double("Reach factor");
+      max_rounds   = prm.get_integer("Maximum rounds");
+      prm.leave_subsection();
+      prm.leave_subsection();
+    }
+
+
+    template <int dim>
+    WorkingSet<dim>::WorkingSet(const DualFormulation<dim>    &dual,
+                                const qp::Problem<VectorType> &full,
+                                const WorkingSetParameters    &parameters)
+        : dual_(dual)
+        , full_(full)
+        , parameters_(parameters)
+        , kept_(full.b.size(), true)
+    {
+      select_rows();
+      update_index();
+    }
+
+
+    template <int dim>
+    void
+    WorkingSet<dim>::select_rows()
+    {
+      const ContactDiscretization<dim> &contact = dual_.contact();
+      const unsigned int                n_nodes = contact.n_nodes();
+      const dealii::Vector<double>     &c       = contact.normal_bound();
+      const dealii::Vector<double>     &offset  = contact.normal_offset();
+      record_.n_normal_rows                     = n_nodes;
+      if (!parameters_.enabled || n_nodes == 0)
+        return;
+
+      // the slave nodes' normal displacement under the loads alone:
+      // d = B K^# f - c, and b = d / s in the scaled QP
+      double load_reach = 0, prescribed = 0;
+      for (unsigned int i = 0; i < n_nodes; ++i)
+      {
+        load_reach =
+          std::max(load_reach, std::abs(dual_.scale() * full_.b(i) + c(i)));
+        prescribed = std::max(prescribed, std::abs(offset(i)));
+      }
+      const double reach = parameters_.reach_factor * (load_reach + prescribed);
+      record_.reach      = reach;
+
+      std::vector<double> smallest(contact.pairs().size(),
+                                   std::numeric_limits<double>::infinity());
+      for (unsigned int i = 0; i < n_nodes; ++i)
+      {
+        const unsigned int p = contact.nodes()[i].pair;
+        smallest[p]          = std::min(smallest[p], c(i));
+      }
+      for (unsigned int i = 0; i < n_nodes; ++i)
+      {
+        const double base = std::max(smallest[contact.nodes()[i].pair], 0.);
+        if (c(i) > base + reach)
+        {
+          kept_[i] = false;
+          ++record_.n_dropped;
+        }
+      }
+      record_.used            = record_.n_dropped > 0;
+      record_.n_dropped_final = record_.n_dropped;
+    }
+
+
+    template <int dim>
+    void
+    WorkingSet<dim>::update_index()
+    {
+      index_.clear();
+      for (unsigned int r = 0; r < kept_.size(); ++r)
+        if (kept_[r])
+          index_.push_back(r);
+    }
+
+
+    template <int dim>
+    bool
+    WorkingSet<dim>::drops_rows() const
+    {
+      return index_.size() < kept_.size();
+    }
+
+
+    template <int dim>
+    void
+    WorkingSet<dim>::gather(const VectorType &whole, VectorType &kept) const
+    {
+      kept.reinit(index_.size());
+      for (unsigned int k = 0; k < index_.size(); ++k)
+        kept(k) = whole(index_[k]);
+    }
+
+
+    template <int dim>
+    void
+    WorkingSet<dim>::scatter(const VectorType &kept, VectorType &whole) const
+    {
+      whole.reinit(kept_.size());
+      for (unsigned int k = 0; k < index_.size(); ++k)
+        whole(index_[k]) = kept(k);
+    }
+
+
+    template <int dim>
+    qp::Problem<typename WorkingSet<dim>::VectorType>
+    WorkingSet<dim>::reduced_problem() const
+    {
+      qp::Problem<VectorType> reduced;
+      const unsigned int      n = kept_.size();
+      // A_WW x = (A E x)_W, E the extension by zeros
+      reduced.hessian = [this, n](VectorType &dst, const VectorType &src)
+      {
+        VectorType whole(n), product(n);
+        scatter(src, whole);
+        full_.hessian(product, whole);
+        gather(product, dst);
+      };
+      gather(full_.b, reduced.b);
+      // an upper bound of the full A is one of A_WW
+      reduced.lambda_max   = full_.lambda_max;
+      reduced.semidefinite = full_.semidefinite;
+
+      std::vector<int> new_index(n, -1);
+      for (unsigned int k = 0; k < index_.size(); ++k)
+        new_index[index_[k]] = k;
+      auto set = std::make_shared<qp::SeparableSet<VectorType>>();
+      dual_.add_contact_blocks(*set, new_index);
+      set->finalize(reduced.b);
+      reduced.constraints = set;
+
+      if (full_.equality)
+      {
+        const qp::EqualityConstraints<VectorType> &G = *full_.equality;
+        auto equality = std::make_shared<qp::EqualityConstraints<VectorType>>();
+        equality->vmult = [this, n, &G](VectorType &dst, const VectorType &src)
+        {
+          VectorType whole(n);
+          scatter(src, whole);
+          G.vmult(dst, whole);
+        };
+        equality->Tvmult = [this, &G](VectorType &dst, const VectorType &src)
+        {
+          VectorType whole;
+          G.Tvmult(whole, src);
+          gather(whole, dst);
+        };
+        equality->c             = G.c;
+        equality->n_constraints = G.n_constraints;
+        // dropping columns does not increase ||G||
+        equality->norm_sq = G.norm_sq;
+        reduced.equality  = equality;
+
+        // b := b - G_W' beta, beta the least-squares fit of b by the rows
+        // of G_W (normal equations G_W G_W' beta = G_W b, of the order of
+        // the rigid-body modes, by conjugate gradients: G_W G_W' may be
+        // singular when few rows are kept; CG then converges to a
+        // least-squares solution, which is all the shift needs)
+        const unsigned int m = G.c.size();
+        VectorType         rhs, beta(m), r, p, q(m), Gt;
+        equality->vmult(rhs, reduced.b);
+        r                 = rhs;
+        p                 = r;
+        double       rr   = r * r;
+        const double stop = 1e-28 * std::max(rr, 1e-300);
+        for (unsigned int it = 0; it < 2 * m && rr > stop; ++it)
+        {
+          equality->Tvmult(Gt, p);
+          equality->vmult(q, Gt);
+          const double pq = p * q;
+          if (!(pq > 0))
+            break;
+          const double alpha = rr / pq;
+          beta.add(alpha, p);
+          r.add(-alpha, q);
+          const double rr_new = r * r;
+          p.sadd(rr_new / rr, r);
+          rr = rr_new;
+        }
+        equality->Tvmult(Gt, beta);
+        reduced.b -= Gt;
+        // The relative stopping tests of the solvers refer to ||b||, and
+        // after the shift b can be nothing but rounding (when the kept rows
+        // fit the rigid-body modes exactly) while the solution is of the
+        // size of the loads e.  So add back G_W' gamma, gamma along e, with
+        // ||G_W' gamma||^2 = ||e||^2 - ||b||^2 (b is orthogonal to the range
+        // of G_W' now): exact as the shift, and ||b|| = max(||b||, ||e||).
+        const double norm_b = reduced.b.l2_norm(), norm_e = G.c.l2_norm();
+        equality->Tvmult(Gt, G.c);
+        const double norm_Gte = Gt.l2_norm();
+        if (norm_b < norm_e && norm_Gte > 0)
+          reduced.b.add(std::sqrt(norm_e * norm_e - norm_b * norm_b) / norm_Gte,
+                        Gt);
+      }
+      return reduced;
+    }
+
+
+    template <int dim>
+    unsigned int
+    WorkingSet<dim>::add_violated_rows(
+      const std::vector<dealii::Vector<double>> &u)
+    {
+      const ContactDiscretization<dim> &contact = dual_.contact();
+      const auto                       &B       = contact.normal_matrix();
+      const dealii::Vector<double>     &c       = contact.normal_bound();
+      // the body of a column of B
+      std::vector<dealii::types::global_dof_index> starts;
+      for (unsigned int b = 0; b < u.size(); ++b)
+        starts.push_back(contact.body_offset(b));
+      const auto value_at = [&](const dealii::types::global_dof_index column)
+      {
+        const unsigned int b =
+          std::upper_bound(starts.begin(), starts.end(), column) -
+          starts.begin() - 1;
+        return u[b](column - starts[b]);
+      };
+
+      unsigned int added = 0;
+      for (unsigned int i = 0; i < contact.n_nodes(); ++i)
+      {
+        if (kept_[i])
+          continue;
+        double Bu = 0, size = std::abs(c(i));
+        for (auto it = B.begin(i); it != B.end(i); ++it)
+        {
+          const double term = it->value() * value_at(it->column());
+          Bu += term;
+          size += std::abs(term);
+        }
+        // a dropped row is at least `reach' from closing: rounding of the
+        // sum is far below any penetration that matters
+        if (Bu - c(i) > 1e-12 * size)
+        {
+          kept_[i] = true;
+          ++added;
+        }
+      }
+      record_.n_added += added;
+      record_.n_dropped_final -= added;
+      if (added > 0)
+        update_index();
+      return added;
+    }
+
+
+    template <int dim>
+    const WorkingSetRecord &
+    WorkingSet<dim>::record() const
+    {
+      return record_;
+    }
+
+
+    template <int dim>
+    WorkingSetRecord &
+    WorkingSet<dim>::record()
+    {
+      return record_;
+    }
+
+
+    template class WorkingSet<2>;
+    template class WorkingSet<3>;
+  } // namespace contact
+} // namespace dualcontact
