@@ -306,17 +306,39 @@ namespace dualcontact
     double
     MeshGenerator<dim>::estimated_cells(const std::string &mesh_name) const
     {
-      double coarse_cells = 1;
+      double coarse_cells = 1, volume = 1;
       if (kind_ == Kind::box)
-        for (const unsigned int n : subdivisions_)
-          coarse_cells *= n;
+        for (unsigned int d = 0; d < dim; ++d)
+        {
+          coarse_cells *= subdivisions_[d];
+          volume *= upper_corner_[d] - lower_corner_[d];
+        }
       else
       {
         dealii::Triangulation<dim> coarse;
         generate(coarse, mesh_name);
         coarse_cells = coarse.n_active_cells();
+        volume       = dealii::GridTools::volume(coarse);
       }
-      return coarse_cells * std::pow(2., dim * double(n_refinements_));
+      const double global_cells =
+        coarse_cells * std::pow(2., dim * double(n_refinements_));
+      if (n_local_refinements_ == 0 || !(local_refinement_radius_ > 0))
+        return global_cells;
+
+      // Local refinements refine the ball of `Local refinement radius' once
+      // more per step, so its cells end 2^steps smaller than the mean cell
+      // after the global refinements.  Only the part of the ball inside the
+      // body is meshed, and its centre may lie on the boundary (a contact
+      // point): 1/2^dim of the ball is counted, a lower bound that never
+      // refuses a mesh that fits but grows like 2^(dim steps) as the mesh
+      // does.
+      const double r    = local_refinement_radius_;
+      const double ball = dim == 2 ? M_PI * r * r : 4. / 3. * M_PI * r * r * r;
+      const double refined_volume = std::min(ball / std::pow(2., dim), volume);
+      const double refined_cell_volume =
+        volume / global_cells *
+        std::pow(2., -dim * double(n_local_refinements_));
+      return global_cells + refined_volume / refined_cell_volume;
     }
 
 
@@ -325,8 +347,10 @@ namespace dualcontact
     MeshGenerator<dim>::size_parameters() const
     {
       return "(" +
-             std::string(kind_ == Kind::box ? "`set Subdivisions' and " : "") +
-             "`set Global refinements' in `subsection " + path_ + "')";
+             std::string(kind_ == Kind::box ? "`set Subdivisions', " : "") +
+             "`set Global refinements' and `set Local refinements' in "
+             "`subsection " +
+             path_ + "')";
     }
 
 

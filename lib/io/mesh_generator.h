@@ -91,16 +91,17 @@ namespace dualcontact
        * The number of active cells create() will make, before making them:
        * the coarse cells (a box's subdivisions; else the coarse mesh,
        * generated or read once more) times 2^(dim * `Global
-       * refinements').  Local refinements are not counted (they refine a
-       * region only).  A double, so that hostile counts do not wrap.
+       * refinements'), plus the cells of the local refinements (a lower
+       * bound: 1/2^dim of their ball, at 2^(dim * `Local refinements')
+       * times the density).  A double, so that hostile counts do not wrap.
        */
       double
       estimated_cells(const std::string &mesh_name) const;
 
       /**
        * The parameters that make the mesh big, for a message: "(`set
-       * Subdivisions' and `set Global refinements' in `subsection Body
-       * 1/Mesh')".
+       * Subdivisions', `set Global refinements' and `set Local refinements'
+       * in `subsection Body 1/Mesh')".
        */
       std::string
       size_parameters() const;
