@@ -303,6 +303,15 @@ namespace dualcontact
 
 
     template <int dim>
+    std::string
+    MeshGenerator<dim>::described_name(const std::string &mesh_name) const
+    {
+      return mesh_name +
+             (kind_ == Kind::gmsh ? " (file `" + gmsh_file_ + "')" : "");
+    }
+
+
+    template <int dim>
     double
     MeshGenerator<dim>::estimated_cells(const std::string &mesh_name) const
     {
@@ -318,7 +327,9 @@ namespace dualcontact
         dealii::Triangulation<dim> coarse;
         generate(coarse, mesh_name);
         coarse_cells = coarse.n_active_cells();
-        volume       = dealii::GridTools::volume(coarse);
+        // the volume needs cells deal.II can map (create() checks the same)
+        check_cells(coarse, described_name(mesh_name));
+        volume = dealii::GridTools::volume(coarse);
       }
       const double global_cells =
         coarse_cells * std::pow(2., dim * double(n_refinements_));
@@ -426,10 +437,7 @@ namespace dualcontact
         // colorized generators may number cells by position: one material
         for (const auto &cell : triangulation.active_cell_iterators())
           cell->set_material_id(0);
-      check_cells(triangulation,
-                  mesh_name + (kind_ == Kind::gmsh ?
-                                 " (file `" + gmsh_file_ + "')" :
-                                 std::string()));
+      check_cells(triangulation, described_name(mesh_name));
       place(triangulation, placement);
       triangulation.refine_global(n_refinements_);
       for (unsigned int step = 0; step < n_local_refinements_; ++step)

@@ -98,6 +98,10 @@ namespace dualcontact
       double
       estimated_cells(const std::string &mesh_name) const;
 
+      /** @p mesh_name, with the file name for a Gmsh mesh (for messages). */
+      std::string
+      described_name(const std::string &mesh_name) const;
+
       /**
        * The parameters that make the mesh big, for a message: "(`set
        * Subdivisions', `set Global refinements' and `set Local refinements'
