@@ -9,8 +9,8 @@
 
 #include <driver/scene_parameters.h>
 #include <driver/simulation.h>
-#include <io/output_folder.h>
 #include <io/console_log.h>
+#include <io/output_folder.h>
 #include <io/parameter_file.h>
 
 #include <iostream>

@@ -62,7 +62,7 @@ namespace dualcontact
        */
       Method
       resolve(const double factor_megabytes,
-              const bool         hanging_nodes = false) const;
+              const bool   hanging_nodes = false) const;
 
       /**
        * An estimate [MB] of the nonzeros of the sparse Cholesky factor of a

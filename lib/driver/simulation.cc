@@ -209,7 +209,7 @@ namespace dualcontact
     void
     Simulation<dim>::print_scene_line()
     {
-      const Scene<dim>  &scene = *scene_;
+      const Scene<dim> &scene = *scene_;
       // solved through a dual (ContactStage), with or without contact pairs
       const bool         has_contact = contact_ != nullptr;
       const unsigned int n_pairs     = scene.pair_parameters().size();
@@ -304,7 +304,7 @@ namespace dualcontact
     bool
     Simulation<dim>::run()
     {
-      Scene<dim>        &scene       = *scene_;
+      Scene<dim> &scene = *scene_;
       // solved through a dual (ContactStage), with or without contact pairs
       const bool         has_contact = contact_ != nullptr;
       const unsigned int n_pairs     = scene.pair_parameters().size();

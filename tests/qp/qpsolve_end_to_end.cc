@@ -215,8 +215,9 @@ main()
 
   // the .prm names (issue 18): `--prm FILE' and `--set', with the options
   // given after them winning; a bad entry or value is named
-  write("solver.prm", "subsection QP solver\n  set Solver = mpgp\n"
-                      "  set Tolerance = 1e-10\nend\n");
+  write("solver.prm",
+        "subsection QP solver\n  set Solver = mpgp\n"
+        "  set Tolerance = 1e-10\nend\n");
   {
     const Result p = run(dir + "/p.json --prm " + dir + "/solver.prm");
     check(p.code == 0 && contains(p.out, "\"solver\": \"mpgp\"") &&
@@ -228,9 +229,9 @@ main()
     check(s.code == 2 && contains(s.out, "\"solver\": \"spg-qp\"") &&
             contains(s.out, "\"reason\": \"max_iterations\""),
           "--set after --prm: spg-qp stopped by 3 iterations, exit 2");
-    const Result o = run(dir +
-                         "/p.json --set 'QP solver/Solver=spg-qp' --solver "
-                         "mpgp --tol 1e-10");
+    const Result o =
+      run(dir + "/p.json --set 'QP solver/Solver=spg-qp' --solver "
+                "mpgp --tol 1e-10");
     check(o.code == 0 && contains(o.out, "\"solver\": \"mpgp\""),
           "--solver wins over --set (the options keep working)");
   }
