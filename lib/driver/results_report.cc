@@ -463,9 +463,13 @@ namespace dualcontact
         for (unsigned int r = 0; r < n_ranks; ++r)
           pieces.push_back(stem + "_rank_" + std::to_string(r) + ".vtu");
         if (rank == 0)
+        {
           folder.write(stem + ".pvtu",
                        [&](std::ostream &out)
                        { io::write_contact_surface_record(out, pieces); });
+          for (unsigned int r = 1; r < n_ranks; ++r)
+            folder.list_file_of_other_process(pieces[r]);
+        }
         contact_files.push_back(stem + ".pvtu");
       }
       // Coulomb iterates (process 0, whole surfaces)

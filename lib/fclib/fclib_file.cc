@@ -1,6 +1,8 @@
 #include <deal.II/base/exceptions.h>
 
 #include <fclib/fclib_file.h>
+#include <fclib/file_layout.h>
+#include <fclib/silent_hdf5_errors.h>
 
 #include <hdf5.h>
 
@@ -37,13 +39,19 @@ namespace dualcontact
             for (int k = 0; k < A.nz; ++k)
               t.add(A.i[k], A.p[k], A.x[k]);
           else if (A.nz == -1) // compressed columns
+          {
+            check_compressed_pointers(A.p, A.n + 1, A.nzmax, "column pointers");
             for (int j = 0; j < A.n; ++j)
               for (int k = A.p[j]; k < A.p[j + 1]; ++k)
                 t.add(A.i[k], j, A.x[k]);
+          }
           else if (A.nz == -2) // compressed rows
+          {
+            check_compressed_pointers(A.p, A.m + 1, A.nzmax, "row pointers");
             for (int r = 0; r < A.m; ++r)
               for (int k = A.p[r]; k < A.p[r + 1]; ++k)
                 t.add(r, A.i[k], A.x[k]);
+          }
           else
             AssertThrow(false,
                         dealii::ExcMessage("unknown storage nz = " +
@@ -197,33 +205,6 @@ namespace dualcontact
 
 
       /**
-       * HDF5 prints its error stack (some 40 lines) for every failed call,
-       * also inside libfclib: silenced while an object of this class lives;
-       * the messages here name the file and what went wrong instead.
-       */
-      class SilentHdf5Errors
-      {
-      public:
-        SilentHdf5Errors()
-        {
-          H5Eget_auto2(H5E_DEFAULT, &old_function_, &old_data_);
-          H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
-        }
-        ~SilentHdf5Errors()
-        {
-          H5Eset_auto2(H5E_DEFAULT, old_function_, old_data_);
-        }
-        SilentHdf5Errors(const SilentHdf5Errors &) = delete;
-        SilentHdf5Errors &
-        operator=(const SilentHdf5Errors &) = delete;
-
-      private:
-        H5E_auto2_t old_function_ = nullptr;
-        void       *old_data_     = nullptr;
-      };
-
-
-      /**
        * A file written under a temporary name beside @p path (with the
        * process id, so that two writers do not meet) and renamed to @p path
        * by commit(): the existing file stays intact until the new one is
@@ -357,6 +338,9 @@ namespace dualcontact
     read_local(const std::string &path, const Storage storage)
     {
       check_is_form(path, Form::local);
+      // before libfclib allocates from the headers (see FileLayout)
+      const FileLayout                                      layout(path,
+                                              Form::local);
       const SilentHdf5Errors                                silent;
       std::unique_ptr<fclib_local, void (*)(fclib_local *)> p(
         fclib_read_local(path.c_str()), fclib_delete_local);
@@ -364,11 +348,6 @@ namespace dualcontact
                   dealii::ExcMessage("libfclib could not read the local "
                                      "problem in `" +
                                      path + "'"));
-      AssertThrow(!p->V && !p->R,
-                  dealii::ExcMessage(
-                    "FCLIB file `" + path +
-                    "': local problems with equality "
-                    "constraints (V, R, s) are not supported"));
       check_dimension(path, p->spacedim);
       const unsigned int n = p->W->m, nc = n / p->spacedim;
       AssertThrow(n % p->spacedim == 0,
@@ -393,6 +372,8 @@ namespace dualcontact
     read_global(const std::string &path)
     {
       check_is_form(path, Form::global);
+      // before libfclib allocates from the headers (see FileLayout)
+      const FileLayout layout(path, Form::global);
       const SilentHdf5Errors                                  silent;
       std::unique_ptr<fclib_global, void (*)(fclib_global *)> p(
         fclib_read_global(path.c_str()), fclib_delete_global);
@@ -400,10 +381,6 @@ namespace dualcontact
                   dealii::ExcMessage("libfclib could not read the global "
                                      "problem in `" +
                                      path + "'"));
-      AssertThrow(!p->G,
-                  dealii::ExcMessage("FCLIB file `" + path +
-                                     "': global problems with equality "
-                                     "constraints (G, b) are not supported"));
       check_dimension(path, p->spacedim);
       const unsigned int n = p->M->m, m = p->H->n;
       AssertThrow(m % p->spacedim == 0,
@@ -519,25 +496,12 @@ namespace dualcontact
     dealii::Vector<double>
     read_solution_r(const std::string &path)
     {
-      const Form  form = form_of(path);
-      H5E_auto2_t old_function;
-      void       *old_data;
-      H5Eget_auto2(H5E_DEFAULT, &old_function, &old_data);
-      H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
-      bool        has_solution = false;
-      const hid_t file = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
-      if (file >= 0)
-      {
-        has_solution = H5Lexists(file, "/solution", H5P_DEFAULT) > 0 &&
-                       H5Lexists(file, "/solution/r", H5P_DEFAULT) > 0;
-        H5Fclose(file);
-      }
-      H5Eset_auto2(H5E_DEFAULT, old_function, old_data);
-      if (!has_solution)
+      // the layout checks /solution/r against the problem's size before
+      // libfclib allocates it
+      const FileLayout layout(path, form_of(path));
+      if (!layout.has_solution())
         return {};
-      const unsigned int size = form == Form::local ? read_local(path).size() :
-                                                      [&]()
-      { return read_global(path).H().n(); }();
+      const std::size_t size = layout.contact_size();
       const SilentHdf5Errors                                      silent;
       std::unique_ptr<fclib_solution, void (*)(fclib_solution *)> s(
         fclib_read_solution(path.c_str()),

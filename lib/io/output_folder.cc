@@ -204,8 +204,9 @@ namespace dualcontact
     {
       const fs::path manifest = fs::path(path_) / manifest_file_name;
       std::ifstream  in(manifest);
-      const std::set<std::string> written(file_names_.begin(),
-                                          file_names_.end());
+      std::set<std::string> written(file_names_.begin(), file_names_.end());
+      written.insert(other_processes_files_.begin(),
+                     other_processes_files_.end());
       std::string                 name;
       while (std::getline(in, name))
         if (!name.empty() && name.find('/') == std::string::npos &&
@@ -221,6 +222,8 @@ namespace dualcontact
       {
         std::ofstream out(temporary);
         for (const auto &file : file_names_)
+          out << file << "\n";
+        for (const auto &file : other_processes_files_)
           out << file << "\n";
         out.close();
         AssertThrow(out,
@@ -283,6 +286,15 @@ namespace dualcontact
     OutputFolder::file_names() const
     {
       return file_names_;
+    }
+
+
+    void
+    OutputFolder::list_file_of_other_process(const std::string &name)
+    {
+      AssertThrow(!committed_, dealii::ExcInternalError());
+      Assert(name.find('/') == std::string::npos, dealii::ExcInternalError());
+      other_processes_files_.push_back(name);
     }
 
 

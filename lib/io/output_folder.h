@@ -64,6 +64,16 @@ namespace dualcontact
       file_names() const;
 
       /**
+       * Under MPI: record in this process' list of the run's files
+       * (`.dualcontact_files', kept by the process that holds the lock) the
+       * file @p name that another process writes (its piece of a body), so
+       * that commit() keeps it, and the next run on fewer processes removes
+       * it as stale.
+       */
+      void
+      list_file_of_other_process(const std::string &name);
+
+      /**
        * Take the folder for this run, before any computation: create it (a
        * failed run removes it again), and hold an exclusive lock (flock) on
        * its file `.dualcontact.lock', which records the process id.  A
@@ -100,6 +110,7 @@ namespace dualcontact
       std::string              path_;
       std::vector<std::string> created_folders_;
       std::vector<std::string> file_names_;
+      std::vector<std::string> other_processes_files_;
       bool                     committed_ = false;
       int                      lock_fd_   = -1;
     };

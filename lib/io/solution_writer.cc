@@ -79,6 +79,11 @@ namespace dualcontact
       }
       if (rank != 0)
         return;
+      // the other processes' pieces, so that a later run on fewer
+      // processes into this folder removes them (OutputFolder::commit)
+      for (unsigned int b = 0; b < bodies.size(); ++b)
+        for (unsigned int r = 1; r < n_ranks; ++r)
+          folder.list_file_of_other_process(piece_name(b, r));
       folder.write("solution.pvtu",
                    [&](std::ostream &out)
                    { first_data_out->write_pvtu_record(out, pieces); });

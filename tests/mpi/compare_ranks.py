@@ -4,6 +4,7 @@ and asserts that the answers agree.
 
 Usage: compare_ranks.py DUALCONTACT MPIRUN INPUT.prm WORKDIR [TOLERANCE]
                         [--ranks=1,2,4] [--method-N=none|tfeti ...]
+                        [--same-folder]
 
 The runs (1 and 2 processes unless --ranks says otherwise; the first
 count must be 1) must converge (exit 0, contact.converged = 1).  Each run
@@ -40,6 +41,11 @@ relative tolerance TOLERANCE (default 1e-8) for the reals:
     (which solution.pvd lists), together holding all n_nodes contact nodes
     and as many faces as the 1-process run's contact_N.vtu, with the same
     integral of pressure_Pa (ParaView's Integrate Variables) to TOLERANCE.
+With --same-folder, the input is then run again into one folder with the
+process counts in decreasing order (4, 2, 1): after each run the folder
+holds exactly the files of that run (the list `.dualcontact_files'), no
+piece of a process that did not run (a stale body_1_rank_3.vtu beside a
+2-process solution.pvtu would show the old scene in ParaView).
 The input's QP tolerance must be well below TOLERANCE (the runs differ by
 round-off in the stiffness solves, and the QP stops at its tolerance).
 """
@@ -67,10 +73,11 @@ def read_results(path):
     return values
 
 
-def run(app, mpirun, prm, workdir, ranks):
-    folder = os.path.join(workdir, f"np{ranks}")
-    shutil.rmtree(folder, ignore_errors=True)
-    os.makedirs(folder)
+def run(app, mpirun, prm, workdir, ranks, folder=None):
+    if folder is None:
+        folder = os.path.join(workdir, f"np{ranks}")
+        shutil.rmtree(folder, ignore_errors=True)
+        os.makedirs(folder)
     env = dict(os.environ)
     env.update({"OMPI_ALLOW_RUN_AS_ROOT": "1",
                 "OMPI_ALLOW_RUN_AS_ROOT_CONFIRM": "1",
@@ -136,8 +143,34 @@ def main():
         print(f"--- 1 process against {ranks} processes")
         compare(check, tolerance, ranks, (out1, r1, s1), (out2, r2, s2))
 
+    if "--same-folder" in sys.argv[1:]:
+        same_folder(check, app, mpirun, prm, workdir, counts)
+
     print("all checks passed" if failures == 0 else "FAILED")
     sys.exit(0 if failures == 0 else 1)
+
+
+def same_folder(check, app, mpirun, prm, workdir, counts):
+    """Runs into one folder with decreasing process counts; after each,
+    the folder holds the run's files and nothing else."""
+    folder = os.path.join(workdir, "same_folder")
+    shutil.rmtree(folder, ignore_errors=True)
+    os.makedirs(folder)
+    for ranks in sorted(counts, reverse=True):
+        print(f"--- {ranks} process(es) into {folder}")
+        output, _, _ = run(app, mpirun, prm, workdir, ranks, folder)
+        with open(os.path.join(output, ".dualcontact_files")) as f:
+            listed = set(line.strip() for line in f if line.strip())
+        present = set(n for n in os.listdir(output) if not n.startswith("."))
+        check(present == listed, f"{ranks} process(es) into one folder: it "
+              f"holds the {len(listed)} files of the run; extra "
+              f"{sorted(present - listed)}, missing {sorted(listed - present)}")
+        stale = [n for n in present
+                 if re.search(r"_rank_(\d+)\.vtu$", n) and
+                 (ranks == 1 or
+                  int(re.search(r"_rank_(\d+)", n).group(1)) >= ranks)]
+        check(not stale, f"{ranks} process(es) into one folder: no piece of "
+              f"another process count {sorted(stale)}")
 
 
 def compare(check, tolerance, ranks, first, second):
