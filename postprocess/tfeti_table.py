@@ -3,8 +3,9 @@
 
 Usage: tfeti_table.py BENCH_DIR
 
-One row per run folder (L<level>_<method><subdomains>_tol<tol>_np<processes>;
-without _np: 1 process): processes, wall time
+One row per run folder (L<level>_<method><subdomains>_tol<tol>_np<processes>
+[_noprojector]; without _np: 1 process; _noprojector: SMALSE-M's penalty
+form without the coarse projector): processes, wall time
 and peak memory (run.json, postprocess/run_case.py), subdomains, dofs of
 the subdomains, multipliers, coarse problem order, SMALSE-M outer and
 inner iterations, Hessian products, time of the factorizations and of the
@@ -20,8 +21,8 @@ def main():
     bench_dir = sys.argv[1]
     rows = []
     for name in os.listdir(bench_dir):
-        m = re.match(r"L(\d+)_(none|tfeti)(\d*)_tol([^_]*)(?:_np(\d+))?$",
-                     name)
+        m = re.match(r"L(\d+)_(none|tfeti)(\d*)_tol([^_]*)(?:_np(\d+))?"
+                     r"(_noprojector)?$", name)
         if not m:
             continue
         case = os.path.join(bench_dir, name)
@@ -30,7 +31,10 @@ def main():
         except OSError:
             continue
         stats_file = os.path.join(case, "out", "statistics.json")
-        row = {"level": int(m.group(1)), "method": m.group(2),
+        method = m.group(2)
+        if method == "tfeti":
+            method += " (penalty)" if m.group(6) else " (projector)"
+        row = {"level": int(m.group(1)), "method": method,
                "subdomains": int(m.group(3)) if m.group(3) else 0,
                "tol": m.group(4), "np": int(m.group(5) or 1),
                "wall": run["wall_time_s"],

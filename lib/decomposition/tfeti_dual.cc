@@ -626,7 +626,9 @@ namespace dualcontact
       equality->c             = e_orthonormal_;
       equality->n_constraints = n_modes_;
       equality->norm_sq       = 1.; // ||G~||^2 = lambda_max(G~ G~') = 1
-      problem.equality        = equality;
+      // G~ G~' = L^-1 G G' L^-T = I: SMALSE-M may use the coarse projector
+      equality->orthonormal_rows = true;
+      problem.equality           = equality;
       problem.semidefinite    = true;
       return problem;
     }

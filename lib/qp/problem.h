@@ -35,6 +35,11 @@ namespace dualcontact
       dealii::types::global_dof_index n_constraints = 0;
       /// ||B||^2 if known (0 = unknown), for the SMALSE-M penalty
       double norm_sq = 0.;
+      /// B B' = I (the rows orthonormal, as TFETI's G~ = L^-1 G with
+      /// G G' = L L'): SMALSE-M may then work with the projector
+      /// P = I - B'B onto the kernel of B (SMALSEMParameters::
+      /// coarse_projector)
+      bool orthonormal_rows = false;
     };
 
     /**

@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 
 namespace dualcontact
 {
@@ -45,6 +46,19 @@ namespace dualcontact
                         "100",
                         dealii::Patterns::Integer(1),
                         "Limit on SMALSE-M outer iterations.");
+      prm.declare_entry("Coarse projector",
+                        "true",
+                        dealii::Patterns::Bool(),
+                        "With orthonormal equality rows (TFETI's G~): solve "
+                        "the inner QPs with the projected Hessian "
+                        "P F P + rho G~'G~, P = I - G~'G~ (thesis 3.1), "
+                        "instead of F + rho G~'G~. Other problems are not "
+                        "affected.");
+      prm.declare_entry("Projector penalty factor",
+                        "1",
+                        dealii::Patterns::Double(0.),
+                        "rho = factor * lambda_max(A) with the coarse "
+                        "projector (`Penalty factor' is used without it).");
       prm.declare_entry("Equality tolerance factor",
                         "1",
                         dealii::Patterns::Double(0.),
@@ -66,6 +80,8 @@ namespace dualcontact
       beta                      = prm.get_double("Beta");
       max_outer_iterations      = prm.get_integer("Maximum outer iterations");
       equality_tolerance_factor = prm.get_double("Equality tolerance factor");
+      coarse_projector          = prm.get_bool("Coarse projector");
+      projector_penalty_factor  = prm.get_double("Projector penalty factor");
       prm.leave_subsection();
       prm.leave_subsection();
       check();
@@ -93,6 +109,8 @@ namespace dualcontact
         fail("Beta", "must be in (0, 1)");
       if (max_outer_iterations < 1)
         fail("Maximum outer iterations", "must be >= 1");
+      if (!(projector_penalty_factor > 0.))
+        fail("Projector penalty factor", "must be > 0");
       if (!(equality_tolerance_factor > 0.))
         fail("Equality tolerance factor", "must be > 0");
     }
@@ -143,13 +161,46 @@ namespace dualcontact
       // lambda_max(A) sets rho; lambda_max(A + rho B'B) is given to the
       // inner solver once, so it does not run a power iteration per outer
       // iteration
-      const double lmax_A = this->lambda_max(problem, stats);
-      const double rho    = smalse_prm.rho_factor * lmax_A;
+      const double lmax_A  = this->lambda_max(problem, stats);
+      const bool   project = eq.orthonormal_rows && smalse_prm.coarse_projector;
+      const double rho =
+        (project ? smalse_prm.projector_penalty_factor : smalse_prm.rho_factor) *
+        lmax_A;
 
       VectorType Bx(eq.c), residual(eq.c), mu(eq.c);
       VectorType Ax(x), BtBx(x), work(x), g(x);
       lambda = eq.c;
       lambda = 0.;
+
+      // The problem the outer loop works on: A and b, or with the coarse
+      // projector P A P and P(b - A x0), x0 = B'c (see the class
+      // documentation)
+      VectorType Pv(x), BPv(eq.c), projected_src(x);
+      const auto apply_P = [&](VectorType &v)
+      {
+        eq.vmult(BPv, v);
+        eq.Tvmult(Pv, BPv);
+        v -= Pv;
+      };
+      std::function<void(VectorType &, const VectorType &)> hessian =
+        problem.hessian;
+      VectorType b = problem.b;
+      if (project)
+      {
+        hessian = [&](VectorType &dst, const VectorType &src)
+        {
+          projected_src = src;
+          apply_P(projected_src);
+          problem.hessian(dst, projected_src);
+          apply_P(dst);
+        };
+        VectorType x0(x);
+        eq.Tvmult(x0, eq.c);
+        problem.hessian(Ax, x0);
+        ++stats.n_hessian_products;
+        b -= Ax;
+        apply_P(b);
+      }
 
       Problem<VectorType> inner;
       inner.constraints  = problem.constraints;
@@ -157,13 +208,16 @@ namespace dualcontact
       inner.semidefinite = problem.semidefinite;
       inner.hessian      = [&](VectorType &dst, const VectorType &src)
       {
-        problem.hessian(dst, src);
+        hessian(dst, src);
         ++stats.n_hessian_products;
         eq.vmult(Bx, src);
         eq.Tvmult(BtBx, Bx);
         dst.add(rho, BtBx);
       };
-      if (eq.norm_sq > 0.)
+      if (project)
+        // P A P and rho B'B act on orthogonal complements
+        inner.lambda_max = std::max(lmax_A, rho);
+      else if (eq.norm_sq > 0.)
         // lambda_max(A + rho B'B) <= lambda_max(A) + rho ||B||^2: an upper
         // bound is a safe step length and costs no products
         inner.lambda_max = lmax_A + rho * eq.norm_sq;
@@ -189,18 +243,18 @@ namespace dualcontact
       const auto lagrangian =
         [&](const VectorType &point, const VectorType &multiplier)
       {
-        problem.hessian(Ax, point);
+        hessian(Ax, point);
         ++stats.n_hessian_products;
-        const double f    = 0.5 * (Ax * point) - problem.b * point;
+        const double f    = 0.5 * (Ax * point) - b * point;
         const double norm = equality_residual(point);
         return f + (multiplier * residual) + 0.5 * rho * norm * norm;
       };
       // gradient of L(., lambda, rho) at x: Ax - b + B'(lambda + rho(Bx-c))
       const auto lagrangian_gradient = [&](const VectorType &point)
       {
-        problem.hessian(g, point);
+        hessian(g, point);
         ++stats.n_hessian_products;
-        g -= problem.b;
+        g -= b;
         equality_residual(point);
         mu = lambda;
         mu.add(rho, residual);
@@ -237,7 +291,7 @@ namespace dualcontact
       for (unsigned int outer = 0;; ++outer)
       {
         // inner right-hand side b - B'lambda + rho B'c
-        inner.b = problem.b;
+        inner.b = b;
         eq.Tvmult(work, lambda);
         inner.b -= work;
         eq.Tvmult(work, eq.c);
@@ -357,7 +411,8 @@ namespace dualcontact
                        std::string("equality residual ||Bx - c|| = ") +
                        std::to_string(last_equality_residual) +
                        ", outer iterations " + std::to_string(stats.n_outer) +
-                       ", rho = " + std::to_string(rho);
+                       ", rho = " + std::to_string(rho) +
+                       (project ? ", coarse projector" : "");
       this->finish(problem, x, stats);
       // stationarity of the Lagrangian, not of the plain gradient
       lagrangian_gradient(x);

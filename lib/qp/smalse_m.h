@@ -45,6 +45,13 @@ namespace dualcontact
       double beta = 0.2;
       /// limit on outer iterations
       unsigned int max_outer_iterations = 100;
+      /// with orthonormal equality rows (EqualityConstraints::
+      /// orthonormal_rows, TFETI): minimize over P A P + rho B'B with the
+      /// projector P = I - B'B (Dostal's TFETI, thesis 3.1) instead of over
+      /// A + rho B'B
+      bool coarse_projector = true;
+      /// rho = projector_penalty_factor * lambda_max(A) with the projector
+      double projector_penalty_factor = 1.;
       /// the equality residual must satisfy ||Bx - c|| <=
       /// equality_tolerance_factor * tolerance * min(||b||, max(||c||,
       /// ||B|| ||x||)) (the thesis: ||b||; see SMALSEM)
@@ -78,6 +85,23 @@ namespace dualcontact
      * equality residual is also stored in equality_residual().  KKT:
      * stationarity is ||g^P|| of the Lagrangian gradient
      * Ax - b + B'lambda, feasibility ||x - P(x)|| + ||Bx - c||.
+     *
+     * The coarse projector.  When the rows of B are orthonormal (TFETI's
+     * G~, EqualityConstraints::orthonormal_rows) and coarse_projector is
+     * set, the outer loop works on the equivalent problem
+     *   minimize 1/2 x'PAPx - x'P(b - A x0)  subject to  Bx = c, x in Omega,
+     * with P = I - B'B and x0 = B'c: on the feasible set x = Px + x0, so
+     * both costs differ by a constant there, and Omega is not shifted.
+     * The inner Hessian P A P + rho B'B is A restricted to the kernel of
+     * B beside rho on its complement (P and B'B are complementary
+     * orthogonal projectors): with rho ~ lambda_max(A) its spectrum is
+     * that of A on the kernel, where the penalty form A + 10 lambda_max B'B
+     * has condition number about 10 times larger and its inner solves
+     * take the more iterations (measured on the brick, doc/benchmarks/
+     * tfeti.md).  Each product costs two products with B and two with B'
+     * more (the coarse solves of TFETI), and the stopping tests and KKT
+     * residuals are those of the projected Lagrangian, whose multiplier
+     * differs from the original one by B(Ax - b).
      *
      * Deviation from algorithm 8, for a black-box inner solver: the inner
      * tolerance min(M_k ||Bx - c||, eta) is evaluated with the equality
