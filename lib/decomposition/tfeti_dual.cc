@@ -583,6 +583,23 @@ namespace dualcontact
 
 
     template <int dim>
+    void
+    TFETIDual<dim>::apply_lumped(VectorType &dst, const VectorType &src) const
+    {
+      apply_Bt(src, work_);
+      work_x_.resize(subdomains_.size());
+      for (const unsigned int s : owned_)
+      {
+        work_x_[s].reinit(subdomains_[s]->n_dofs());
+        subdomains_[s]->stiffness_matrix().vmult(work_x_[s], work_[s]);
+      }
+      dst.reinit(n_multipliers());
+      add_B(work_x_, dst);
+      sum_over_processes(dst);
+    }
+
+
+    template <int dim>
     qp::Problem<typename TFETIDual<dim>::VectorType>
     TFETIDual<dim>::make_problem() const
     {
@@ -596,6 +613,16 @@ namespace dualcontact
       problem.b /= scale_;
       // the power iteration's estimate approaches from below
       problem.lambda_max = 1.05;
+      // the lumped preconditioner of F / s is s B K B' (one operator for
+      // every free set: the solver zeroes the active entries)
+      problem.free_set_preconditioner = [this](const VectorType &)
+      {
+        return [this](VectorType &dst, const VectorType &src)
+        {
+          apply_lumped(dst, src);
+          dst *= scale_;
+        };
+      };
 
       // the contact blocks; gluing and Dirichlet multipliers are in none:
       // free

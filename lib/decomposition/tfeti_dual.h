@@ -65,6 +65,12 @@ namespace dualcontact
      * <b>F</b> is applied by local solves: B_s' lambda, K_s^# (two
      * triangular solves with the subdomain's factor), B_s.
      *
+     * <b>Preconditioner.</b> The problem supplies the lumped preconditioner
+     * s sum_s B_s K_s B_s' (apply_lumped(), scaled as the Hessian) as its
+     * free-set preconditioner: MPRGP uses it in face with
+     * `Preconditioner = lumped' (SMALSE-M composes it with the coarse
+     * projector: P M P + G~'G~ / rho).
+     *
      * <b>Recovery</b>: u_s = K_s^#(f_s - B_s'lambda) + R_s alpha_s, alpha
      * the least-squares solution of G_A' alpha = -(B u - c)_A over the rows
      * A that must hold with equality (gluing, Dirichlet, active contact
@@ -138,6 +144,14 @@ namespace dualcontact
       /** dst = F src (collective). */
       void
       apply_F(VectorType &dst, const VectorType &src) const;
+
+      /**
+       * dst = sum_s B_s K_s B_s' src (collective): the lumped
+       * preconditioner, an approximate inverse of F at the cost of sparse
+       * products with the subdomains' stiffness matrices.
+       */
+      void
+      apply_lumped(VectorType &dst, const VectorType &src) const;
       const VectorType &
       d() const;
 

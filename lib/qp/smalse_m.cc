@@ -214,6 +214,30 @@ namespace dualcontact
         eq.Tvmult(BtBx, Bx);
         dst.add(rho, BtBx);
       };
+      // the problem's free-set preconditioner M ~ A^-1 (TFETI: lumped);
+      // with the projector, the inverse of P A P + rho B'B is approximated
+      // by P M P + B'B / rho (the two parts act on orthogonal complements)
+      if (problem.free_set_preconditioner && project)
+        inner.free_set_preconditioner =
+          [&, factory = problem.free_set_preconditioner](
+            const VectorType &active_mask)
+        {
+          const auto M = factory(active_mask);
+          return [&, M, projected = VectorType(x), Qv = VectorType(x)](
+                   VectorType &dst, const VectorType &src) mutable
+          {
+            projected = src;
+            apply_P(projected);
+            M(dst, projected);
+            apply_P(dst);
+            Qv = src;
+            apply_P(Qv);
+            Qv.sadd(-1., 1., src); // B'B src = src - P src
+            dst.add(1. / rho, Qv);
+          };
+        };
+      else
+        inner.free_set_preconditioner = problem.free_set_preconditioner;
       if (project)
         // P A P and rho B'B act on orthogonal complements
         inner.lambda_max = std::max(lmax_A, rho);

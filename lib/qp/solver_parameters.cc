@@ -159,7 +159,7 @@ namespace dualcontact
         "Unit: none.");
       prm.declare_entry("Preconditioner",
                         d.preconditioner,
-                        Selection("none|jacobi|amg"),
+                        Selection("none|jacobi|amg|lumped"),
                         "MPRGP only: preconditioning in face (Dostal 2009, "
                         "sec. 5.10). The CG steps on the free set use "
                         "z = M_F^{-1} phi, M_F a preconditioner of the "
@@ -168,14 +168,17 @@ namespace dualcontact
                         "diag(A)_FF (needs the problem's diagonal); amg: the "
                         "free-set preconditioner the problem supplies "
                         "(qpsolve: Trilinos ML AMG on A with the active rows "
-                        "and columns replaced by identity rows). Unit: none.");
+                        "and columns replaced by identity rows); lumped: "
+                        "TFETI's lumped preconditioner sum_s B_s K_s B_s' "
+                        "(the free-set preconditioner of the TFETI dual). "
+                        "Unit: none.");
       prm.declare_entry(
         "Proportioning step",
         d.proportioning_step,
         Selection("chopped-gradient|preconditioned"),
         "MPRGP's proportioning step. chopped-gradient: thesis, steepest "
         "descent along the chopped gradient beta, cut at the bounds; "
-        "preconditioned (needs Preconditioner jacobi or amg): the projected "
+        "preconditioned (needs a Preconditioner): the projected "
         "PCG step on the free set plus the unknowns beta releases, "
         "z = M^{-1}(phi + beta), lengths t0 = g'z/z'Az times 2^-k for "
         "k < Projected-CG trials, the least cost kept if below the cost "
@@ -308,9 +311,10 @@ namespace dualcontact
             projected_cg_gradient_factor >= 1.))
         fail("Projected-CG gradient factor", "must be 0 (off) or at least 1.");
       if (preconditioner != "none" && preconditioner != "jacobi" &&
-          preconditioner != "amg")
+          preconditioner != "amg" && preconditioner != "lumped")
         fail("Preconditioner",
-             "must be none, jacobi or amg (got '" + preconditioner + "').");
+             "must be none, jacobi, amg or lumped (got '" + preconditioner +
+               "').");
       if (proportioning_step != "chopped-gradient" &&
           proportioning_step != "preconditioned")
         fail("Proportioning step",
@@ -318,7 +322,7 @@ namespace dualcontact
                proportioning_step + "').");
       if (proportioning_step == "preconditioned" && preconditioner == "none")
         fail("Proportioning step",
-             "preconditioned needs Preconditioner = jacobi or amg.");
+             "preconditioned needs Preconditioner = jacobi, amg or lumped.");
       if (!(mwpgp_delta > 0. && mwpgp_delta < 0.5))
         fail("MwPGP delta", "must lie in (0, 1/2).");
       if (pbbf_k < 1)

@@ -93,10 +93,11 @@ namespace dualcontact
       /// preconditioner of the free-set block A_FF, rebuilt whenever the
       /// active set changed (after an expansion or a proportioning step).
       /// "none" (plain MPRGP), "jacobi" (M_F = diag(A)_FF, from
-      /// Problem::diagonal) or "amg" (the operator returned by
+      /// Problem::diagonal), "amg" (the operator returned by
       /// Problem::free_set_preconditioner for the active set; qpsolve
       /// builds Trilinos ML on A with the active rows and columns
-      /// replaced by identity rows).  The proportioning test and the
+      /// replaced by identity rows) or "lumped" (the same factory; the
+      /// TFETI dual supplies its lumped preconditioner there).  The proportioning test and the
       /// expansions are MPRGP's.  Only MPRGP uses it.
       std::string preconditioner = "none";
       /// MPRGP's proportioning step: "chopped-gradient" (thesis: steepest
