@@ -11,7 +11,7 @@
 //  5. an iteration limit of 3: reason "max_iterations", not converged.
 // Asserts ||x - x*|| <= 1e-8 ||x*||, the criterion <= 1e-10 ||b||, the
 // returned multipliers close to the planted ones.
-#include "test_tools.h"
+#include "planted_problems.h"
 
 #include <deal.II/lac/full_matrix.h>
 #include <deal.II/lac/precondition.h>

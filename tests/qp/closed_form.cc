@@ -8,7 +8,7 @@
 // blocks are those on the boundary (is_active, n_active_blocks) and the
 // complementarity measure is 0; at a non-solution the gradients do not
 // vanish.
-#include "test_tools.h"
+#include "planted_problems.h"
 
 #include <qp/solver_factory.h>
 

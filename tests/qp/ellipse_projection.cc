@@ -6,7 +6,7 @@
 // (where the secular equation is hardest).  Checks ||P(y) - y_bf|| <= 1e-10
 // (relative to the larger semi-axis) and that P(y) is never farther from y
 // than the brute-force point.
-#include "test_tools.h"
+#include "planted_problems.h"
 
 #include <qp/separable_set.h>
 

@@ -9,7 +9,7 @@
 //  - invalid input (sizes, MPRGP on a disc, equality constraints) throws.
 // Also the statistics record itself: converged() needs reason AND
 // criterion, JSON round trip of the main fields.
-#include "test_tools.h"
+#include "planted_problems.h"
 
 #include <qp/solver_factory.h>
 

@@ -10,7 +10,7 @@
 //    beta = 0, the restart);
 //  - projected_step: P(x - alpha g) and P(x - alpha phi).
 // Every value to 1e-13 relative (they differ only in summation order).
-#include "test_tools.h"
+#include "planted_problems.h"
 
 #include <qp/separable_set.h>
 

@@ -16,7 +16,7 @@
 // Preconditioner = amg on distributed vectors without a factory (there is
 // no distributed FreeSetAMG) is refused on every rank with a message
 // naming the missing factory.
-#include "test_tools.h"
+#include "planted_problems.h"
 
 #include <deal.II/base/index_set.h>
 #include <deal.II/base/mpi.h>

@@ -4,7 +4,7 @@
 // bound-only set for mprgp, solved to 1e-12, the distributed answer
 // matches the serial one to 1e-10 and the planted solution to 1e-8; block
 // counts are global; a block straddling two ranks is rejected on both.
-#include "test_tools.h"
+#include "planted_problems.h"
 
 #include <deal.II/base/mpi.h>
 

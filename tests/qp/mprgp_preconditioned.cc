@@ -28,7 +28,7 @@
 //  3. Same solution as unpreconditioned MPRGP on that problem; bad
 //     input: amg without a factory, jacobi without a diagonal; a
 //     negative definite M_F (the safeguard falls back to phi).
-#include "test_tools.h"
+#include "planted_problems.h"
 
 #include <qp/free_set_amg.h>
 #include <qp/membrane_generator.h>

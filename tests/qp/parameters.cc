@@ -5,7 +5,7 @@
 // parameter; every declared solver name either creates a solver or throws
 // "unavailable"; power iteration on diag(1..n) finds n within its
 // tolerance and applies the safety factor.
-#include "test_tools.h"
+#include "planted_problems.h"
 
 #include <deal.II/base/parameter_handler.h>
 

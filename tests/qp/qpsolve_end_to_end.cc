@@ -13,7 +13,7 @@
 //  - --max-iter 2: exit 2, reason max_iterations;
 //  - bad inputs (missing file, bad field, unknown solver, cgc with a disc
 //    block, bad --tol): exit 1 with a message naming the file/field/option.
-#include "test_tools.h"
+#include "planted_problems.h"
 
 #include <cmath>
 #include <cstdio>

@@ -9,7 +9,7 @@
 //    field or line; a non-symmetric Hessian (a lower triangle under a
 //    `general' header), an entry count larger than the file can hold and a
 //    cone count whose unknowns overflow 32 bits are errors (issue 15).
-#include "test_tools.h"
+#include "planted_problems.h"
 
 #include <qp/membrane_generator.h>
 #include <qp/problem_io.h>

@@ -4,7 +4,7 @@
 // by block; max_feasible_step(x, p) is exact (x - alpha p feasible, a
 // slightly longer step is not) and feasible_step() leaves the blocking
 // block active; the gradient splits agree with the one-sweep norms.
-#include "test_tools.h"
+#include "planted_problems.h"
 
 #include <qp/separable_set.h>
 

@@ -8,7 +8,7 @@
 // 1e-8 ||b||, outer iterations >= 1 reported, KKT stationarity and
 // complementarity of the Lagrangian small; and that a limit of 3 inner
 // iterations is reported as not converged.
-#include "test_tools.h"
+#include "planted_problems.h"
 
 #include <deal.II/lac/full_matrix.h>
 #include <deal.II/lac/vector.h>

@@ -13,7 +13,7 @@
 //    reported not converged, chosen = the last, message says so;
 //  - JSON holds the attempts and the chosen solver;
 //  - bad chains are rejected naming the parameter.
-#include "test_tools.h"
+#include "planted_problems.h"
 
 #include <qp/kkt_residuals.h>
 #include <qp/smalse_m.h>

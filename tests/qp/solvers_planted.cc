@@ -7,7 +7,7 @@
 // kinds, products counted); MPRGP and MPGP also with the projected-CG
 // expansion (parameter `expansion`).  Then ellipses with axis ratios up to 1e4
 // under each of the three stopping criteria.
-#include "test_tools.h"
+#include "planted_problems.h"
 
 #include <qp/solver_factory.h>
 

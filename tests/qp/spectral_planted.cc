@@ -7,7 +7,7 @@
 // is the unique solution.  Asserts: reason converged at tolerance 1e-10,
 // ||x - x*|| <= 1e-8 max(1, ||x*||), the KKT residuals small; and with an
 // iteration limit of 5 the reason is max_iterations and converged() false.
-#include "test_tools.h"
+#include "planted_problems.h"
 
 #include <deal.II/lac/sparse_matrix.h>
 #include <deal.II/lac/sparsity_pattern.h>

@@ -8,7 +8,7 @@
 //  - box constraints on the same A: always solvable, must converge.
 // Also random SPS matrices with a 3-dimensional kernel and planted
 // solvable data (b = A x* + multipliers of active bounds).
-#include "test_tools.h"
+#include "planted_problems.h"
 
 #include <qp/solver_factory.h>
 

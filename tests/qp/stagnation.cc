@@ -10,7 +10,7 @@
 //     precision with an unreachable tolerance 1e-30 stops with
 //     `stagnation` (not converged, not the iteration limit) for MPRGP,
 //     MPGP, MPGP-BB and MwPGP, at the solution.
-#include "test_tools.h"
+#include "planted_problems.h"
 
 #include <qp/membrane_generator.h>
 #include <qp/solver_factory.h>

@@ -17,7 +17,7 @@
 //    a newly built set, and bad values refused;
 //  - SolverBase::set_tolerance: one solver object solves to 1e-2, then to
 //    1e-10; a non-positive tolerance is refused.
-#include "test_tools.h"
+#include "planted_problems.h"
 
 #include <qp/kkt_residuals.h>
 #include <qp/solver_factory.h>

@@ -11,7 +11,7 @@
 // on runs of 0 to 1001 entries with active, nearly active, infeasible and
 // free entries, lower bounds of both signs and zero (also -0), directions
 // with zeros of both signs, and lanes that already hold partial sums.
-#include "test_tools.h"
+#include "planted_problems.h"
 
 #include <qp/vector_kernels.h>
 

@@ -1,12 +1,12 @@
 /**
- * @file test_tools.h
+ * @file planted_problems.h
  * Shared helpers of the tests in tests/qp/: dense SPD matrices, random
  * separable sets, and QPs with a planted solution (x*, active blocks and
  * positive multipliers chosen first, b = A x* + sum mu_j n_j(x*)).
  * Header-only because every test is its own program.
  */
-#ifndef dualcontact_tests_qp_test_tools_h
-#define dualcontact_tests_qp_test_tools_h
+#ifndef dualcontact_tests_qp_planted_problems_h
+#define dualcontact_tests_qp_planted_problems_h
 
 #include <deal.II/lac/sparse_matrix.h>
 #include <deal.II/lac/sparsity_pattern.h>
