@@ -1,7 +1,7 @@
 // io::OutputFolder: nothing is created by the check; files appear under
 // their final names only after commit(); an uncommitted folder removes its
 // temporary files and the folders it created; unwritable paths are refused
-// up front.  Also io::locate_file and the parameter-file helpers.
+// up front; a write that fails (a full disk) names the file and the cause.  Also io::locate_file and the parameter-file helpers.
 
 #include <deal.II/base/exceptions.h>
 
@@ -93,6 +93,28 @@ main()
             message.find("(`set X')") != std::string::npos,
           "a folder below a file is refused: " + message);
   }
+
+  // a full disk: the message names the file and the cause (the temporary
+  // name is made a link to /dev/full, where every write fails with ENOSPC)
+  if (fs::exists("/dev/full"))
+  {
+    const fs::path path = root / "full";
+    fs::create_directories(path);
+    fs::create_symlink("/dev/full", path / ".big.txt.tmp");
+    const std::string message = error_of(
+      [&]()
+      {
+        OutputFolder folder(path.string(), "(here)");
+        folder.write("big.txt",
+                     [](std::ostream &out)
+                     { out << std::string(1 << 20, 'x') << "\n"; });
+      });
+    check(message.find(".big.txt.tmp") != std::string::npos &&
+            message.find("No space left on device") != std::string::npos,
+          "a full disk names the file and the cause: " + message);
+  }
+  else
+    std::cout << "skipped: no /dev/full for the full-disk check" << std::endl;
 
   // locate_file: relative to the parameter file's folder, else an error
   // listing the paths tried
