@@ -656,7 +656,7 @@ namespace dualcontact
       // G~ G~' = L^-1 G G' L^-T = I: SMALSE-M may use the coarse projector
       equality->orthonormal_rows = true;
       problem.equality           = equality;
-      problem.semidefinite    = true;
+      problem.semidefinite       = true;
       return problem;
     }
 

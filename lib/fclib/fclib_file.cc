@@ -339,9 +339,8 @@ namespace dualcontact
     {
       check_is_form(path, Form::local);
       // before libfclib allocates from the headers (see FileLayout)
-      const FileLayout                                      layout(path,
-                                              Form::local);
-      const SilentHdf5Errors                                silent;
+      const FileLayout       layout(path, Form::local);
+      const SilentHdf5Errors silent;
       std::unique_ptr<fclib_local, void (*)(fclib_local *)> p(
         fclib_read_local(path.c_str()), fclib_delete_local);
       AssertThrow(p && p->W && p->q && p->mu,
@@ -373,8 +372,8 @@ namespace dualcontact
     {
       check_is_form(path, Form::global);
       // before libfclib allocates from the headers (see FileLayout)
-      const FileLayout layout(path, Form::global);
-      const SilentHdf5Errors                                  silent;
+      const FileLayout       layout(path, Form::global);
+      const SilentHdf5Errors silent;
       std::unique_ptr<fclib_global, void (*)(fclib_global *)> p(
         fclib_read_global(path.c_str()), fclib_delete_global);
       AssertThrow(p && p->M && p->H && p->f && p->w && p->mu,
@@ -501,8 +500,8 @@ namespace dualcontact
       const FileLayout layout(path, form_of(path));
       if (!layout.has_solution())
         return {};
-      const std::size_t size = layout.contact_size();
-      const SilentHdf5Errors                                      silent;
+      const std::size_t      size = layout.contact_size();
+      const SilentHdf5Errors silent;
       std::unique_ptr<fclib_solution, void (*)(fclib_solution *)> s(
         fclib_read_solution(path.c_str()),
         [](fclib_solution *p) { fclib_delete_solutions(p, 1); });

@@ -74,7 +74,8 @@ namespace dualcontact
           // every part of the path must exist for H5Lexists on the next
           std::string::size_type at = 0;
           while ((at = name.find('/', at + 1)) != std::string::npos)
-            if (H5Lexists(file_.get(), name.substr(0, at).c_str(),
+            if (H5Lexists(file_.get(),
+                          name.substr(0, at).c_str(),
                           H5P_DEFAULT) <= 0)
               return false;
           return H5Lexists(file_.get(), name.c_str(), H5P_DEFAULT) > 0;
@@ -102,8 +103,7 @@ namespace dualcontact
           if (offset != HADDR_UNDEF)
           {
             const std::uint64_t stored = H5Dget_storage_size(set.get());
-            AssertThrow(offset <= file_size_ &&
-                          stored <= file_size_ - offset,
+            AssertThrow(offset <= file_size_ && stored <= file_size_ - offset,
                         error(name,
                               "lies beyond the end of the file (" +
                                 std::to_string(stored) + " bytes at offset " +
@@ -119,11 +119,12 @@ namespace dualcontact
         scalar(const std::string &name) const
         {
           AssertThrow(extent(name) == 1,
-                      error(name, "must hold one value, it holds " +
-                                    std::to_string(extent(name))));
+                      error(name,
+                            "must hold one value, it holds " +
+                              std::to_string(extent(name))));
           const Handle set(H5Dopen2(file_.get(), name.c_str(), H5P_DEFAULT),
                            H5Dclose);
-          long long value = 0;
+          long long    value = 0;
           AssertThrow(H5Dread(set.get(),
                               H5T_NATIVE_LLONG,
                               H5S_ALL,
@@ -155,10 +156,10 @@ namespace dualcontact
         }
 
       private:
-        std::string   path_;
+        std::string      path_;
         SilentHdf5Errors silent_; // before file_: H5Fopen may fail
-        Handle        file_;
-        std::uint64_t file_size_ = 0;
+        Handle           file_;
+        std::uint64_t    file_size_ = 0;
       };
 
 
@@ -219,9 +220,9 @@ namespace dualcontact
     FileLayout::FileLayout(const std::string &path, const Form form)
     {
       const LayoutReader file(path);
-      const std::string  root = form == Form::local ? "/fclib_local" :
-                                                      "/fclib_global";
-      const std::int64_t spacedim = file.scalar(root + "/spacedim");
+      const std::string  root =
+        form == Form::local ? "/fclib_local" : "/fclib_global";
+      const std::int64_t spacedim      = file.scalar(root + "/spacedim");
       std::int64_t       velocity_size = 0; // M's order (global)
       AssertThrow(spacedim == 2 || spacedim == 3,
                   file.error(root + "/spacedim",
@@ -256,8 +257,8 @@ namespace dualcontact
                                  std::to_string(M.n) + ", not square"));
         AssertThrow(H.m == M.m,
                     file.error(root + "/H",
-                               "has " + std::to_string(H.m) +
-                                 " rows, M has " + std::to_string(M.m)));
+                               "has " + std::to_string(H.m) + " rows, M has " +
+                                 std::to_string(M.m)));
         file.require_extent(root + "/vectors/f", M.m, "the order of M");
         velocity_size = M.m;
         file.require_extent(root + "/vectors/w", H.n, "the columns of H");

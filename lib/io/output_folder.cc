@@ -202,12 +202,12 @@ namespace dualcontact
     void
     OutputFolder::remove_stale_files() const
     {
-      const fs::path manifest = fs::path(path_) / manifest_file_name;
-      std::ifstream  in(manifest);
+      const fs::path        manifest = fs::path(path_) / manifest_file_name;
+      std::ifstream         in(manifest);
       std::set<std::string> written(file_names_.begin(), file_names_.end());
       written.insert(other_processes_files_.begin(),
                      other_processes_files_.end());
-      std::string                 name;
+      std::string name;
       while (std::getline(in, name))
         if (!name.empty() && name.find('/') == std::string::npos &&
             name[0] != '.' && written.count(name) == 0)

@@ -163,9 +163,9 @@ namespace dualcontact
       // iteration
       const double lmax_A  = this->lambda_max(problem, stats);
       const bool   project = eq.orthonormal_rows && smalse_prm.coarse_projector;
-      const double rho =
-        (project ? smalse_prm.projector_penalty_factor : smalse_prm.rho_factor) *
-        lmax_A;
+      const double rho     = (project ? smalse_prm.projector_penalty_factor :
+                                        smalse_prm.rho_factor) *
+                         lmax_A;
 
       VectorType Bx(eq.c), residual(eq.c), mu(eq.c);
       VectorType Ax(x), BtBx(x), work(x), g(x);
@@ -231,8 +231,7 @@ namespace dualcontact
             M(dst, projected);
             apply_P(dst);
             Qv = src;
-            apply_P(Qv);
-            Qv.sadd(-1., 1., src); // B'B src = src - P src
+            Qv -= projected; // B'B src = src - P src
             dst.add(1. / rho, Qv);
           };
         };
@@ -324,9 +323,9 @@ namespace dualcontact
 
         // Step 1: inner solve with adaptive precision
         const unsigned int iterations_before = stats.iterations;
-        double inner_tolerance = std::min(M * norm_residual, eta);
-        inner_tolerance        = std::max(inner_tolerance, 0.1 * tolerance);
-        double g_norm          = 0.;
+        double             inner_tolerance   = std::min(M * norm_residual, eta);
+        inner_tolerance = std::max(inner_tolerance, 0.1 * tolerance);
+        double g_norm   = 0.;
         for (unsigned int attempt = 0; attempt < 3; ++attempt)
         {
           inner_prm.tolerance = std::min(0.5, inner_tolerance / norm_inner_b);

@@ -37,8 +37,8 @@
 
 #include <iostream>
 #include <set>
-#include <tuple>
 #include <sstream>
+#include <tuple>
 
 using namespace dealii;
 using namespace dualcontact;
@@ -123,6 +123,17 @@ namespace
     return contact_solver.solve();
   }
 
+  /** QP iterations summed over the QPs of a contact solve. */
+  template <int dim>
+  unsigned int
+  inner_iterations(const typename contact::ContactSolver<dim>::Result &result)
+  {
+    unsigned int n = 0;
+    for (const auto &s : result.qp_statistics)
+      n += s.iterations;
+    return n;
+  }
+
   /** Largest difference over the largest value, over all bodies. */
   double
   relative_difference(const std::vector<Vector<double>> &a,
@@ -193,8 +204,8 @@ namespace
         std::to_string(tfeti.n_dirichlet_multipliers()) + " Dirichlet, " +
         std::to_string(tfeti.n_contact_multipliers()) + " contact): ";
       check(result.converged,
-            label + result.reason + " (" +
-              result.qp_statistics.back().message + "), QP iterations",
+            label + result.reason + " (" + result.qp_statistics.back().message +
+              "), QP iterations",
             result.qp_statistics.back().iterations);
       check(tfeti.n_subdomains() >= count * bodies.size() &&
               tfeti.n_rigid_body_modes() ==
@@ -370,33 +381,54 @@ namespace
   }
 
 
-  /** E. 3D: a block pressed onto a fixed block, both cut. */
-  void
-  two_blocks()
+  /** The fixed lower block of E and G, @p n x @p n x @p n cells. */
+  std::unique_ptr<fem::ElasticBody<3>>
+  lower_block(const unsigned int n)
   {
-    const auto lower =
-      make_body<3>("lower block",
-                   Point<3>(0, 0, -1),
-                   Point<3>(1, 1, 0),
-                   {3, 3, 3},
-                   {{4, mask<3>({0, 1, 2}), constant<3>({0, 0, 0})}},
-                   {});
-    const auto upper =
-      make_body<3>("upper block",
-                   Point<3>(0.1, 0.1, 0),
-                   Point<3>(0.9, 0.9, 0.6),
-                   {4, 4, 3},
-                   {{5, mask<3>({0, 1, 2}), constant<3>({1e-4, 0, -1e-3})}},
-                   {});
+    return make_body<3>("lower block",
+                        Point<3>(0, 0, -1),
+                        Point<3>(1, 1, 0),
+                        {n, n, n},
+                        {{4, mask<3>({0, 1, 2}), constant<3>({0, 0, 0})}},
+                        {});
+  }
+
+  /** The upper block of E and G, pressed down and pushed sideways. */
+  std::unique_ptr<fem::ElasticBody<3>>
+  upper_block()
+  {
+    return make_body<3>(
+      "upper block",
+      Point<3>(0.1, 0.1, 0),
+      Point<3>(0.9, 0.9, 0.6),
+      {4, 4, 3},
+      {{5, mask<3>({0, 1, 2}), constant<3>({1e-4, 0, -1e-3})}},
+      {});
+  }
+
+  /** Frictionless contact of the upper block's bottom on the lower one. */
+  contact::ContactPair<3>
+  block_pair()
+  {
     contact::ContactPair<3> pair;
     pair.name            = "upper-lower";
     pair.slave_body      = 1;
     pair.slave_boundary  = 4;
     pair.master_body     = 0;
     pair.master_boundary = 5;
+    return pair;
+  }
+
+
+  /** E. 3D: a block pressed onto a fixed block, both cut. */
+  void
+  two_blocks()
+  {
+    const auto lower = lower_block(3);
+    const auto upper = upper_block();
     compare<3>("E. 3D block on block, frictionless",
                {lower.get(), upper.get()},
-               {pair},
+               {block_pair()},
                {1, 3},
                "mprgp");
   }
@@ -415,12 +447,12 @@ namespace
     std::cout << "F. brick, 16 subdomains: SMALSE-M with and without the "
                  "coarse projector"
               << std::endl;
-    const auto                             body = brick_body();
-    const contact::ContactPair<3>          pair = brick_pair();
+    const auto                              body = brick_body();
+    const contact::ContactPair<3>           pair = brick_pair();
     const contact::ContactDiscretization<3> contact({body.get()}, {pair});
-    decomposition::DecompositionParameters parameters;
+    decomposition::DecompositionParameters  parameters;
     parameters.subdomains_per_body = {16};
-    decomposition::TFETIDual<3> tfeti({body.get()},
+    decomposition::TFETIDual<3>                    tfeti({body.get()},
                                       contact,
                                       parameters,
                                       cholmod());
@@ -431,14 +463,11 @@ namespace
       qp::SMALSEMParameters smalse;
       smalse.coarse_projector = projector;
       results.push_back(solve(tfeti, "mpgp", 1e-6, smalse));
-      unsigned int n = 0;
-      for (const auto &s : results.back().qp_statistics)
-        n += s.iterations;
+      const unsigned int n = inner_iterations<3>(results.back());
       iterations.push_back(n);
       check(results.back().converged,
             std::string(projector ? "  with" : "  without") +
-              " the projector: " + results.back().reason +
-              ", inner iterations",
+              " the projector: " + results.back().reason + ", inner iterations",
             n);
     }
     check(2 * iterations[0] <= iterations[1],
@@ -475,26 +504,9 @@ namespace
                    {16, 4, 4},
                    {{0, mask<3>({0, 1, 2}), constant<3>({0, 0, 0})}},
                    {{1, constant<3>({0, 0, -100})}});
-    const auto lower =
-      make_body<3>("lower block",
-                   Point<3>(0, 0, -1),
-                   Point<3>(1, 1, 0),
-                   {4, 4, 4},
-                   {{4, mask<3>({0, 1, 2}), constant<3>({0, 0, 0})}},
-                   {});
-    const auto upper =
-      make_body<3>("upper block",
-                   Point<3>(0.1, 0.1, 0),
-                   Point<3>(0.9, 0.9, 0.6),
-                   {4, 4, 3},
-                   {{5, mask<3>({0, 1, 2}), constant<3>({1e-4, 0, -1e-3})}},
-                   {});
-    contact::ContactPair<3> pair;
-    pair.name            = "upper-lower";
-    pair.slave_body      = 1;
-    pair.slave_boundary  = 4;
-    pair.master_body     = 0;
-    pair.master_boundary = 5;
+    const auto lower = lower_block(4);
+    const auto upper = upper_block();
+    const auto pair  = block_pair();
     for (const auto &[name, bodies, pairs, count] :
          std::vector<std::tuple<std::string,
                                 std::vector<const fem::ElasticBody<3> *>,
@@ -509,19 +521,14 @@ namespace
       const contact::ContactDiscretization<3> contact(bodies, pairs);
       decomposition::DecompositionParameters  parameters;
       parameters.subdomains_per_body = {count};
-      decomposition::TFETIDual<3> tfeti(bodies,
-                                        contact,
-                                        parameters,
-                                        cholmod());
+      decomposition::TFETIDual<3> tfeti(bodies, contact, parameters, cholmod());
       std::vector<contact::ContactSolver<3>::Result> results;
       std::vector<unsigned int>                      iterations;
       for (const std::string preconditioner : {"lumped", "none"})
       {
-        results.push_back(solve(
-          tfeti, "mprgp", 1e-8, qp::SMALSEMParameters(), preconditioner));
-        unsigned int n = 0;
-        for (const auto &s : results.back().qp_statistics)
-          n += s.iterations;
+        results.push_back(
+          solve(tfeti, "mprgp", 1e-8, qp::SMALSEMParameters(), preconditioner));
+        const unsigned int n = inner_iterations<3>(results.back());
         iterations.push_back(n);
         check(results.back().converged,
               "  " + name + ", Preconditioner = " + preconditioner + ": " +
@@ -536,8 +543,8 @@ namespace
       std::cout << "  " << name << ": " << iterations[0]
                 << " iterations with the preconditioner, " << iterations[1]
                 << " without" << std::endl;
-      const double difference = relative_difference(results[0].displacements,
-                                                    results[1].displacements);
+      const double difference =
+        relative_difference(results[0].displacements, results[1].displacements);
       check(difference < 1e-6,
             "  " + name + ": displacements with and without it",
             difference);

@@ -59,9 +59,9 @@ namespace
   std::vector<int>
   read_ints(const std::string &path, const std::string &name)
   {
-    const hid_t file  = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
-    const hid_t set   = H5Dopen2(file, name.c_str(), H5P_DEFAULT);
-    const hid_t space = H5Dget_space(set);
+    const hid_t      file  = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+    const hid_t      set   = H5Dopen2(file, name.c_str(), H5P_DEFAULT);
+    const hid_t      space = H5Dget_space(set);
     std::vector<int> values(H5Sget_simple_extent_npoints(space));
     H5Dread(set, H5T_NATIVE_INT, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data());
     H5Sclose(space);
@@ -74,8 +74,8 @@ namespace
   add_group(const std::string &path, const std::string &name)
   {
     const hid_t file = H5Fopen(path.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
-    H5Gclose(H5Gcreate2(file, name.c_str(), H5P_DEFAULT, H5P_DEFAULT,
-                        H5P_DEFAULT));
+    H5Gclose(
+      H5Gcreate2(file, name.c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT));
     H5Fclose(file);
   }
 
@@ -154,9 +154,7 @@ main()
     {local,
      "a solution of the wrong size",
      [&](const std::string &f)
-     {
-       write_data_set<double>(f, "/solution/r", std::vector<double>(10, 0.));
-     },
+     { write_data_set<double>(f, "/solution/r", std::vector<double>(10, 0.)); },
      "/solution/r holds 10 entries, the number of contact unknowns says 144"},
     {global,
      "H with fewer rows than M",
@@ -184,9 +182,10 @@ main()
   for (const auto &damage : damages)
   {
     const std::string copy = "damaged_" + damage.source;
-    std::filesystem::copy_file(FCLIB_TEST_DATA_DIR + damage.source,
-                               copy,
-                               std::filesystem::copy_options::overwrite_existing);
+    std::filesystem::copy_file(
+      FCLIB_TEST_DATA_DIR + damage.source,
+      copy,
+      std::filesystem::copy_options::overwrite_existing);
     damage.apply(copy);
 
     std::string message;
@@ -207,7 +206,7 @@ main()
                       message.empty() ? "(read without error)" : message);
 
     std::ostringstream out, err;
-    const int status = fclib::FclibSolveDriver().run({copy}, out, err);
+    const int          status = fclib::FclibSolveDriver().run({copy}, out, err);
     test_tools::check(status == 1 &&
                         err.str().find(damage.expected) != std::string::npos,
                       damage.what + ": fclibsolve exits with 1",
@@ -228,12 +227,11 @@ main()
     {
       const fclib::Form        form = fclib::form_of(path);
       const fclib::FileLayout  layout(path, form);
-      const unsigned long long size =
-        form == fclib::Form::local ? fclib::read_local(path).size() :
-                                     fclib::read_global(path).H().n();
-      const auto r = fclib::read_solution_r(path);
-      ok           = size == layout.contact_size() &&
-           (r.size() == 0 || r.size() == size);
+      const unsigned long long size = form == fclib::Form::local ?
+                                        fclib::read_local(path).size() :
+                                        fclib::read_global(path).H().n();
+      const auto               r    = fclib::read_solution_r(path);
+      ok = size == layout.contact_size() && (r.size() == 0 || r.size() == size);
       text = std::to_string(size) + " contact unknowns, solution of " +
              std::to_string(r.size());
     }

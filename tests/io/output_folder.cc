@@ -1,7 +1,8 @@
 // io::OutputFolder: nothing is created by the check; files appear under
 // their final names only after commit(); an uncommitted folder removes its
 // temporary files and the folders it created; unwritable paths are refused
-// up front; a write that fails (a full disk) names the file and the cause.  Also io::locate_file and the parameter-file helpers.
+// up front; a write that fails (a full disk) names the file and the cause. Also
+// io::locate_file and the parameter-file helpers.
 
 #include <deal.II/base/exceptions.h>
 
