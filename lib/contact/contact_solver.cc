@@ -1,5 +1,4 @@
 #include <contact/contact_solver.h>
-#include <qp/solver_chain.h>
 #include <qp/solver_factory.h>
 
 #include <cmath>
@@ -9,42 +8,6 @@ namespace dualcontact
 {
   namespace contact
   {
-    void
-    CoulombParameters::declare_parameters(dealii::ParameterHandler &prm)
-    {
-      prm.enter_subsection("Coulomb");
-      prm.declare_entry("Tolerance",
-                        "1e-6",
-                        dealii::Patterns::Double(0.),
-                        "Coulomb friction is solved as a fixed point over "
-                        "Tresca problems, psi_i = mu lambda_N,i; it stops when "
-                        "the relative change of the slip bounds psi is below "
-                        "this value [-].");
-      prm.declare_entry("Maximum iterations",
-                        "50",
-                        dealii::Patterns::Integer(1),
-                        "Limit on the Coulomb fixed-point iterations; reaching "
-                        "it is reported as not converged.");
-      prm.declare_entry("Divergence window",
-                        "5",
-                        dealii::Patterns::Integer(2),
-                        "The fixed point is declared divergent when the change "
-                        "of psi grew in this many consecutive iterations.");
-      prm.leave_subsection();
-    }
-
-
-    void
-    CoulombParameters::parse_parameters(dealii::ParameterHandler &prm)
-    {
-      prm.enter_subsection("Coulomb");
-      tolerance         = prm.get_double("Tolerance");
-      max_iterations    = prm.get_integer("Maximum iterations");
-      divergence_window = prm.get_integer("Divergence window");
-      prm.leave_subsection();
-    }
-
-
     template <int dim>
     ContactSolver<dim>::ContactSolver(
       DualFormulation<dim>        &dual,
@@ -119,19 +82,8 @@ namespace dualcontact
     ContactSolver<dim>::run_solver(const qp::Problem<V> &problem,
                                    V                    &lambda) const
     {
-      if (qp_parameters_.solver == "auto")
-      {
-        // by the constraint types, with fall-back (SMALSE-M inside)
-        qp::SolverChain<V> chain(qp_parameters_, smalse_parameters_);
-        return chain.solve(problem, lambda);
-      }
-      if (problem.equality)
-      {
-        qp::SMALSEM<V> solver(qp_parameters_, smalse_parameters_);
-        return solver.solve(problem, lambda);
-      }
-      auto solver = qp::create<V>(qp_parameters_);
-      return solver->solve(problem, lambda);
+      return qp::make_solver<V>(qp_parameters_, smalse_parameters_, problem)
+        ->solve(problem, lambda);
     }
 
 
@@ -279,7 +231,7 @@ namespace dualcontact
 
       if (has_coulomb)
       {
-        unsigned int growing = 0;
+        CoulombFixedPoint fixed_point(coulomb_parameters_);
         for (unsigned int it = 0;; ++it)
         {
           const std::vector<double> old_first  = dual_.slip_bounds_first();
@@ -302,11 +254,10 @@ namespace dualcontact
             norm += std::pow(dual_.slip_bounds_first()[j], 2) +
                     std::pow(dual_.slip_bounds_second()[j], 2);
           }
-          const double relative =
-            from_bonded ?
-              1. :
-              (norm > 0 ? std::sqrt(change / norm) : std::sqrt(change));
-          result.coulomb_changes.push_back(relative);
+          const CoulombFixedPoint::State state = fixed_point.record_change(
+            from_bonded ? 1. :
+                          CoulombFixedPoint::relative_change(change, norm));
+          result.coulomb_changes = fixed_point.changes();
           if (coulomb_monitor_)
             coulomb_monitor_(result);
           if (on_iterate)
@@ -315,36 +266,10 @@ namespace dualcontact
             dual_.recover(lambda, result.displacements, false);
             on_iterate(result);
           }
-          if (!std::isfinite(relative))
+          if (state != CoulombFixedPoint::State::iterating)
           {
-            result.reason = "Coulomb fixed point: non-finite slip bounds";
-            break;
-          }
-          if (relative <= coulomb_parameters_.tolerance)
-          {
-            result.converged = true;
-            break;
-          }
-          if (result.coulomb_changes.size() > 1 &&
-              relative >
-                result.coulomb_changes[result.coulomb_changes.size() - 2])
-            ++growing;
-          else
-            growing = 0;
-          if (growing >= coulomb_parameters_.divergence_window)
-          {
-            result.reason = "Coulomb fixed point diverged (the change of "
-                            "psi grew in " +
-                            std::to_string(growing) +
-                            " consecutive iterations)";
-            break;
-          }
-          if (it + 1 >= coulomb_parameters_.max_iterations)
-          {
-            result.reason = "Coulomb fixed point: maximum iterations (" +
-                            std::to_string(coulomb_parameters_.max_iterations) +
-                            ") reached, relative change " +
-                            std::to_string(relative);
+            result.converged = state == CoulombFixedPoint::State::converged;
+            result.reason    = fixed_point.message();
             break;
           }
           result.working_sets.emplace_back();

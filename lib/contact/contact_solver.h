@@ -3,6 +3,7 @@
 #include <deal.II/base/parameter_handler.h>
 #include <deal.II/lac/vector.h>
 
+#include <contact/coulomb_fixed_point.h>
 #include <contact/dual_formulation.h>
 #include <contact/working_set.h>
 #include <qp/smalse_m.h>
@@ -17,26 +18,6 @@ namespace dualcontact
 {
   namespace contact
   {
-    /** Parameters of the Coulomb fixed point, subsection `Coulomb`. */
-    struct CoulombParameters
-    {
-      /** Stop when ||psi_new - psi_old|| <= tolerance ||psi_new|| [-]. */
-      double tolerance = 1e-6;
-      /** Limit on the fixed-point iterations. */
-      unsigned int max_iterations = 50;
-      /**
-       * Declared divergent when the change grew in this many consecutive
-       * iterations.
-       */
-      unsigned int divergence_window = 5;
-
-      static void
-      declare_parameters(dealii::ParameterHandler &prm);
-      void
-      parse_parameters(dealii::ParameterHandler &prm);
-    };
-
-
     /**
      * Solves the contact problem of a DualFormulation (DualProblem or
      * decomposition::TFETIDual): one QP for frictionless and Tresca scenes; for

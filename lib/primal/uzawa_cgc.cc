@@ -596,41 +596,33 @@ namespace dualcontact
       if (ok && coulomb)
       {
         // fixed point psi = mu_F lambda_N over Tresca problems
-        double       previous_change = 0.;
-        unsigned int growing         = 0;
-        ok                           = false;
-        for (unsigned int it = 0; it < coulomb_parameters_.max_iterations; ++it)
+        contact::CoulombFixedPoint fixed_point(coulomb_parameters_);
+        ok = false;
+        for (;;)
         {
           const VectorType psi_old(psi_);
           const VectorType l = lambda_N();
           update_slip_bounds(&l);
           VectorType diff(psi_);
           diff -= psi_old;
-          const double norm   = psi_.l2_norm();
-          const double change = norm > 0. ? diff.l2_norm() / norm : 0.;
-          if (change <= coulomb_parameters_.tolerance)
+          const contact::CoulombFixedPoint::State state =
+            fixed_point.record_change(contact::CoulombFixedPoint::relative_change(
+              diff.norm_sqr(), psi_.norm_sqr()));
+          if (state == contact::CoulombFixedPoint::State::converged)
           {
             psi_ = psi_old; // (u, lambda) belong to the old bounds
             ok   = true;
             break;
           }
-          growing = (it > 0 && change > previous_change) ? growing + 1 : 0;
-          previous_change = change;
-          if (growing >= coulomb_parameters_.divergence_window)
+          if (state != contact::CoulombFixedPoint::State::iterating)
           {
-            result.reason = "Coulomb fixed point diverges (change of psi "
-                            "grew in " +
-                            std::to_string(growing) + " iterations)";
+            result.reason = fixed_point.message();
             break;
           }
           if (!uzawa(result))
             break;
           ++result.n_tresca;
         }
-        if (!ok && result.reason.empty())
-          result.reason = "Coulomb fixed point: iteration limit " +
-                          std::to_string(coulomb_parameters_.max_iterations) +
-                          " reached";
       }
       result.converged = ok;
       if (ok)

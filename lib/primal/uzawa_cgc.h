@@ -5,7 +5,7 @@
 #include <deal.II/lac/vector.h>
 
 #include <contact/contact_discretization.h>
-#include <contact/contact_solver.h>
+#include <contact/coulomb_fixed_point.h>
 #include <fem/elastic_body.h>
 #include <primal/preconditioner.h>
 #include <primal/primal_parameters.h>

@@ -5,7 +5,6 @@
 #include <qp/problem_io.h>
 #include <qp/qpsolve_driver.h>
 #include <qp/smalse_m.h>
-#include <qp/solver_chain.h>
 #include <qp/solver_factory.h>
 
 #include <deal.II/base/exceptions.h>
@@ -620,25 +619,15 @@ namespace dualcontact
             stats.kkt.stationarity =
               std::min(stationarity, stats.kkt.stationarity);
           }
-          else if (options.solver == "auto")
-          {
-            // the fall-back chain; SMALSE-M around each solver when the
-            // problem has equality constraints
-            SolverChain<Vec> chain(prm);
-            stats = chain.solve(problem, x);
-            if (problem.equality)
-              equality_residual = chain.equality_residual();
-          }
-          else if (problem.equality)
-          {
-            SMALSEM<Vec> smalse(prm);
-            stats             = smalse.solve(problem, x);
-            equality_residual = smalse.equality_residual();
-          }
           else
           {
-            auto solver = create<Vec>(prm);
-            stats       = solver->solve(problem, x);
+            // the fall-back chain, SMALSE-M around the solver with
+            // equality constraints, or the solver itself
+            auto solver =
+              make_solver<Vec>(prm, SMALSEMParameters(), problem);
+            stats = solver->solve(problem, x);
+            if (problem.equality)
+              equality_residual = solver->equality_residual();
           }
           least_time = std::min(least_time, stats.wall_time);
           least_cpu_time =

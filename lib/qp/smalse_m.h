@@ -122,7 +122,7 @@ namespace dualcontact
 
       /// ||Bx - c|| at the returned x
       double
-      equality_residual() const;
+      equality_residual() const override;
       /// the equality multipliers at the returned x
       const VectorType &
       multipliers() const;

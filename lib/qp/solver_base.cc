@@ -82,6 +82,14 @@ namespace dualcontact
 
 
     template <typename VectorType>
+    double
+    SolverBase<VectorType>::equality_residual() const
+    {
+      return 0.;
+    }
+
+
+    template <typename VectorType>
     SolverStatistics
     SolverBase<VectorType>::start(const Problem<VectorType> &problem,
                                   VectorType                &x)

@@ -74,6 +74,11 @@ namespace dualcontact
       const VectorType *
       final_gradient() const;
 
+      /// ||Bx - c|| at the x the last solve() returned (0 for solvers
+      /// without equality constraints: SMALSEM and SolverChain override).
+      virtual double
+      equality_residual() const;
+
     protected:
       /// Initialise the statistics (name, tolerance, ||b||), check the
       /// problem's consistency, project @p x onto Omega, start the timer.

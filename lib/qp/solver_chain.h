@@ -68,7 +68,7 @@ namespace dualcontact
 
       /// ||Bx - c|| at the returned x (0 without equality constraints)
       double
-      equality_residual() const;
+      equality_residual() const override;
 
     private:
       SMALSEMParameters smalse_prm;

@@ -1,18 +1,9 @@
-#include <qp/solver_factory.h>
-#include <qp/vector_helpers.h>
-
 #include <deal.II/base/exceptions.h>
 
-// ---- REGISTRATION POINT (1 of 2): include the solver headers here. ----
-#include <qp/apgd.h>
-#include <qp/mpgp.h>
-#include <qp/mpgp_bb.h>
-#include <qp/mprgp.h>
-#include <qp/mwpgp.h>
-#include <qp/pbbf.h>
+#include <qp/smalse_m.h>
 #include <qp/solver_chain.h>
-#include <qp/spg_qp.h>
-// ---- end of registration point 1 ----
+#include <qp/solver_factory.h>
+#include <qp/solver_registry.h>
 
 namespace dualcontact
 {
@@ -21,43 +12,11 @@ namespace dualcontact
     std::string
     solver_names()
     {
-      // The names of the `Solver` selection, implemented or not yet: the
-      // .prm pattern must not change when a solver is added.
-      return "mprgp|mpgp|mpgp-bb|mwpgp|spg-qp|pbbf|apgd|auto";
+      std::string pattern;
+      for (const std::string &name : SolverRegistry::instance().names())
+        pattern += (pattern.empty() ? "" : "|") + name;
+      return pattern;
     }
-
-
-    namespace
-    {
-      template <typename VectorType>
-      std::unique_ptr<SolverBase<VectorType>>
-      create_solver(const std::string &name, const SolverParameters &prm)
-      {
-        // ---- REGISTRATION POINT (2 of 2): one branch per solver, e.g.
-        //   if (name == "mprgp")
-        //     return std::make_unique<MPRGP<VectorType>>(prm);
-        if (name == "mprgp")
-          return std::make_unique<MPRGP<VectorType>>(prm);
-        if (name == "mpgp")
-          return std::make_unique<MPGP<VectorType>>(prm);
-        if (name == "mpgp-bb")
-          return std::make_unique<MPGPBB<VectorType>>(prm);
-        if (name == "mwpgp")
-          return std::make_unique<MwPGP<VectorType>>(prm);
-        if (name == "spg-qp")
-          return std::make_unique<SPGQP<VectorType>>(prm);
-        if (name == "pbbf")
-          return std::make_unique<PBBf<VectorType>>(prm);
-        if (name == "apgd")
-          return std::make_unique<APGD<VectorType>>(prm);
-        // the fall-back chain (default SMALSE-M parameters for problems
-        // with equality constraints; build a SolverChain to choose them)
-        if (name == "auto")
-          return std::make_unique<SolverChain<VectorType>>(prm);
-        // ---- end of registration point 2 ----
-        return nullptr;
-      }
-    } // namespace
 
 
     template <typename VectorType>
@@ -65,14 +24,14 @@ namespace dualcontact
     create(const std::string &name, const SolverParameters &parameters)
     {
       parameters.check();
-      auto solver = create_solver<VectorType>(name, parameters);
-      AssertThrow(solver != nullptr,
+      const SolverEntry *entry = SolverRegistry::instance().find(name);
+      AssertThrow(entry != nullptr,
                   dealii::ExcMessage("Unknown or unavailable QP solver '" +
                                      name +
                                      "' (`Solver' in `subsection QP "
                                      "solver'); valid names: " +
                                      solver_names() + "."));
-      return solver;
+      return entry->creator<VectorType>()(parameters);
     }
 
 
@@ -84,15 +43,46 @@ namespace dualcontact
     }
 
 
-    template std::unique_ptr<SolverBase<dealii::Vector<double>>>
-    create<dealii::Vector<double>>(const std::string &,
-                                   const SolverParameters &);
-    template std::unique_ptr<SolverBase<dealii::Vector<double>>>
-    create<dealii::Vector<double>>(const SolverParameters &);
-    template std::unique_ptr<SolverBase<dealii::TrilinosWrappers::MPI::Vector>>
-    create<dealii::TrilinosWrappers::MPI::Vector>(const std::string &,
-                                                  const SolverParameters &);
-    template std::unique_ptr<SolverBase<dealii::TrilinosWrappers::MPI::Vector>>
-    create<dealii::TrilinosWrappers::MPI::Vector>(const SolverParameters &);
+    template <typename VectorType>
+    std::unique_ptr<SolverBase<VectorType>>
+    make_solver(const SolverParameters  &parameters,
+                const SMALSEMParameters &smalse_parameters,
+                const bool               with_equality)
+    {
+      // the chain wraps SMALSE-M around each of its solvers itself
+      if (parameters.solver == "auto")
+        return std::make_unique<SolverChain<VectorType>>(parameters,
+                                                         smalse_parameters);
+      if (with_equality)
+        return std::make_unique<SMALSEM<VectorType>>(parameters,
+                                                     smalse_parameters);
+      return create<VectorType>(parameters);
+    }
+
+
+    template <typename VectorType>
+    std::unique_ptr<SolverBase<VectorType>>
+    make_solver(const SolverParameters    &parameters,
+                const SMALSEMParameters   &smalse_parameters,
+                const Problem<VectorType> &problem)
+    {
+      return make_solver<VectorType>(parameters,
+                                     smalse_parameters,
+                                     problem.equality != nullptr);
+    }
+
+
+#define DUALCONTACT_INSTANTIATE_FACTORY(V)                                   \
+  template std::unique_ptr<SolverBase<V>> create<V>(const std::string &,     \
+                                                    const SolverParameters &); \
+  template std::unique_ptr<SolverBase<V>> create<V>(const SolverParameters &); \
+  template std::unique_ptr<SolverBase<V>> make_solver<V>(                    \
+    const SolverParameters &, const SMALSEMParameters &, bool);              \
+  template std::unique_ptr<SolverBase<V>> make_solver<V>(                    \
+    const SolverParameters &, const SMALSEMParameters &, const Problem<V> &);
+
+    DUALCONTACT_INSTANTIATE_FACTORY(dealii::Vector<double>)
+    DUALCONTACT_INSTANTIATE_FACTORY(dealii::TrilinosWrappers::MPI::Vector)
+#undef DUALCONTACT_INSTANTIATE_FACTORY
   } // namespace qp
 } // namespace dualcontact

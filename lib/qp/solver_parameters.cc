@@ -1,5 +1,6 @@
 #include <qp/solver_factory.h>
 #include <qp/solver_parameters.h>
+#include <qp/solver_registry.h>
 
 #include <deal.II/base/exceptions.h>
 #include <deal.II/base/utilities.h>
@@ -8,6 +9,20 @@ namespace dualcontact
 {
   namespace qp
   {
+    namespace
+    {
+      /// @p names separated by '|'
+      std::string
+      join(const std::vector<std::string> &names)
+      {
+        std::string text;
+        for (const std::string &name : names)
+          text += (text.empty() ? "" : "|") + name;
+        return text;
+      }
+    } // namespace
+
+
     std::string
     to_string(const StoppingCriterion criterion)
     {
@@ -59,15 +74,10 @@ namespace dualcontact
                         "auto",
                         Selection(solver_names()),
                         "Algorithm for the QP with separable constraints "
-                        "(thesis chapter 2). mprgp: bound/box constraints "
-                        "only (with the SPS solvability test of MPRGPS); "
-                        "mpgp, mpgp-bb, mwpgp: any separable set; spg-qp, "
-                        "pbbf, apgd: projected-gradient methods. auto: "
-                        "chosen by the constraint types, with fall-back to "
-                        "the next solver of `Auto chain for bounds' / `Auto "
-                        "chain for general sets' when one does not converge "
-                        "(SMALSE-M around each with equality constraints; "
-                        "lib/qp/README.md). Unit: none.");
+                        "(thesis chapter 2; SMALSE-M around it when the "
+                        "problem has equality constraints). " +
+                          SolverRegistry::instance().descriptions() +
+                          ". Unit: none.");
       prm.declare_entry("Auto chain for bounds",
                         d.auto_chain_bounds,
                         dealii::Patterns::Anything(),
@@ -360,21 +370,22 @@ namespace dualcontact
         const std::string name = dealii::Utilities::trim(item);
         if (name.empty())
           continue;
-        const bool known =
-          ("|" + solver_names() + "|").find("|" + name + "|") !=
-            std::string::npos &&
-          name != "auto";
-        AssertThrow(known,
+        const SolverRegistry &registry = SolverRegistry::instance();
+        const SolverEntry    *entry    = registry.find(name);
+        AssertThrow(entry != nullptr && entry->chainable,
                     dealii::ExcMessage(
                       "Parameter `" + parameter +
                       "' in `subsection QP solver': '" + name +
                       "' is not a solver a chain can hold (" +
-                      "mprgp|mpgp|mpgp-bb|mwpgp|spg-qp|pbbf|apgd)."));
-        AssertThrow(!(general && name == "mprgp"),
+                      join(registry.chainable_names(false)) + ")."));
+        AssertThrow(!general ||
+                      entry->accepted_sets == AcceptedSets::any_separable,
                     dealii::ExcMessage(
                       "Parameter `" + parameter +
-                      "' in `subsection QP solver': mprgp takes bound and "
-                      "box constraints only, not discs, ellipses or cones."));
+                      "' in `subsection QP solver': " + name +
+                      " takes bound and box constraints only, not discs, "
+                      "ellipses or cones (" +
+                      join(registry.chainable_names(true)) + ")."));
         names.push_back(name);
       }
       AssertThrow(!names.empty(),
