@@ -4,13 +4,20 @@
 // values read back from a .prm; out-of-range values rejected naming the
 // parameter; every declared solver name either creates a solver or throws
 // "unavailable"; power iteration on diag(1..n) finds n within its
-// tolerance and applies the safety factor.
+// tolerance and applies the safety factor.  The registry: names in
+// registration order are the pattern, the chains may hold every solver but
+// auto (general sets: not mprgp), a solver registered by a program is
+// created and chained by name and solves like the class it wraps (bitwise),
+// a taken name is refused; make_solver picks the chain / SMALSE-M / the
+// plain solver.
 #include "planted_problems.h"
 
 #include <deal.II/base/parameter_handler.h>
 
 #include <qp/power_iteration.h>
+#include <qp/mpgp.h>
 #include <qp/solver_factory.h>
+#include <qp/solver_registry.h>
 
 #include <sstream>
 
@@ -109,6 +116,92 @@ main()
     check.check(created >= 4,
                 "factory creates" + list + " (" + std::to_string(created) +
                   " of " + std::to_string(total) + " names)");
+  }
+  {
+    SolverRegistry          &registry = SolverRegistry::instance();
+    std::vector<std::string> names    = registry.names();
+    std::string              joined;
+    for (const std::string &name : names)
+      joined += (joined.empty() ? "" : "|") + name;
+    check.check(joined == solver_names() &&
+                  joined == "mprgp|mpgp|mpgp-bb|mwpgp|spg-qp|pbbf|apgd|auto",
+                "registry order is the Solver pattern: " + joined);
+    const auto bounds  = registry.chainable_names(false);
+    const auto general = registry.chainable_names(true);
+    check.check(bounds.size() == 7 && bounds.front() == "mprgp" &&
+                  general.size() == 6 && general.front() == "mpgp" &&
+                  registry.find("auto") != nullptr &&
+                  !registry.find("auto")->chainable,
+                "chains hold 7 solvers (general sets 6: not mprgp), never "
+                "auto");
+
+    // a solver a program adds: found by create(), chains and the checks
+    DUALCONTACT_QP_REGISTER_SOLVER(registry,
+                                   MPGP,
+                                   "test-mpgp",
+                                   AcceptedSets::any_separable,
+                                   "MPGP under another name");
+    std::string refused;
+    try
+    {
+      DUALCONTACT_QP_REGISTER_SOLVER(
+        registry, MPGP, "test-mpgp", AcceptedSets::any_separable, "again");
+    }
+    catch (const std::exception &e)
+    {
+      refused = e.what();
+    }
+    check.check(refused.find("'test-mpgp' is registered twice") !=
+                  std::string::npos,
+                "a taken name is refused, naming it");
+    const Planted P =
+      make_planted({BlockType::bound, BlockType::disc}, 30, 8, 11);
+    Vec              layout(P.x_star.size());
+    auto             problem = make_problem(P.A, P.b, P.blocks, layout);
+    SolverParameters prm;
+    prm.tolerance = 1e-10;
+    Vec        x(layout), y(layout);
+    const auto a = create<Vec>("test-mpgp", prm)->solve(problem, x);
+    const auto b = create<Vec>("mpgp", prm)->solve(problem, y);
+    y -= x;
+    check.check(a.converged() && a.iterations == b.iterations &&
+                  y.linfty_norm() == 0.,
+                "registered test-mpgp solves like mpgp: " +
+                  std::to_string(a.iterations) + " iterations, same x");
+    check.check(SolverParameters::parse_chain("test-mpgp, mprgp",
+                                              false,
+                                              "Auto chain for bounds")
+                    .size() == 2,
+                "a chain may name the registered solver");
+    std::string general_error;
+    try
+    {
+      SolverParameters::parse_chain("mprgp", true, "Auto chain for general "
+                                                   "sets");
+    }
+    catch (const std::exception &e)
+    {
+      general_error = e.what();
+    }
+    check.check(general_error.find("mprgp takes bound and box constraints "
+                                   "only") != std::string::npos &&
+                  general_error.find("test-mpgp") != std::string::npos,
+                "mprgp in a general chain refused, listing the solvers "
+                "that may stand there");
+
+    // make_solver: the chain, SMALSE-M around the solver, the solver
+    SolverParameters named;
+    named.solver = "mpgp";
+    SolverParameters chain;
+    chain.solver = "auto";
+    check.check(make_solver<Vec>(chain, SMALSEMParameters(), true)->name() ==
+                    "auto" &&
+                  make_solver<Vec>(named, SMALSEMParameters(), true)->name() ==
+                    "smalse-m(mpgp)" &&
+                  make_solver<Vec>(named, SMALSEMParameters(), problem)
+                      ->name() == "mpgp",
+                "make_solver: auto -> the chain, with equality -> "
+                "smalse-m(mpgp), without -> mpgp");
   }
   {
     const unsigned                                n = 50;
