@@ -1,6 +1,6 @@
 // fclibsolve: solve an FCLIB frictional contact problem with dualcontact's
-// QP solvers (issue 7).  Thin: everything is in fclib::FclibSolveDriver.
-#include <fclib/fclibsolve_driver.h>
+// QP solvers (issue 7).  Thin: everything is in tools::FclibSolveDriver.
+#include <tools/fclibsolve_driver.h>
 #include <util/blas_kernels.h>
 
 #include <iostream>
@@ -15,7 +15,7 @@ main(int argc, char **argv)
   try
   {
     const std::vector<std::string> arguments(argv + 1, argv + argc);
-    return dualcontact::fclib::FclibSolveDriver().run(arguments,
+    return dualcontact::tools::FclibSolveDriver().run(arguments,
                                                       std::cout,
                                                       std::cerr);
   }

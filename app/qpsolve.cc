@@ -1,11 +1,11 @@
 // qpsolve: solve a QP given as PROBLEM.json (see lib/qp/README.md and
-// issue 3).  Thin: everything is in qp::QPSolveDriver; this file only reads
+// issue 3).  Thin: everything is in tools::QPSolveDriver; this file only reads
 // `--prm FILE' and `--set "QP solver/Entry=value"' (dualcontact's parameter
 // names) into the driver's starting parameters.
 #include <io/parameter_file.h>
 #include <qp/problem_io.h>
-#include <qp/qpsolve_driver.h>
 #include <qp/solver_parameters.h>
+#include <tools/qpsolve_driver.h>
 #include <util/blas_kernels.h>
 
 #include <deal.II/base/mpi.h>
@@ -25,7 +25,7 @@ namespace
    */
   void
   read_parameter_options(std::vector<std::string>       &arguments,
-                         dualcontact::qp::QPSolveDriver &driver)
+                         dualcontact::tools::QPSolveDriver &driver)
   {
     using namespace dualcontact;
     std::string                        file;
@@ -72,7 +72,7 @@ main(int argc, char **argv)
   try
   {
     std::vector<std::string>       arguments(argv + 1, argv + argc);
-    dualcontact::qp::QPSolveDriver driver;
+    dualcontact::tools::QPSolveDriver driver;
     read_parameter_options(arguments, driver);
     return driver.run(arguments, std::cout, std::cerr);
   }

@@ -4,7 +4,7 @@
 // neither /fclib_local nor /fclib_global"), without HDF5's error stack on
 // stderr; --write goes through a temporary file that replaces the old one.
 #include <fclib/fclib_file.h>
-#include <fclib/fclibsolve_driver.h>
+#include <tools/fclibsolve_driver.h>
 #include <test_tools.h>
 
 #include <unistd.h>
@@ -40,7 +40,7 @@ namespace
     FILE     *file  = std::fopen(captured.c_str(), "w");
     dup2(fileno(file), 2);
     std::ostringstream out, err;
-    const int status = fclib::FclibSolveDriver().run(arguments, out, err);
+    const int status = tools::FclibSolveDriver().run(arguments, out, err);
     std::fflush(stderr);
     dup2(saved, 2);
     close(saved);

@@ -8,7 +8,7 @@
 // the undamaged files of tests/fclib/data still read, with their
 // solutions.
 #include <fclib/fclib_file.h>
-#include <fclib/fclibsolve_driver.h>
+#include <tools/fclibsolve_driver.h>
 #include <fclib/file_layout.h>
 #include <test_tools.h>
 
@@ -206,7 +206,7 @@ main()
                       message.empty() ? "(read without error)" : message);
 
     std::ostringstream out, err;
-    const int          status = fclib::FclibSolveDriver().run({copy}, out, err);
+    const int          status = tools::FclibSolveDriver().run({copy}, out, err);
     test_tools::check(status == 1 &&
                         err.str().find(damage.expected) != std::string::npos,
                       damage.what + ": fclibsolve exits with 1",

@@ -6,11 +6,13 @@
  * problem has equalities; CGC with the bounds as linear inequalities), and
  * the JSON summary.  app/qpsolve.cc only calls run().
  *
- * Why in the library: the same code path is what the tests and the
- * membrane benchmark exercise, and app/ stays thin.
+ * Why in lib/tools (a library of the programs, not of the solvers): the
+ * tests and the membrane benchmark run the same code path as the program,
+ * and app/ stays thin, while lib/qp keeps only what a user of the solvers
+ * links.
  */
-#ifndef dualcontact_qp_qpsolve_driver_h
-#define dualcontact_qp_qpsolve_driver_h
+#ifndef dualcontact_tools_qpsolve_driver_h
+#define dualcontact_tools_qpsolve_driver_h
 
 #include <qp/solver_parameters.h>
 
@@ -21,7 +23,7 @@
 
 namespace dualcontact
 {
-  namespace qp
+  namespace tools
   {
     /**
      * The qpsolve program.  Returns the exit code: 0 converged, 2 not
@@ -58,12 +60,12 @@ namespace dualcontact
        * options (--solver, --tol, ...) still override them.
        */
       void
-      set_base_parameters(const SolverParameters &parameters);
+      set_base_parameters(const qp::SolverParameters &parameters);
 
     private:
-      std::optional<SolverParameters> base_parameters;
+      std::optional<qp::SolverParameters> base_parameters;
     };
-  } // namespace qp
+  } // namespace tools
 } // namespace dualcontact
 
 #endif

@@ -1,4 +1,10 @@
-#pragma once
+/**
+ * @file fclibsolve_driver.h
+ * Everything behind the `fclibsolve` command (lib/tools: the programs' code,
+ * apart from the libraries the solvers live in).
+ */
+#ifndef dualcontact_tools_fclibsolve_driver_h
+#define dualcontact_tools_fclibsolve_driver_h
 
 #include <ostream>
 #include <string>
@@ -6,7 +12,7 @@
 
 namespace dualcontact
 {
-  namespace fclib
+  namespace tools
   {
     /**
      * The `fclibsolve` program: read an FCLIB problem (local, or global
@@ -15,7 +21,7 @@ namespace dualcontact
      * outcome and the FCLIB accuracy measure, optionally write a JSON
      * summary and the problem with its solution as an FCLIB file.
      *
-     * In the library (not in app/) so that the tests run the same code.
+     * In lib/tools (not in app/) so that the tests run the same code.
      * Exit code: 0 converged, 2 not converged (reason and residuals printed),
      * 1 bad input or usage (message naming the file or option).
      */
@@ -30,5 +36,7 @@ namespace dualcontact
       static std::string
       usage();
     };
-  } // namespace fclib
+  } // namespace tools
 } // namespace dualcontact
+
+#endif

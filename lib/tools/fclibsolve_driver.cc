@@ -5,11 +5,11 @@
 #include <contact/contact_solver.h>
 #include <fclib/accuracy.h>
 #include <fclib/fclib_file.h>
-#include <fclib/fclibsolve_driver.h>
 #include <fclib/local_solver.h>
 #include <io/parameter_file.h>
 #include <qp/solver_factory.h>
 #include <qp/solver_parameters.h>
+#include <tools/fclibsolve_driver.h>
 
 #include <nlohmann/json.hpp>
 
@@ -22,8 +22,10 @@
 
 namespace dualcontact
 {
-  namespace fclib
+  namespace tools
   {
+    using namespace fclib;
+
     namespace
     {
       struct UsageError : std::runtime_error
@@ -452,5 +454,5 @@ namespace dualcontact
         return 1;
       }
     }
-  } // namespace fclib
+  } // namespace tools
 } // namespace dualcontact

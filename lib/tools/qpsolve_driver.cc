@@ -3,9 +3,9 @@
 #include <qp/kkt_residuals.h>
 #include <qp/membrane_generator.h>
 #include <qp/problem_io.h>
-#include <qp/qpsolve_driver.h>
 #include <qp/smalse_m.h>
 #include <qp/solver_factory.h>
+#include <tools/qpsolve_driver.h>
 
 #include <deal.II/base/exceptions.h>
 #include <deal.II/base/multithread_info.h>
@@ -23,8 +23,10 @@
 
 namespace dualcontact
 {
-  namespace qp
+  namespace tools
   {
+    using namespace qp;
+
     namespace
     {
       using Vec = dealii::Vector<double>;
@@ -756,5 +758,5 @@ namespace dualcontact
             << std::endl;
       return stats.converged() ? 0 : 2;
     }
-  } // namespace qp
+  } // namespace tools
 } // namespace dualcontact
