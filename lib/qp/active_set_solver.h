@@ -75,6 +75,14 @@ namespace dualcontact
       solve(const Problem<VectorType> &problem, VectorType &x) override;
 
     private:
+      /**
+       * The state of one solve() and its steps (algorithm 7 in the
+       * thesis' order: start gradient, proportionality test, CG step or
+       * feasible half-step with expansion, proportioning or expansion,
+       * the check of a converged iterate); active_set_solver.cc.
+       */
+      class Iteration;
+
       const ActiveSetVariant variant;
       /**
        * Work vectors, kept between solves: a loop of short QPs on a small
