@@ -142,7 +142,10 @@ namespace dualcontact
              ")\n"
              "  --tol T               QP relative tolerance\n"
              "  --max-iter N          QP iteration limit\n"
-             "  --coulomb-tol T       tolerance of the Coulomb fixed point\n"
+             "  --coulomb-tol T       tolerance of the Coulomb fixed point "
+             "(default: --tol if that\n"
+             "                        is given and the .prm leaves "
+             "Coulomb/Tolerance at its default)\n"
              "  --coulomb-max-iter N  limit of Coulomb iterations\n"
              "  --json FILE           write a JSON summary\n"
              "  --write FILE.hdf5     write the local problem with the "
@@ -272,6 +275,13 @@ namespace dualcontact
           qp_parameters.max_iterations = *max_iter;
         if (coulomb_tol)
           coulomb.tolerance = *coulomb_tol;
+        else if (tol &&
+                 coulomb.tolerance == contact::CoulombParameters().tolerance)
+          // --tol alone asks for that accuracy: the Coulomb loop follows
+          // (its change of psi cannot be measured below the QPs' noise: with
+          // QP tolerance 1e-4 and the Coulomb default 1e-6, Capsules ran
+          // 1000 proximal iterations without converging; doc/fclib.md)
+          coulomb.tolerance = *tol;
         if (coulomb_max_iter)
           coulomb.max_iterations = *coulomb_max_iter;
         qp_parameters.check();
