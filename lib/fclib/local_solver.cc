@@ -174,7 +174,7 @@ namespace dualcontact
                         "the plain loop's QPs (a QP that needs more counts "
                         "as failed and the proximal loop takes over).");
       prm.declare_entry("Proximal maximum iterations",
-                        "1000",
+                        "5000",
                         dealii::Patterns::Integer(1),
                         "Limit of the proximal loop's iterations (the larger "
                         "of this and Coulomb/Maximum iterations).");

@@ -183,9 +183,13 @@ namespace dualcontact
         double lanczos_tolerance = 1e-2;
         /**
          * Limit of the proximal loop's iterations (the larger of this and
-         * the Coulomb limit): it takes many cheap steps.
+         * the Coulomb limit): it takes many cheap steps.  Capsules at
+         * --tol 1e-8 (Coulomb tolerance 1e-8) needs 1003 of them with mpgp
+         * and up to 3873 with mpgp-bb (most of 1-3 QP iterations: the
+         * fixed point on psi contracts slowly there, about 0.994 per
+         * exact QP); 1000 stopped it just short (doc/fclib.md, issue 20).
          */
-        unsigned int proximal_max_iterations = 1000;
+        unsigned int proximal_max_iterations = 5000;
         /**
          * Proximal::automatic: iteration limit of the plain loop's QPs (a
          * QP that stalls on a singular W is cut short; the proximal loop
