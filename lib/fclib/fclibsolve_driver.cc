@@ -418,6 +418,7 @@ namespace dualcontact
         summary["inexact"]          = loop.inexact;
         summary["solver"]           = qp_parameters.solver;
         summary["tolerance"]        = qp_parameters.tolerance;
+        summary["coulomb_tolerance"] = coulomb.tolerance;
         summary["converged"]        = result.converged;
         summary["reason"]           = result.reason;
         summary["n_qp"]             = result.qp_statistics.size();
