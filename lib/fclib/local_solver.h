@@ -36,7 +36,14 @@ namespace dualcontact
        * one only where nothing slides; the FCLIB error says how far it is.
        * 3D only (the library's cone block has 3 unknowns).
        */
-      cone
+      cone,
+      /**
+       * The cone QP with De Saxce's shift as a fixed point: minimize
+       * 1/2 r'W r + (q + s)'r with r_i in K_i, s_i = mu_i ||u_t,i|| e_n at
+       * the previous iterate (u = W r + q).  A fixed point solves the
+       * Coulomb problem exactly (its conditions are De Saxce's).  3D only.
+       */
+      desaxce_fixed_point
     };
 
     /** "coulomb" / "cone". */
@@ -312,6 +319,8 @@ namespace dualcontact
       mutable double qp_lambda_max_ = 0;
       /** Contact scaling s per unknown (empty: none; plain loop only). */
       dealii::Vector<double> scale_;
+      /** De Saxce's shift s (normal entries; model desaxce). */
+      mutable dealii::Vector<double> shift_;
       /** S W_s S formed once when W is dense and small (else empty). */
       std::vector<double> scaled_W_;
       /** S src for scaled_vmult() without scaled_W_. */

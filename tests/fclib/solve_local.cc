@@ -147,6 +147,14 @@ main()
       check(s.result.fclib_error > 1e-2,
             solver + " cone: FCLIB error of the relaxation",
             s.result.fclib_error);
+      // De Saxce's shift as a fixed point over the cone QPs: exact
+      const auto d = solve(one_contact(1., 1., -1., 0.5, 0., 0.3),
+                           prm,
+                           coulomb,
+                           with_model(fclib::Model::desaxce_fixed_point));
+      check(d.result.converged && distance(d.r, {1., -0.3, 0.}) < 1e-9,
+            solver + " desaxce: r = (1, -0.3, 0), |r - r*|",
+            distance(d.r, {1., -0.3, 0.}));
     }
   }
 
@@ -336,6 +344,28 @@ main()
     check(a.result.perturbations.back() <= 1e-6,
           "Capsules: perturbation of q at the end",
           a.result.perturbations.back());
+  }
+
+  // Capsules by De Saxce's fixed point over cone QPs at 1e-4: the shift
+  // contracts about 0.5 per QP there (the Coulomb loop's psi 0.994): 13
+  // QPs, 175 products (coulomb: 88 proximal QPs, 4382 products)
+  {
+    const fclib::LocalProblem problem =
+      fclib::read_local(FCLIB_TEST_DATA_DIR "Capsules-i125-1213.hdf5");
+    qp::SolverParameters qp = prm;
+    qp.solver               = "mpgp";
+    qp.tolerance            = 1e-4;
+    contact::CoulombParameters loop;
+    loop.tolerance = 1e-4;
+    const auto d =
+      solve(problem, qp, loop, with_model(fclib::Model::desaxce_fixed_point));
+    check(d.result.converged && !d.result.proximal &&
+            d.result.qp_statistics.size() <= 30,
+          "Capsules, desaxce at 1e-4: converged by the plain loop, QPs",
+          d.result.qp_statistics.size());
+    check(d.result.fclib_error <= 2e-4,
+          "Capsules, desaxce at 1e-4: FCLIB error <= 2e-4",
+          d.result.fclib_error);
   }
 
   // spheres-in-a-box (256 contacts, W_s of rank 566 of 768): solved at 1e-4
