@@ -175,7 +175,7 @@ namespace dualcontact
                         "solver's `Power iteration safety factor' multiplies "
                         "it. Unit: none.");
       prm.declare_entry("Plain QP iterations in auto",
-                        "2000",
+                        "1000",
                         dealii::Patterns::Integer(1),
                         "Proximal regularization = auto: iteration limit of "
                         "the plain loop's QPs (a QP that needs more counts "

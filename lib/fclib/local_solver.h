@@ -201,8 +201,13 @@ namespace dualcontact
          * Proximal::automatic: iteration limit of the plain loop's QPs (a
          * QP that stalls on a singular W is cut short; the proximal loop
          * takes over).
+         * 1000 (was 2000): Capsules' first (bonded) QP never converges and
+         * cost 2000 iterations; the largest plain QP that converges on the 8
+         * FCLIB files takes 823 (spheres-in-a-box at 1e-8); with 500 that
+         * file got 11% more products, with 250 PerioBox at 1e-8 left the
+         * plain loop (doc/fclib.md, issue 20).
          */
-        unsigned int auto_plain_qp_max_iterations = 2000;
+        unsigned int auto_plain_qp_max_iterations = 1000;
 
         /** Top-level entries of fclibsolve's .prm. */
         static void
