@@ -145,7 +145,7 @@ namespace dualcontact
                         "Proximal point: rho decreases after a QP of at most "
                         "this many iterations.");
       prm.declare_entry("Rho increase above",
-                        "5000",
+                        "150",
                         dealii::Patterns::Integer(0),
                         "Proximal point: rho increases after a QP of more "
                         "than this many iterations.");
