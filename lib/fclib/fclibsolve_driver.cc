@@ -421,7 +421,6 @@ namespace dualcontact
         summary["inexact"]          = loop.inexact;
         summary["solver"]           = qp_parameters.solver;
         summary["tolerance"]        = qp_parameters.tolerance;
-        summary["coulomb_tolerance"] = coulomb.tolerance;
         summary["converged"]        = result.converged;
         summary["reason"]           = result.reason;
         summary["n_qp"]             = result.qp_statistics.size();
@@ -432,6 +431,8 @@ namespace dualcontact
         summary["coulomb_changes"]  = result.coulomb_changes;
         summary["fclib_error"]      = result.fclib_error;
         summary["last_qp"]          = last.to_json(false);
+        // (--tol alone sets it too)
+        summary["coulomb_tolerance"] = coulomb.tolerance;
         // per QP of the loop: iterations, products, tolerance, criterion
         nlohmann::json qps = nlohmann::json::array();
         for (const auto &s : result.qp_statistics)

@@ -844,10 +844,10 @@ namespace dualcontact
         if (coulomb_loop)
         {
           const std::vector<double> old = psi;
-          psi                           = desaxce ? desaxce_shift(r) : slip_bounds(r);
+          psi = desaxce ? desaxce_shift(r) : slip_bounds(r);
           if (desaxce)
             set_shift(psi);
-          change                        = 1.;
+          change = 1.;
           if ((!first_change || desaxce) && !bonded)
           {
             double difference = 0, norm = 0;

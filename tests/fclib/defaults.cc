@@ -36,8 +36,7 @@ namespace
     arguments.push_back("--json");
     arguments.push_back(json);
     std::ostringstream out, err;
-    Run                run{fclib::FclibSolveDriver().run(arguments, out, err),
-            {}};
+    Run run{fclib::FclibSolveDriver().run(arguments, out, err), {}};
     if (run.status == 1)
       std::cout << err.str() << std::endl;
     if (std::filesystem::exists(json))
@@ -67,8 +66,8 @@ main()
     {
       std::ostringstream t;
       t << tol;
-      const Run   run  = fclibsolve({dir + name + ".hdf5", "--tol", t.str()});
-      const auto &s    = run.summary;
+      const Run   run = fclibsolve({dir + name + ".hdf5", "--tol", t.str()});
+      const auto &s   = run.summary;
       const std::string what = name + " --tol " + t.str();
       if (s.is_null())
       {
@@ -83,7 +82,7 @@ main()
       check(s["coulomb_tolerance"].get<double>() == tol,
             what + ": the Coulomb tolerance follows --tol",
             s["coulomb_tolerance"].get<double>());
-      const bool   named = name.rfind("Capsules", 0) == 0 ||
+      const bool named = name.rfind("Capsules", 0) == 0 ||
                          name.rfind("spheres-in-a-box", 0) == 0;
       const double bound = named ? tol : 10 * tol;
       check(s["fclib_error"].get<double>() <= bound,
@@ -101,8 +100,9 @@ main()
     check(!run.summary.is_null() &&
             run.summary["coulomb_tolerance"].get<double>() == 1e-6,
           "--coulomb-tol 1e-6 beside --tol 1e-4 stays 1e-6",
-          run.summary.is_null() ? 0. :
-                                  run.summary["coulomb_tolerance"].get<double>());
+          run.summary.is_null() ?
+            0. :
+            run.summary["coulomb_tolerance"].get<double>());
   }
   return test_tools::finish();
 }
