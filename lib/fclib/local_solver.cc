@@ -17,7 +17,9 @@ namespace dualcontact
     std::string
     to_string(const Model model)
     {
-      return model == Model::cone ? "cone" : "coulomb";
+      return model == Model::cone                ? "cone" :
+             model == Model::desaxce_fixed_point ? "desaxce" :
+                                                   "coulomb";
     }
 
 
@@ -28,9 +30,11 @@ namespace dualcontact
         return Model::coulomb_fixed_point;
       if (name == "cone")
         return Model::cone;
+      if (name == "desaxce")
+        return Model::desaxce_fixed_point;
       AssertThrow(false,
                   dealii::ExcMessage("unknown model `" + name +
-                                     "' (coulomb | cone)"));
+                                     "' (coulomb | cone | desaxce)"));
       return Model::cone;
     }
 
@@ -70,11 +74,14 @@ namespace dualcontact
     {
       prm.declare_entry("Model",
                         "coulomb",
-                        dealii::Patterns::Selection("coulomb|cone"),
+                        dealii::Patterns::Selection("coulomb|cone|desaxce"),
                         "coulomb: the fixed point over Tresca QPs (bound x "
                         "disc blocks), which solves the Coulomb problem; "
                         "cone: one QP over the Coulomb cones, a convex "
-                        "relaxation (no De Saxce shift), 3D only.");
+                        "relaxation (no De Saxce shift), 3D only; desaxce: "
+                        "the cone QPs with De Saxce's shift mu ||u_t|| of the "
+                        "previous iterate added to q_n, a fixed point that "
+                        "solves the Coulomb problem, 3D only.");
       prm.declare_entry("First Coulomb iterate",
                         "bonded",
                         dealii::Patterns::Selection("bonded|frictionless"),
@@ -138,7 +145,7 @@ namespace dualcontact
                         "Proximal point: rho decreases after a QP of at most "
                         "this many iterations.");
       prm.declare_entry("Rho increase above",
-                        "5000",
+                        "150",
                         dealii::Patterns::Integer(0),
                         "Proximal point: rho increases after a QP of more "
                         "than this many iterations.");
@@ -168,13 +175,13 @@ namespace dualcontact
                         "solver's `Power iteration safety factor' multiplies "
                         "it. Unit: none.");
       prm.declare_entry("Plain QP iterations in auto",
-                        "2000",
+                        "1000",
                         dealii::Patterns::Integer(1),
                         "Proximal regularization = auto: iteration limit of "
                         "the plain loop's QPs (a QP that needs more counts "
                         "as failed and the proximal loop takes over).");
       prm.declare_entry("Proximal maximum iterations",
-                        "1000",
+                        "5000",
                         dealii::Patterns::Integer(1),
                         "Limit of the proximal loop's iterations (the larger "
                         "of this and Coulomb/Maximum iterations).");
@@ -339,7 +346,9 @@ namespace dualcontact
           // beyond a few thousand unknowns not worth a second dense matrix
           scaled_W_ = problem.delassus().scaled_dense_symmetric(scale_);
       }
-      AssertThrow(parameters.model != Model::cone || problem.spacedim() == 3,
+      AssertThrow((parameters.model != Model::cone &&
+                   parameters.model != Model::desaxce_fixed_point) ||
+                    problem.spacedim() == 3,
                   dealii::ExcMessage("the cone model needs a 3D problem (the "
                                      "cone block has 3 unknowns)"));
     }
@@ -401,7 +410,8 @@ namespace dualcontact
       for (unsigned int i = 0; i < problem_.n_contacts(); ++i)
       {
         const double mu = problem_.mu()[i];
-        if (parameters_.model == Model::cone)
+        if (parameters_.model == Model::cone ||
+            parameters_.model == Model::desaxce_fixed_point)
           shape[i] = 3;
         // psi == nullptr: bonded iterate, no bound on frictional contacts
         else if (mu > 0 && psi == nullptr)
@@ -469,6 +479,8 @@ namespace dualcontact
             dst.add(rho, src);
         };
       qp.b = problem_.q();
+      if (shift_.size() == qp.b.size())
+        qp.b += shift_;
       qp.b *= -1.;
       if (rho > 0)
         qp.b.add(rho, r);
@@ -509,7 +521,9 @@ namespace dualcontact
       // from the last one's solution, whose gradient the solver ended with
       // (Problem::start_gradient: one product fewer per QP, unless the new
       // set cuts the start)
-      const bool             plain = rho == 0 && !asymmetric_;
+      // (De Saxce's shift changes b from one QP to the next)
+      const bool plain = rho == 0 && !asymmetric_ &&
+                         parameters_.model != Model::desaxce_fixed_point;
       dealii::Vector<double> x(r);
       if (plain && end_gradient_ && end_scaled_ == scaled &&
           end_r_.size() == r.size() && end_r_ == r)
@@ -681,8 +695,32 @@ namespace dualcontact
       bool has_friction = false;
       for (const double mu : problem_.mu())
         has_friction = has_friction || mu > 0;
+      const bool desaxce = parameters_.model == Model::desaxce_fixed_point;
       const bool coulomb_loop =
-        parameters_.model == Model::coulomb_fixed_point && has_friction;
+        (parameters_.model == Model::coulomb_fixed_point || desaxce) &&
+        has_friction;
+      // De Saxce's shift s_i = mu_i ||u_t,i|| at r (u = W r + q), in psi's
+      // place: one value per contact
+      auto desaxce_shift = [&](const dealii::Vector<double> &x)
+      {
+        dealii::Vector<double> u;
+        problem_.velocity(u, x);
+        std::vector<double> s(problem_.n_contacts());
+        for (unsigned int i = 0; i < s.size(); ++i)
+        {
+          double t = 0;
+          for (unsigned int k = 1; k < dim; ++k)
+            t += u(dim * i + k) * u(dim * i + k);
+          s[i] = problem_.mu()[i] * std::sqrt(t);
+        }
+        return s;
+      };
+      auto set_shift = [&](const std::vector<double> &s)
+      {
+        shift_.reinit(problem_.size());
+        for (unsigned int i = 0; i < s.size(); ++i)
+          shift_(dim * i) = s[i];
+      };
       const bool stepping = proximal || asymmetric_;
 
       auto slip_bounds = [&](const dealii::Vector<double> &x)
@@ -696,7 +734,15 @@ namespace dualcontact
       // contact::ContactSolver); warm start: bounds from the given r
       std::vector<double> psi;
       bool                bonded = false;
-      if (r.linfty_norm() > 0)
+      if (desaxce)
+      {
+        // the shift of the start (0 from a cold start: the cone relaxation)
+        psi = r.linfty_norm() > 0 ?
+                desaxce_shift(r) :
+                std::vector<double>(problem_.n_contacts(), 0.);
+        set_shift(psi);
+      }
+      else if (r.linfty_norm() > 0)
         psi = slip_bounds(r);
       else if (parameters_.first == FirstIterate::bonded)
         bonded = true;
@@ -798,9 +844,11 @@ namespace dualcontact
         if (coulomb_loop)
         {
           const std::vector<double> old = psi;
-          psi                           = slip_bounds(r);
-          change                        = 1.;
-          if (!first_change && !bonded)
+          psi = desaxce ? desaxce_shift(r) : slip_bounds(r);
+          if (desaxce)
+            set_shift(psi);
+          change = 1.;
+          if ((!first_change || desaxce) && !bonded)
           {
             double difference = 0, norm = 0;
             for (unsigned int i = 0; i < psi.size(); ++i)

@@ -36,7 +36,14 @@ namespace dualcontact
        * one only where nothing slides; the FCLIB error says how far it is.
        * 3D only (the library's cone block has 3 unknowns).
        */
-      cone
+      cone,
+      /**
+       * The cone QP with De Saxce's shift as a fixed point: minimize
+       * 1/2 r'W r + (q + s)'r with r_i in K_i, s_i = mu_i ||u_t,i|| e_n at
+       * the previous iterate (u = W r + q).  A fixed point solves the
+       * Coulomb problem exactly (its conditions are De Saxce's).  3D only.
+       */
+      desaxce_fixed_point
     };
 
     /** "coulomb" / "cone". */
@@ -147,8 +154,13 @@ namespace dualcontact
         double rho_factor = 2.;
         /** rho decreases after a QP of at most this many iterations. */
         unsigned int rho_decrease_below = 50;
-        /** rho increases after a QP of more than this many iterations. */
-        unsigned int rho_increase_above = 5000;
+        /**
+         * rho increases after a QP of more than this many iterations.  150
+         * (was 5000): spheres-in-a-box at 1e-8 (mpgp) 88213 products
+         * instead of 129925 (75-500: 88-104k; 1000: 125k); no other file's
+         * default run changes (doc/fclib.md, issue 20).
+         */
+        unsigned int rho_increase_above = 150;
         /**
          * Proximal point: extrapolate the center of the next QP,
          * y = r^k + beta_k (r^k - r^{k-1}) with Nesterov's beta_k, and
@@ -183,15 +195,24 @@ namespace dualcontact
         double lanczos_tolerance = 1e-2;
         /**
          * Limit of the proximal loop's iterations (the larger of this and
-         * the Coulomb limit): it takes many cheap steps.
+         * the Coulomb limit): it takes many cheap steps.  Capsules at
+         * --tol 1e-8 (Coulomb tolerance 1e-8) needs 1003 of them with mpgp
+         * and up to 3873 with mpgp-bb (most of 1-3 QP iterations: the
+         * fixed point on psi contracts slowly there, about 0.994 per
+         * exact QP); 1000 stopped it just short (doc/fclib.md, issue 20).
          */
-        unsigned int proximal_max_iterations = 1000;
+        unsigned int proximal_max_iterations = 5000;
         /**
          * Proximal::automatic: iteration limit of the plain loop's QPs (a
          * QP that stalls on a singular W is cut short; the proximal loop
          * takes over).
+         * 1000 (was 2000): Capsules' first (bonded) QP never converges and
+         * cost 2000 iterations; the largest plain QP that converges on the 8
+         * FCLIB files takes 823 (spheres-in-a-box at 1e-8); with 500 that
+         * file got 11% more products, with 250 PerioBox at 1e-8 left the
+         * plain loop (doc/fclib.md, issue 20).
          */
-        unsigned int auto_plain_qp_max_iterations = 2000;
+        unsigned int auto_plain_qp_max_iterations = 1000;
 
         /** Top-level entries of fclibsolve's .prm. */
         static void
@@ -308,6 +329,8 @@ namespace dualcontact
       mutable double qp_lambda_max_ = 0;
       /** Contact scaling s per unknown (empty: none; plain loop only). */
       dealii::Vector<double> scale_;
+      /** De Saxce's shift s (normal entries; model desaxce). */
+      mutable dealii::Vector<double> shift_;
       /** S W_s S formed once when W is dense and small (else empty). */
       std::vector<double> scaled_W_;
       /** S src for scaled_vmult() without scaled_W_. */

@@ -122,9 +122,12 @@ namespace dualcontact
              "after the .prm (repeatable;\n"
              "                        e.g. --set \"Coulomb/Tolerance=1e-6\", "
              "--set \"QP solver/Solver=mpgp-bb\")\n"
-             "  --model coulomb|cone  Coulomb fixed point over Tresca QPs "
-             "(default) or the cone QP\n"
-             "                        (a convex relaxation, 3D only)\n"
+             "  --model coulomb|cone|desaxce  Coulomb fixed point over "
+             "Tresca QPs (default), the\n"
+             "                        cone QP (a convex relaxation, 3D only) "
+             "or the fixed point\n"
+             "                        of De Saxce's shift over cone QPs "
+             "(exact, 3D only)\n"
              "  --first bonded|frictionless  first Coulomb iterate (default "
              "bonded)\n"
              "  --prox off|on|auto|RHO  proximal point, rho/2 ||r - "
@@ -144,7 +147,10 @@ namespace dualcontact
              ")\n"
              "  --tol T               QP relative tolerance\n"
              "  --max-iter N          QP iteration limit\n"
-             "  --coulomb-tol T       tolerance of the Coulomb fixed point\n"
+             "  --coulomb-tol T       tolerance of the Coulomb fixed point "
+             "(default: --tol if that\n"
+             "                        is given and the .prm leaves "
+             "Coulomb/Tolerance at its default)\n"
              "  --coulomb-max-iter N  limit of Coulomb iterations\n"
              "  --json FILE           write a JSON summary\n"
              "  --write FILE.hdf5     write the local problem with the "
@@ -274,6 +280,13 @@ namespace dualcontact
           qp_parameters.max_iterations = *max_iter;
         if (coulomb_tol)
           coulomb.tolerance = *coulomb_tol;
+        else if (tol &&
+                 coulomb.tolerance == contact::CoulombParameters().tolerance)
+          // --tol alone asks for that accuracy: the Coulomb loop follows
+          // (its change of psi cannot be measured below the QPs' noise: with
+          // QP tolerance 1e-4 and the Coulomb default 1e-6, Capsules ran
+          // 1000 proximal iterations without converging; doc/fclib.md)
+          coulomb.tolerance = *tol;
         if (coulomb_max_iter)
           coulomb.max_iterations = *coulomb_max_iter;
         qp_parameters.check();
@@ -420,6 +433,8 @@ namespace dualcontact
         summary["coulomb_changes"]  = result.coulomb_changes;
         summary["fclib_error"]      = result.fclib_error;
         summary["last_qp"]          = last.to_json(false);
+        // (--tol alone sets it too)
+        summary["coulomb_tolerance"] = coulomb.tolerance;
         // per QP of the loop: iterations, products, tolerance, criterion
         nlohmann::json qps = nlohmann::json::array();
         for (const auto &s : result.qp_statistics)
