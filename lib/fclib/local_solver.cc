@@ -857,7 +857,7 @@ namespace dualcontact
               norm += psi[i] * psi[i];
             }
             change =
-              norm > 0 ? std::sqrt(difference / norm) : std::sqrt(difference);
+              contact::CoulombFixedPoint::relative_change(difference, norm);
           }
           bonded       = false;
           first_change = false;

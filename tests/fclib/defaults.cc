@@ -7,7 +7,7 @@
 // not enough at 1e-8: it takes 1,003) and spheres-in-a-box (plain loop, then
 // the proximal one at 1e-8).  `--tol 1e-4 --coulomb-tol 1e-6' keeps the
 // explicit Coulomb tolerance.
-#include <fclib/fclibsolve_driver.h>
+#include <tools/fclibsolve_driver.h>
 #include <test_tools.h>
 
 #include <nlohmann/json.hpp>
@@ -36,7 +36,7 @@ namespace
     arguments.push_back("--json");
     arguments.push_back(json);
     std::ostringstream out, err;
-    Run run{fclib::FclibSolveDriver().run(arguments, out, err), {}};
+    Run run{tools::FclibSolveDriver().run(arguments, out, err), {}};
     if (run.status == 1)
       std::cout << err.str() << std::endl;
     if (std::filesystem::exists(json))
