@@ -64,6 +64,15 @@ namespace dualcontact
     };
 
 
+    // the two creators (solver_registry.cc)
+    template <>
+    const SolverEntry::Creator<dealii::Vector<double>> &
+    SolverEntry::creator<dealii::Vector<double>>() const;
+    template <>
+    const SolverEntry::Creator<dealii::TrilinosWrappers::MPI::Vector> &
+    SolverEntry::creator<dealii::TrilinosWrappers::MPI::Vector>() const;
+
+
     /**
      * The registered solvers, in registration order (the order of the
      * documentation and of the `Solver` pattern).
