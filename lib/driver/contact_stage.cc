@@ -19,14 +19,13 @@ namespace dualcontact
   {
     template <int dim>
     ContactStage<dim>::ContactStage(dealii::ParameterHandler &prm,
+                                    const OutputParameters   &output,
                                     Scene<dim>               &scene)
         : prm_(prm)
         , scene_(scene)
+        , write_coulomb_iterates_(output.write_coulomb_iterates)
+        , status_tolerance_(output.contact_status_tolerance)
     {
-      prm.enter_subsection("Output");
-      write_coulomb_iterates_ = prm.get_bool("Write Coulomb iterates");
-      status_tolerance_       = prm.get_double("Contact status tolerance");
-      prm.leave_subsection();
       qp_parameters_.parse_parameters(prm);
       smalse_parameters_.parse_parameters(prm);
       coulomb_parameters_.parse_parameters(prm);

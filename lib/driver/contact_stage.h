@@ -10,6 +10,7 @@
 #include <decomposition/decomposition_parameters.h>
 #include <decomposition/subdomain_solver.h>
 #include <decomposition/tfeti_dual.h>
+#include <driver/output_parameters.h>
 #include <driver/run_log.h>
 #include <driver/scene.h>
 #include <io/contact_surface_mesh.h>
@@ -72,7 +73,14 @@ namespace dualcontact
        * Read the parameters; @p prm is kept to make the stiffness solvers
        * (subsection `Stiffness solver') in setup_dual_problem().
        */
-      ContactStage(dealii::ParameterHandler &prm, Scene<dim> &scene);
+      /**
+       * The stage of @p scene; @p prm for the solver subsections (and the
+       * stiffness solvers created while setting up the dual), @p output for
+       * the contact status tolerance and the Coulomb iterates.
+       */
+      ContactStage(dealii::ParameterHandler &prm,
+                   const OutputParameters   &output,
+                   Scene<dim>               &scene);
       ~ContactStage();
 
       /** Contact search phase: nodes, frames, gaps, B_N, B_T. */

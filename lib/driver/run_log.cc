@@ -15,12 +15,10 @@ namespace dualcontact
 
 
     void
-    RunLog::parse_parameters(dealii::ParameterHandler &prm)
+    RunLog::set_parameters(const OutputParameters &output)
     {
-      prm.enter_subsection("Output");
-      const std::string verbosity = prm.get("Verbosity");
-      progress_interval_          = prm.get_double("Progress interval");
-      prm.leave_subsection();
+      const std::string &verbosity = output.verbosity;
+      progress_interval_           = output.progress_interval;
       verbosity_ = verbosity == "quiet"    ? Verbosity::quiet :
                    verbosity == "detailed" ? Verbosity::detailed :
                                              Verbosity::normal;

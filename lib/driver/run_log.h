@@ -3,6 +3,8 @@
 #include <deal.II/base/conditional_ostream.h>
 #include <deal.II/base/parameter_handler.h>
 
+#include <driver/output_parameters.h>
+
 #include <io/console_log.h>
 #include <qp/solver_progress.h>
 
@@ -48,9 +50,9 @@ namespace dualcontact
        */
       RunLog(dealii::ConditionalOStream &console, io::ConsoleLog *log);
 
-      /** Read `Verbosity' and `Progress interval' of subsection `Output'. */
+      /** Take `Verbosity' and `Progress interval' of subsection `Output'. */
       void
-      parse_parameters(dealii::ParameterHandler &prm);
+      set_parameters(const OutputParameters &output);
 
       Verbosity
       verbosity() const

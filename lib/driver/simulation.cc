@@ -49,6 +49,18 @@ namespace dualcontact
     } // namespace
 
 
+    namespace
+    {
+      OutputParameters
+      read_output_parameters(dealii::ParameterHandler &prm)
+      {
+        OutputParameters output;
+        output.parse_parameters(prm);
+        return output;
+      }
+    } // namespace
+
+
     template <int dim>
     Simulation<dim>::Simulation(dealii::ParameterHandler   &prm,
                                 const std::string          &parameter_file,
@@ -63,19 +75,15 @@ namespace dualcontact
         , timer_(console,
                  dealii::TimerOutput::never,
                  dealii::TimerOutput::wall_times)
+        , output_(read_output_parameters(prm))
     {
-      run_log_.parse_parameters(prm);
-      prm.enter_subsection("Output");
+      run_log_.set_parameters(output_);
       output_folder_ = std::make_unique<io::OutputFolder>(
-        prm.get("Output folder"),
-        io::parameter_location("Output", "Output folder"));
+        output_.folder, io::parameter_location("Output", "Output folder"));
       // one run per folder, taken before anything is computed
       if (is_output_rank_)
         output_folder_->lock();
-      write_vtu_     = prm.get_bool("Write VTU");
-      fclib_problem_ = prm.get("FCLIB problem");
-      prm.leave_subsection();
-      AssertThrow(fclib_problem_ == "none" ||
+      AssertThrow(output_.fclib_problem == "none" ||
                     dealii::Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD) ==
                       1,
                   dealii::ExcMessage(
@@ -94,7 +102,7 @@ namespace dualcontact
       prm.leave_subsection();
       if (scene_->has_contact() || tfeti)
       {
-        contact_ = std::make_unique<ContactStage<dim>>(prm, *scene_);
+        contact_ = std::make_unique<ContactStage<dim>>(prm, output_, *scene_);
         contact_->set_run_log(&run_log_);
       }
       scene_->set_solver_monitor(run_log_.monitor());
@@ -416,9 +424,10 @@ namespace dualcontact
       run_phase("Output",
                 [&]()
                 {
-                  report.write_output(*output_folder_, write_vtu_);
-                  if (has_contact && fclib_problem_ != "none")
-                    report.write_fclib_problem(*output_folder_, fclib_problem_);
+                  report.write_output(*output_folder_, output_.write_vtu);
+                  if (has_contact && output_.fclib_problem != "none")
+                    report.write_fclib_problem(*output_folder_,
+                                               output_.fclib_problem);
                 });
       // the records, then log.txt with everything the console showed up to
       // here (the list of files and the timing table included), then all
@@ -437,10 +446,10 @@ namespace dualcontact
       console_ << "Output written to `" << output_folder_->path()
                << "/': " << files;
       if (dealii::Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD) > 1 &&
-          write_vtu_)
+          output_.write_vtu)
         console_ << ", and the other processes' pieces of the bodies";
       console_ << std::endl;
-      if (write_vtu_)
+      if (output_.write_vtu)
         console_ << "Open `" << output_folder_->path()
                  << "/solution.pvd' in ParaView." << std::endl;
       timer_.print_summary();

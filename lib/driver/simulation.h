@@ -6,6 +6,7 @@
 
 #include <driver/contact_refinement.h>
 #include <driver/contact_stage.h>
+#include <driver/output_parameters.h>
 #include <driver/run_log.h>
 #include <driver/scene.h>
 #include <io/console_log.h>
@@ -123,9 +124,8 @@ namespace dualcontact
       const bool                  is_output_rank_;
       dealii::TimerOutput         timer_;
 
-      bool write_vtu_ = true;
-      /** `Output/FCLIB problem`: none | global | local | both. */
-      std::string                       fclib_problem_ = "none";
+      /** Subsection `Output', read once. */
+      const OutputParameters            output_;
       std::unique_ptr<io::OutputFolder> output_folder_;
       std::unique_ptr<Scene<dim>>       scene_;
       /** Null for a scene without contact pairs. */
