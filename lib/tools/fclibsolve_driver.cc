@@ -9,6 +9,7 @@
 #include <io/parameter_file.h>
 #include <qp/solver_factory.h>
 #include <qp/solver_parameters.h>
+#include <tools/command_line.h>
 #include <tools/fclibsolve_driver.h>
 
 #include <nlohmann/json.hpp>
@@ -28,32 +29,11 @@ namespace dualcontact
 
     namespace
     {
-      struct UsageError : std::runtime_error
-      {
-        using std::runtime_error::runtime_error;
-      };
-
-      double
-      to_number(const std::string &option, const std::string &v)
-      {
-        try
-        {
-          std::size_t  used = 0;
-          const double x    = std::stod(v, &used);
-          if (used == v.size() && std::isfinite(x))
-            return x;
-        }
-        catch (const std::exception &)
-        {
-        }
-        throw UsageError(option + ": '" + v + "' is not a number");
-      }
-
       /** A positive finite number (a tolerance). */
       double
       to_positive_number(const std::string &option, const std::string &v)
       {
-        const double x = to_number(option, v);
+        const double x = parse_number(option, v);
         if (!(x > 0))
           throw UsageError(option + " must be > 0 (got " + v + ")");
         return x;
@@ -63,18 +43,7 @@ namespace dualcontact
       long
       to_iteration_limit(const std::string &option, const std::string &v)
       {
-        long value = 0;
-        try
-        {
-          std::size_t used = 0;
-          value            = std::stol(v, &used);
-          if (used != v.size())
-            throw std::invalid_argument(v);
-        }
-        catch (const std::exception &)
-        {
-          throw UsageError(option + ": '" + v + "' is not an integer");
-        }
+        const long value = parse_integer(option, v);
         if (value < 1 || value > std::numeric_limits<int>::max())
           throw UsageError(option + " must be an integer in [1, " +
                            std::to_string(std::numeric_limits<int>::max()) +

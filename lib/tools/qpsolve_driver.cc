@@ -5,6 +5,7 @@
 #include <qp/problem_io.h>
 #include <qp/smalse_m.h>
 #include <qp/solver_factory.h>
+#include <tools/command_line.h>
 #include <tools/qpsolve_driver.h>
 
 #include <deal.II/base/exceptions.h>
@@ -32,11 +33,6 @@ namespace dualcontact
       using Vec = dealii::Vector<double>;
 
       /// command-line usage error (exit code 1)
-      struct UsageError : std::runtime_error
-      {
-        using std::runtime_error::runtime_error;
-      };
-
       struct Options
       {
         std::string problem_file;
@@ -81,18 +77,8 @@ namespace dualcontact
           else if (a == "--tol")
           {
             const std::string v = value();
-            try
-            {
-              std::size_t used = 0;
-              o.tolerance      = std::stod(v, &used);
-              if (used != v.size())
-                throw std::invalid_argument(v);
-            }
-            catch (const std::exception &)
-            {
-              throw UsageError("--tol: '" + v + "' is not a number");
-            }
-            if (!(o.tolerance > 0.) || !std::isfinite(o.tolerance))
+            o.tolerance = parse_number(a, v);
+            if (!(o.tolerance > 0.))
               throw UsageError("--tol must be > 0 (got " + v + ")");
           }
           else if (a == "--criterion")
@@ -100,69 +86,28 @@ namespace dualcontact
           else if (a == "--max-iter")
           {
             const std::string v = value();
-            try
-            {
-              std::size_t used = 0;
-              o.max_iterations = std::stol(v, &used);
-              if (used != v.size())
-                throw std::invalid_argument(v);
-            }
-            catch (const std::exception &)
-            {
-              throw UsageError("--max-iter: '" + v + "' is not an integer");
-            }
+            o.max_iterations = parse_integer(a, v);
             if (o.max_iterations < 1)
               throw UsageError("--max-iter must be >= 1");
           }
           else if (a == "--stagnation-window")
           {
             const std::string v = value();
-            try
-            {
-              std::size_t used    = 0;
-              o.stagnation_window = std::stol(v, &used);
-              if (used != v.size())
-                throw std::invalid_argument(v);
-            }
-            catch (const std::exception &)
-            {
-              throw UsageError("--stagnation-window: '" + v +
-                               "' is not an integer");
-            }
+            o.stagnation_window = parse_integer(a, v);
             if (o.stagnation_window < 0)
               throw UsageError("--stagnation-window must be >= 0 (0: never)");
           }
           else if (a == "--gamma")
           {
             const std::string v = value();
-            try
-            {
-              std::size_t used = 0;
-              o.gamma          = std::stod(v, &used);
-              if (used != v.size())
-                throw std::invalid_argument(v);
-            }
-            catch (const std::exception &)
-            {
-              throw UsageError("--gamma: '" + v + "' is not a number");
-            }
-            if (!(o.gamma > 0.) || !std::isfinite(o.gamma))
+            o.gamma = parse_number(a, v);
+            if (!(o.gamma > 0.))
               throw UsageError("--gamma must be > 0 (got " + v + ")");
           }
           else if (a == "--repeat")
           {
             const std::string v = value();
-            try
-            {
-              std::size_t used = 0;
-              o.repeat         = std::stol(v, &used);
-              if (used != v.size())
-                throw std::invalid_argument(v);
-            }
-            catch (const std::exception &)
-            {
-              throw UsageError("--repeat: '" + v + "' is not an integer");
-            }
+            o.repeat = parse_integer(a, v);
             if (o.repeat < 1)
               throw UsageError("--repeat must be >= 1");
           }
@@ -177,18 +122,7 @@ namespace dualcontact
           else if (a == "--projected-cg-trials")
           {
             const std::string v = value();
-            try
-            {
-              std::size_t used      = 0;
-              o.projected_cg_trials = std::stol(v, &used);
-              if (used != v.size())
-                throw std::invalid_argument(v);
-            }
-            catch (const std::exception &)
-            {
-              throw UsageError("--projected-cg-trials: '" + v +
-                               "' is not an integer");
-            }
+            o.projected_cg_trials = parse_integer(a, v);
             if (o.projected_cg_trials < 1)
               throw UsageError("--projected-cg-trials must be >= 1");
           }
@@ -203,18 +137,7 @@ namespace dualcontact
           else if (a == "--projected-cg-gradient-factor")
           {
             const std::string v = value();
-            try
-            {
-              std::size_t used               = 0;
-              o.projected_cg_gradient_factor = std::stod(v, &used);
-              if (used != v.size())
-                throw std::invalid_argument(v);
-            }
-            catch (const std::exception &)
-            {
-              throw UsageError("--projected-cg-gradient-factor: '" + v +
-                               "' is not a number");
-            }
+            o.projected_cg_gradient_factor = parse_number(a, v);
             if (!(o.projected_cg_gradient_factor == 0. ||
                   o.projected_cg_gradient_factor >= 1.))
               throw UsageError(
@@ -232,18 +155,7 @@ namespace dualcontact
           else if (a == "--amg-keep-fraction")
           {
             const std::string v = value();
-            try
-            {
-              std::size_t used    = 0;
-              o.amg_keep_fraction = std::stod(v, &used);
-              if (used != v.size())
-                throw std::invalid_argument(v);
-            }
-            catch (const std::exception &)
-            {
-              throw UsageError("--amg-keep-fraction: '" + v +
-                               "' is not a number");
-            }
+            o.amg_keep_fraction = parse_number(a, v);
             if (!(o.amg_keep_fraction >= 0. && o.amg_keep_fraction <= 1.))
               throw UsageError("--amg-keep-fraction must be in [0, 1]");
           }
@@ -347,20 +259,6 @@ namespace dualcontact
         MembraneGenerator::Parameters prm;
         std::string                   directory;
         bool                          scale_given = false;
-        const auto number = [](const std::string &a, const std::string &v)
-        {
-          try
-          {
-            std::size_t  used = 0;
-            const double x    = std::stod(v, &used);
-            if (used == v.size() && std::isfinite(x))
-              return x;
-          }
-          catch (const std::exception &)
-          {
-          }
-          throw UsageError(a + ": '" + v + "' is not a finite number");
-        };
         for (std::size_t i = 1; i < arguments.size(); ++i)
         {
           const std::string &a = arguments[i];
@@ -375,7 +273,7 @@ namespace dualcontact
           {
             // n = h^2 unknowns (and a dense-free CSR of ~5 n entries):
             // 10^4 keeps it far below any memory limit
-            const double h = number(a, v);
+            const double h = parse_number(a, v);
             if (!(h >= 1 && h <= 10000 && h == std::floor(h)))
               throw UsageError("--h must be an integer in [1, 10000] (got " +
                                v + ")");
@@ -383,13 +281,13 @@ namespace dualcontact
           }
           else if (a == "--p")
           {
-            prm.p = number(a, v);
+            prm.p = parse_number(a, v);
             if (!(prm.p > 0. && prm.p < 1.))
               throw UsageError("--p must lie in (0, 1) (got " + v + ")");
           }
           else if (a == "--load-scale")
           {
-            prm.load_scale = number(a, v);
+            prm.load_scale = parse_number(a, v);
             scale_given    = true;
           }
           else
