@@ -8,6 +8,14 @@ namespace dualcontact
 {
   namespace contact
   {
+    std::string
+    undetermined_rigid_body_motion()
+    {
+      return " (the multipliers leave the rigid-body motion of a floating "
+             "body undetermined: set to zero)";
+    }
+
+
     template <int dim>
     ContactSolver<dim>::ContactSolver(
       DualFormulation<dim>        &dual,
@@ -84,6 +92,14 @@ namespace dualcontact
     {
       return qp::make_solver<V>(qp_parameters_, smalse_parameters_, problem)
         ->solve(problem, lambda);
+    }
+
+
+    template <int dim>
+    void
+    ContactSolver<dim>::set_final_recovery(const bool recover)
+    {
+      final_recovery_ = recover;
     }
 
 
@@ -223,9 +239,9 @@ namespace dualcontact
         result.reason = "QP solver did not converge: " +
                         qp::to_string(result.qp_statistics.back().reason);
         whole(dual_, lambda, result.lambda);
-        if (!dual_.recover(lambda, result.displacements, false))
-          result.reason += " (the multipliers leave the rigid-body motion "
-                           "of a floating body undetermined: set to zero)";
+        if (final_recovery_ &&
+            !dual_.recover(lambda, result.displacements, false))
+          result.reason += undetermined_rigid_body_motion();
         return result;
       }
 
@@ -290,9 +306,9 @@ namespace dualcontact
       if (result.converged)
         result.reason = "converged";
       whole(dual_, lambda, result.lambda);
-      if (!dual_.recover(lambda, result.displacements, result.converged))
-        result.reason += " (the multipliers leave the rigid-body motion of a "
-                         "floating body undetermined: set to zero)";
+      if (final_recovery_ &&
+          !dual_.recover(lambda, result.displacements, result.converged))
+        result.reason += undetermined_rigid_body_motion();
       return result;
     }
 

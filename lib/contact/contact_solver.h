@@ -19,6 +19,15 @@ namespace dualcontact
   namespace contact
   {
     /**
+     * What is appended to a run's reason when the recovery cannot fix the
+     * rigid-body motion of a floating body (DualFormulation::recover
+     * returned false): " (the multipliers leave ... set to zero)".
+     */
+    std::string
+    undetermined_rigid_body_motion();
+
+
+    /**
      * Solves the contact problem of a DualFormulation (DualProblem or
      * decomposition::TFETIDual): one QP for frictionless and Tresca scenes; for
      * Coulomb pairs the fixed point over Tresca problems psi_i = mu lambda_N,i
@@ -84,6 +93,17 @@ namespace dualcontact
       void
       set_coulomb_monitor(std::function<void(const Result &)> monitor);
 
+      /**
+       * Whether solve() ends with the recovery of Result::displacements
+       * (default true).  A caller that recovers the displacements itself
+       * (ContactStage, in its own Recovery phase) switches it off, so that
+       * the stiffness solves of the recovery run once; Result::displacements
+       * then stays empty (the Coulomb iterates given to solve()'s
+       * on_iterate are recovered all the same).
+       */
+      void
+      set_final_recovery(bool recover);
+
     private:
       /** solve() on the vectors @p V of the QP. */
       template <typename V>
@@ -114,6 +134,7 @@ namespace dualcontact
       CoulombParameters                   coulomb_parameters_;
       WorkingSetParameters                working_set_parameters_;
       std::function<void(const Result &)> coulomb_monitor_;
+      bool                                final_recovery_ = true;
     };
   } // namespace contact
 } // namespace dualcontact

@@ -247,6 +247,7 @@ namespace dualcontact
                                          smalse_parameters_,
                                          coulomb_parameters_,
                                          working_set_parameters_);
+      solver.set_final_recovery(false); // recover() does it, once
       if (run_log_ != nullptr)
       {
         const auto start = std::chrono::steady_clock::now();
@@ -334,15 +335,6 @@ namespace dualcontact
       details.push_back(
         (result_.converged ? "" : "NOT CONVERGED: ") + result_.reason + ", " +
         std::to_string(dual_->n_stiffness_solves()) + " stiffness solves");
-      if (tfeti() != nullptr)
-      {
-        std::ostringstream line;
-        line << std::setprecision(3)
-             << "Glued interfaces: largest jump between the copies of a dof "
-             << tfeti()->max_interface_jump() << " m ("
-             << tfeti()->relative_interface_jump() << " of the largest |u|)";
-        details.push_back(line.str());
-      }
     }
 
 
@@ -367,15 +359,33 @@ namespace dualcontact
 
     template <int dim>
     void
-    ContactStage<dim>::recover()
+    ContactStage<dim>::recover(std::vector<std::string> &details)
     {
-      // the contact solver recovered the displacements already; recovering
-      // here again (one K^# per body) keeps the phases' timings apart
-      // (the primal method computes the displacements themselves)
+      // the one recovery of the final multipliers (the contact solver's is
+      // off); the primal method computes the displacements themselves
       if (primal_json_.empty())
-        dual_->recover(result_.lambda,
-                       scene_.displacements(),
-                       result_.converged);
+      {
+        if (!dual_->recover(result_.lambda,
+                            scene_.displacements(),
+                            result_.converged))
+        {
+          result_.reason += contact::undetermined_rigid_body_motion();
+          details.push_back("Warning: the multipliers leave the rigid-body "
+                            "motion of a floating body undetermined (set "
+                            "to zero)");
+        }
+        if (tfeti() != nullptr)
+        {
+          std::ostringstream line;
+          line << std::setprecision(3)
+               << "Glued interfaces: largest jump between the copies of a "
+                  "dof "
+               << tfeti()->max_interface_jump() << " m ("
+               << tfeti()->relative_interface_jump()
+               << " of the largest |u|)";
+          details.push_back(line.str());
+        }
+      }
       else
         scene_.displacements() = result_.displacements;
       surfaces_ = contact_surfaces(result_.lambda, scene_.displacements());

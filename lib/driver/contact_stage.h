@@ -94,11 +94,13 @@ namespace dualcontact
       solve(std::vector<std::string> &details);
       /**
        * Recovery phase: the displacements of the scene's bodies from the
-       * multipliers, the contact surfaces (values and cells) and the pair
-       * results.
+       * multipliers (the only recovery of the final multipliers: solve()
+       * switches the contact solver's off), the contact surfaces (values and
+       * cells) and the pair results; @p details gets TFETI's interface jump
+       * and a rigid-body motion the multipliers leave undetermined.
        */
       void
-      recover();
+      recover(std::vector<std::string> &details);
       /**
        * Let go of everything computed on the scene's bodies (contact
        * discretization, dual problem with its factors, results), before the

@@ -350,7 +350,7 @@ namespace dualcontact
           run_phase("Factorization",
                     [&]() { contact.setup_dual_problem(details_); });
           run_phase("QP", [&]() { contact.solve(details_); });
-          run_phase("Recovery", [&]() { contact.recover(); });
+          run_phase("Recovery", [&]() { contact.recover(details_); });
         }
         else
           run_phase("Solve", [&]() { scene.solve(details_); });
