@@ -16,6 +16,7 @@ multipliers, wall time, peak memory and load average at the start
 import argparse
 import json
 import os
+import re
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
@@ -35,6 +36,15 @@ THESIS_ITS = {
 }
 
 
+# table 12: CG / CG-half / projection (MPGP) or PBB (MPGP-BB)
+THESIS_KINDS = {
+    "mpgp": {"10": "11245 / 2818 / 9690 / -", "30": "11830 / 1793 / 19254 / -",
+             "100": "8005 / 610 / 26769 / -", "500": "5145 / 1003 / 1 / -"},
+    "mpgp-bb": {"10": "11489 / 3353 / - / 547", "30": "13258 / 2786 / - / 1373",
+                "100": "9401 / 1570 / - / 1776", "500": "5145 / 1003 / - / 1"},
+}
+
+
 def row(case_dir):
     r = {}
     try:
@@ -47,12 +57,30 @@ def row(case_dir):
     r["outcome"] = ("time limit" if run["timeout"] else
                     {0: "converged", 2: "not converged"}.get(run["exit_code"], "error"))
     stats_file = os.path.join(case_dir, "out", "statistics.json")
+    if run["timeout"]:
+        # killed: the last progress line of the log (its inner solve's
+        # iteration count, criterion and that solve's tolerance)
+        last = None
+        for line in open(os.path.join(case_dir, "log.txt"), errors="replace"):
+            m = re.search(r"iteration (\d+), criterion (\S+) \(tolerance (\S+)\)", line)
+            if m:
+                last = m
+        if last:
+            r["outcome"] = ("time limit %.0f s; last inner solve at iteration %s, "
+                            "criterion %s > %s" % (run["wall_time_s"], last.group(1),
+                                                   last.group(2), last.group(3)))
     if os.path.exists(stats_file):
         contact = json.load(open(stats_file))["contact"]
         solves = contact["qp_solves"]
         r["outer"] = sum(q.get("iterations_by_kind", {}).get("outer", 0) for q in solves)
         r["inner"] = sum(q["iterations"] for q in solves)
         r["products"] = sum(q["hessian_products"] for q in solves)
+        kinds = {}
+        for q in solves:
+            for k, v in q.get("iterations_by_kind", {}).items():
+                kinds[k] = kinds.get(k, 0) + v
+        r["kinds"] = "%d / %d / %d / %d" % (kinds.get("cg", 0), kinds.get("half_step", 0),
+                                          kinds.get("expansion", 0), kinds.get("bb", 0))
         r["multipliers"] = contact["n_multipliers"]
         r["subdomains"] = contact.get("decomposition", {}).get("n_subdomains", 1)
         b, q = active_sets(case_dir)
@@ -73,8 +101,9 @@ def main():
     parser.add_argument("--tolerance", default="1e-2")
     args = parser.parse_args()
     print("| placement | phi | solver | bound / quadratic % | thesis | outer / inner / products "
-          "| thesis | subdomains / multipliers | wall s | peak MB | load | outcome |")
-    print("|---|---|---|---|---|---|---|---|---|---|---|---|")
+          "| thesis | CG / half-step / projection / BB | thesis | subdomains / multipliers "
+          "| wall s | peak MB | load | outcome |")
+    print("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|")
     for spec in args.dirs:
         label, bench_dir = spec.split("=", 1)
         for phi in args.phis:
@@ -86,13 +115,14 @@ def main():
                 ti = THESIS_ITS.get(solver, {}).get(phi)
                 thesis_sets = "%d / %d" % ts if ts else ""
                 thesis_its = "%s / %s / %s" % ti if ti else ""
+                thesis_kinds = THESIS_KINDS.get(solver, {}).get(phi, "")
                 if r is None:
                     print(f"| {label} | {phi} | {NAMES.get(solver, solver)} | not run | "
-                          f"{thesis_sets} | | {thesis_its} | | | | | |")
+                          f"{thesis_sets} | | {thesis_its} | | {thesis_kinds} | | | | | |")
                     continue
                 print(f"| {label} | {phi} | {NAMES.get(solver, solver)} | {r.get('sets', '-')} | "
                       f"{thesis_sets} | {r.get('outer', '-')} / {r.get('inner', '-')} / "
-                      f"{r.get('products', '-')} | {thesis_its} | "
+                      f"{r.get('products', '-')} | {thesis_its} | {r.get('kinds', '-')} | {thesis_kinds} | "
                       f"{r.get('subdomains', '-')} / {r.get('multipliers', '-')} | {r['wall']} | "
                       f"{r['peak']} | {r['load']} | {r['outcome']} |")
 
