@@ -60,15 +60,21 @@ def row(case_dir):
     if run["timeout"]:
         # killed: the last progress line of the log (its inner solve's
         # iteration count, criterion and that solve's tolerance)
-        last = None
+        # (the count restarts with every inner solve: solves and iterations
+        # are lower bounds, the progress lines come every 5 s)
+        last, solves, total = None, 0, 0
         for line in open(os.path.join(case_dir, "log.txt"), errors="replace"):
             m = re.search(r"iteration (\d+), criterion (\S+) \(tolerance (\S+)\)", line)
             if m:
+                if last is None or int(m.group(1)) < int(last.group(1)):
+                    solves += 1
+                    total += int(last.group(1)) if last else 0
                 last = m
         if last:
-            r["outcome"] = ("time limit %.0f s; last inner solve at iteration %s, "
-                            "criterion %s > %s" % (run["wall_time_s"], last.group(1),
-                                                   last.group(2), last.group(3)))
+            total += int(last.group(1))
+            r["outcome"] = ("time limit %.0f s: >= %d inner solves, >= %d iterations; the last "
+                            "at criterion %s > %s" % (run["wall_time_s"], solves, total,
+                                                      last.group(2), last.group(3)))
     if os.path.exists(stats_file):
         contact = json.load(open(stats_file))["contact"]
         solves = contact["qp_solves"]
