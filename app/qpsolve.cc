@@ -24,7 +24,7 @@ namespace
    * the file and the settings checked like dualcontact's.
    */
   void
-  read_parameter_options(std::vector<std::string>       &arguments,
+  read_parameter_options(std::vector<std::string>          &arguments,
                          dualcontact::tools::QPSolveDriver &driver)
   {
     using namespace dualcontact;
@@ -71,7 +71,7 @@ main(int argc, char **argv)
   dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
   try
   {
-    std::vector<std::string>       arguments(argv + 1, argv + argc);
+    std::vector<std::string>          arguments(argv + 1, argv + argc);
     dualcontact::tools::QPSolveDriver driver;
     read_parameter_options(arguments, driver);
     return driver.run(arguments, std::cout, std::cerr);

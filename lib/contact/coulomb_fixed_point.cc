@@ -65,9 +65,9 @@ namespace dualcontact
     {
       Assert(current == State::iterating,
              dealii::ExcMessage("The fixed point has stopped already."));
-      growing =
-        (!recorded.empty() && relative_change > recorded.back()) ? growing + 1 :
-                                                                   0;
+      growing = (!recorded.empty() && relative_change > recorded.back()) ?
+                  growing + 1 :
+                  0;
       recorded.push_back(relative_change);
       if (!std::isfinite(relative_change))
         current = State::not_finite;

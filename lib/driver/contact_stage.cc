@@ -381,8 +381,7 @@ namespace dualcontact
                << "Glued interfaces: largest jump between the copies of a "
                   "dof "
                << tfeti()->max_interface_jump() << " m ("
-               << tfeti()->relative_interface_jump()
-               << " of the largest |u|)";
+               << tfeti()->relative_interface_jump() << " of the largest |u|)";
           details.push_back(line.str());
         }
       }

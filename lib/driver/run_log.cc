@@ -19,9 +19,9 @@ namespace dualcontact
     {
       const std::string &verbosity = output.verbosity;
       progress_interval_           = output.progress_interval;
-      verbosity_ = verbosity == "quiet"    ? Verbosity::quiet :
-                   verbosity == "detailed" ? Verbosity::detailed :
-                                             Verbosity::normal;
+      verbosity_                   = verbosity == "quiet" ? Verbosity::quiet :
+                                     verbosity == "detailed" ? Verbosity::detailed :
+                                                               Verbosity::normal;
       if (log_ != nullptr)
         log_->show_on_terminal(verbosity_ != Verbosity::quiet);
     }

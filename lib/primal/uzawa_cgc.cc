@@ -606,8 +606,9 @@ namespace dualcontact
           VectorType diff(psi_);
           diff -= psi_old;
           const contact::CoulombFixedPoint::State state =
-            fixed_point.record_change(contact::CoulombFixedPoint::relative_change(
-              diff.norm_sqr(), psi_.norm_sqr()));
+            fixed_point.record_change(
+              contact::CoulombFixedPoint::relative_change(diff.norm_sqr(),
+                                                          psi_.norm_sqr()));
           if (state == contact::CoulombFixedPoint::State::converged)
           {
             psi_ = psi_old; // (u, lambda) belong to the old bounds

@@ -594,7 +594,7 @@ namespace dualcontact
       const double gp)
     {
       ++stats.n_half_steps;
-      const double f_half = f - alpha_f * gp + 0.5 * alpha_f * alpha_f * pAp;
+      const double f_half   = f - alpha_f * gp + 0.5 * alpha_f * alpha_f * pAp;
       bool         expanded = false;
       if (projected_cg && alpha_cg < infinity)
         expanded = projected_cg_expansion(alpha_f, alpha_cg, f_half);
@@ -668,8 +668,7 @@ namespace dualcontact
           if (trial_cost[k] <= f_half)
             least_gradient = std::min(least_gradient, trial_gradient[k]);
         const double bound = prm.projected_cg_gradient_factor *
-                             prm.projected_cg_gradient_factor *
-                             least_gradient;
+                             prm.projected_cg_gradient_factor * least_gradient;
         unsigned int chosen      = best_trial;
         double       chosen_cost = infinity;
         for (unsigned int k = 0; k < trial_cost.size(); ++k)
@@ -776,11 +775,11 @@ namespace dualcontact
       }
       if (bAb < -curvature_threshold * lambda_max * bb)
       {
-        stats.reason  = ConvergenceReason::breakdown;
-        stats.message = "negative curvature beta'A beta = " +
-                        std::to_string(bAb) +
-                        ": the Hessian is not positive "
-                        "semidefinite";
+        stats.reason = ConvergenceReason::breakdown;
+        stats.message =
+          "negative curvature beta'A beta = " + std::to_string(bAb) +
+          ": the Hessian is not positive "
+          "semidefinite";
         return false;
       }
       const double alpha_sd =
@@ -795,7 +794,7 @@ namespace dualcontact
                         "below";
         return false;
       }
-      const double alpha    = std::min(alpha_sd, alpha_f);
+      const double alpha = std::min(alpha_sd, alpha_f);
       const bool   released =
         release_preconditioned && preconditioned_release(alpha, gb, bAb);
       if (!released)
@@ -1008,8 +1007,7 @@ namespace dualcontact
                                          ": Preconditioner = jacobi needs a "
                                          "positive diagonal of the Hessian"));
           const std::shared_ptr<const VectorType> diagonal = problem.diagonal;
-          free_set_inverse =
-            [diagonal](VectorType &dst, const VectorType &src)
+          free_set_inverse = [diagonal](VectorType &dst, const VectorType &src)
           {
             const double     *sv = src.begin(), *dv = diagonal->begin();
             double           *ov = dst.begin();
@@ -1071,11 +1069,10 @@ namespace dualcontact
     // and a product); returns the cost at y
     template <typename VectorType>
     double
-    ActiveSetSolver<VectorType>::Iteration::projected_trial(
-      VectorType       &y,
-      VectorType       &gy,
-      const VectorType &d,
-      const double      t)
+    ActiveSetSolver<VectorType>::Iteration::projected_trial(VectorType &y,
+                                                            VectorType &gy,
+                                                            const VectorType &d,
+                                                            const double      t)
     {
       y.equ(1., x);
       set->projected_step(y, d, t, false);

@@ -72,13 +72,13 @@ namespace dualcontact
     }
 
 
-#define DUALCONTACT_INSTANTIATE_FACTORY(V)                                   \
-  template std::unique_ptr<SolverBase<V>> create<V>(const std::string &,     \
+#define DUALCONTACT_INSTANTIATE_FACTORY(V)                                     \
+  template std::unique_ptr<SolverBase<V>> create<V>(const std::string &,       \
                                                     const SolverParameters &); \
   template std::unique_ptr<SolverBase<V>> create<V>(const SolverParameters &); \
-  template std::unique_ptr<SolverBase<V>> make_solver<V>(                    \
-    const SolverParameters &, const SMALSEMParameters &, bool);              \
-  template std::unique_ptr<SolverBase<V>> make_solver<V>(                    \
+  template std::unique_ptr<SolverBase<V>> make_solver<V>(                      \
+    const SolverParameters &, const SMALSEMParameters &, bool);                \
+  template std::unique_ptr<SolverBase<V>> make_solver<V>(                      \
     const SolverParameters &, const SMALSEMParameters &, const Problem<V> &);
 
     DUALCONTACT_INSTANTIATE_FACTORY(dealii::Vector<double>)

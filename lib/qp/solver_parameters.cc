@@ -373,11 +373,11 @@ namespace dualcontact
         const SolverRegistry &registry = SolverRegistry::instance();
         const SolverEntry    *entry    = registry.find(name);
         AssertThrow(entry != nullptr && entry->chainable,
-                    dealii::ExcMessage(
-                      "Parameter `" + parameter +
-                      "' in `subsection QP solver': '" + name +
-                      "' is not a solver a chain can hold (" +
-                      join(registry.chainable_names(false)) + ")."));
+                    dealii::ExcMessage("Parameter `" + parameter +
+                                       "' in `subsection QP solver': '" + name +
+                                       "' is not a solver a chain can hold (" +
+                                       join(registry.chainable_names(false)) +
+                                       ")."));
         AssertThrow(!general ||
                       entry->accepted_sets == AcceptedSets::any_separable,
                     dealii::ExcMessage(

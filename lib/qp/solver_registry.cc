@@ -107,7 +107,8 @@ namespace dualcontact
     SolverRegistry &
     SolverRegistry::instance()
     {
-      static SolverRegistry registry = []() {
+      static SolverRegistry registry = []()
+      {
         SolverRegistry r;
         register_builtin_solvers(r);
         return r;
@@ -173,8 +174,8 @@ namespace dualcontact
     {
       std::string text;
       for (const SolverEntry &entry : entries)
-        text += (text.empty() ? "" : "; ") + entry.name + ": " +
-                entry.description;
+        text +=
+          (text.empty() ? "" : "; ") + entry.name + ": " + entry.description;
       return text;
     }
   } // namespace qp

@@ -48,13 +48,13 @@ namespace dualcontact
       /// the value of `Solver` ("mprgp", ...)
       std::string name;
       /// one phrase for the parameter documentation and --help
-      std::string description;
+      std::string  description;
       AcceptedSets accepted_sets = AcceptedSets::any_separable;
       /// whether an `Auto chain ...` parameter may name it (false for the
       /// chain itself)
       bool chainable = true;
 
-      Creator<dealii::Vector<double>>                    create_serial;
+      Creator<dealii::Vector<double>>                create_serial;
       Creator<dealii::TrilinosWrappers::MPI::Vector> create_distributed;
 
       /// the creator for @p VectorType
@@ -127,28 +127,27 @@ namespace dualcontact
      * register_builtin_solvers(); a program adds its own solvers the same
      * way.
      */
-#define DUALCONTACT_QP_REGISTER_SOLVER(registry, Class, key, sets, text)     \
-  do                                                                         \
-  {                                                                          \
-    ::dualcontact::qp::SolverEntry entry_;                                   \
-    entry_.name          = key;                                              \
-    entry_.description   = text;                                             \
-    entry_.accepted_sets = sets;                                             \
-    entry_.create_serial = [](const ::dualcontact::qp::SolverParameters &p) \
-      -> std::unique_ptr<                                                    \
-        ::dualcontact::qp::SolverBase<dealii::Vector<double>>> {             \
-      return std::make_unique<Class<dealii::Vector<double>>>(p);             \
-    };                                                                       \
-    entry_.create_distributed =                                              \
-      [](const ::dualcontact::qp::SolverParameters &p)                       \
-      -> std::unique_ptr<::dualcontact::qp::SolverBase<                      \
-        dealii::TrilinosWrappers::MPI::Vector>> {                            \
-      return std::make_unique<Class<dealii::TrilinosWrappers::MPI::Vector>>( \
-        p);                                                                  \
-    };                                                                       \
-    (registry).add(std::move(entry_));                                       \
-  }                                                                          \
-  while (false)
+#define DUALCONTACT_QP_REGISTER_SOLVER(registry, Class, key, sets, text)      \
+  do                                                                          \
+  {                                                                           \
+    ::dualcontact::qp::SolverEntry entry_;                                    \
+    entry_.name          = key;                                               \
+    entry_.description   = text;                                              \
+    entry_.accepted_sets = sets;                                              \
+    entry_.create_serial = [](const ::dualcontact::qp::SolverParameters &p)   \
+      -> std::unique_ptr<                                                     \
+        ::dualcontact::qp::SolverBase<dealii::Vector<double>>>                \
+    { return std::make_unique<Class<dealii::Vector<double>>>(p); };           \
+    entry_.create_distributed =                                               \
+      [](const ::dualcontact::qp::SolverParameters &p)                        \
+      -> std::unique_ptr<                                                     \
+        ::dualcontact::qp::SolverBase<dealii::TrilinosWrappers::MPI::Vector>> \
+    {                                                                         \
+      return std::make_unique<Class<dealii::TrilinosWrappers::MPI::Vector>>(  \
+        p);                                                                   \
+    };                                                                        \
+    (registry).add(std::move(entry_));                                        \
+  } while (false)
   } // namespace qp
 } // namespace dualcontact
 

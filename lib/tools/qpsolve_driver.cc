@@ -77,7 +77,7 @@ namespace dualcontact
           else if (a == "--tol")
           {
             const std::string v = value();
-            o.tolerance = parse_number(a, v);
+            o.tolerance         = parse_number(a, v);
             if (!(o.tolerance > 0.))
               throw UsageError("--tol must be > 0 (got " + v + ")");
           }
@@ -86,7 +86,7 @@ namespace dualcontact
           else if (a == "--max-iter")
           {
             const std::string v = value();
-            o.max_iterations = parse_integer(a, v);
+            o.max_iterations    = parse_integer(a, v);
             if (o.max_iterations < 1)
               throw UsageError("--max-iter must be >= 1");
           }
@@ -100,14 +100,14 @@ namespace dualcontact
           else if (a == "--gamma")
           {
             const std::string v = value();
-            o.gamma = parse_number(a, v);
+            o.gamma             = parse_number(a, v);
             if (!(o.gamma > 0.))
               throw UsageError("--gamma must be > 0 (got " + v + ")");
           }
           else if (a == "--repeat")
           {
             const std::string v = value();
-            o.repeat = parse_integer(a, v);
+            o.repeat            = parse_integer(a, v);
             if (o.repeat < 1)
               throw UsageError("--repeat must be >= 1");
           }
@@ -121,7 +121,7 @@ namespace dualcontact
           }
           else if (a == "--projected-cg-trials")
           {
-            const std::string v = value();
+            const std::string v   = value();
             o.projected_cg_trials = parse_integer(a, v);
             if (o.projected_cg_trials < 1)
               throw UsageError("--projected-cg-trials must be >= 1");
@@ -136,7 +136,7 @@ namespace dualcontact
           }
           else if (a == "--projected-cg-gradient-factor")
           {
-            const std::string v = value();
+            const std::string v            = value();
             o.projected_cg_gradient_factor = parse_number(a, v);
             if (!(o.projected_cg_gradient_factor == 0. ||
                   o.projected_cg_gradient_factor >= 1.))
@@ -523,9 +523,8 @@ namespace dualcontact
           {
             // the fall-back chain, SMALSE-M around the solver with
             // equality constraints, or the solver itself
-            auto solver =
-              make_solver<Vec>(prm, SMALSEMParameters(), problem);
-            stats = solver->solve(problem, x);
+            auto solver = make_solver<Vec>(prm, SMALSEMParameters(), problem);
+            stats       = solver->solve(problem, x);
             if (problem.equality)
               equality_residual = solver->equality_residual();
           }

@@ -44,7 +44,7 @@ main()
 
   {
     CoulombFixedPoint fixed_point(parameters);
-    const auto states = run(fixed_point, {1., 0.1, 1e-3, 1e-6, 1e-9});
+    const auto        states = run(fixed_point, {1., 0.1, 1e-3, 1e-6, 1e-9});
     check(states.size() == 4 && states.back() == State::converged &&
             fixed_point.message() == "converged" &&
             fixed_point.changes().size() == 4,

@@ -4,8 +4,8 @@
 // neither /fclib_local nor /fclib_global"), without HDF5's error stack on
 // stderr; --write goes through a temporary file that replaces the old one.
 #include <fclib/fclib_file.h>
-#include <tools/fclibsolve_driver.h>
 #include <test_tools.h>
+#include <tools/fclibsolve_driver.h>
 
 #include <unistd.h>
 

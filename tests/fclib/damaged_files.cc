@@ -8,9 +8,9 @@
 // the undamaged files of tests/fclib/data still read, with their
 // solutions.
 #include <fclib/fclib_file.h>
-#include <tools/fclibsolve_driver.h>
 #include <fclib/file_layout.h>
 #include <test_tools.h>
+#include <tools/fclibsolve_driver.h>
 
 #include <hdf5.h>
 

@@ -7,8 +7,8 @@
 // not enough at 1e-8: it takes 1,003) and spheres-in-a-box (plain loop, then
 // the proximal one at 1e-8).  `--tol 1e-4 --coulomb-tol 1e-6' keeps the
 // explicit Coulomb tolerance.
-#include <tools/fclibsolve_driver.h>
 #include <test_tools.h>
+#include <tools/fclibsolve_driver.h>
 
 #include <nlohmann/json.hpp>
 

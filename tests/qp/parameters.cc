@@ -14,8 +14,8 @@
 
 #include <deal.II/base/parameter_handler.h>
 
-#include <qp/power_iteration.h>
 #include <qp/mpgp.h>
+#include <qp/power_iteration.h>
 #include <qp/solver_factory.h>
 #include <qp/solver_registry.h>
 
@@ -176,8 +176,10 @@ main()
     std::string general_error;
     try
     {
-      SolverParameters::parse_chain("mprgp", true, "Auto chain for general "
-                                                   "sets");
+      SolverParameters::parse_chain("mprgp",
+                                    true,
+                                    "Auto chain for general "
+                                    "sets");
     }
     catch (const std::exception &e)
     {
@@ -194,14 +196,13 @@ main()
     named.solver = "mpgp";
     SolverParameters chain;
     chain.solver = "auto";
-    check.check(make_solver<Vec>(chain, SMALSEMParameters(), true)->name() ==
-                    "auto" &&
-                  make_solver<Vec>(named, SMALSEMParameters(), true)->name() ==
-                    "smalse-m(mpgp)" &&
-                  make_solver<Vec>(named, SMALSEMParameters(), problem)
-                      ->name() == "mpgp",
-                "make_solver: auto -> the chain, with equality -> "
-                "smalse-m(mpgp), without -> mpgp");
+    check.check(
+      make_solver<Vec>(chain, SMALSEMParameters(), true)->name() == "auto" &&
+        make_solver<Vec>(named, SMALSEMParameters(), true)->name() ==
+          "smalse-m(mpgp)" &&
+        make_solver<Vec>(named, SMALSEMParameters(), problem)->name() == "mpgp",
+      "make_solver: auto -> the chain, with equality -> "
+      "smalse-m(mpgp), without -> mpgp");
   }
   {
     const unsigned                                n = 50;
