@@ -81,13 +81,6 @@ namespace dualcontact
     }
 
 
-    CoulombFixedPoint::State
-    CoulombFixedPoint::state() const
-    {
-      return current;
-    }
-
-
     const std::vector<double> &
     CoulombFixedPoint::changes() const
     {

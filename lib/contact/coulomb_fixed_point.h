@@ -79,9 +79,6 @@ namespace dualcontact
       State
       record_change(double relative_change);
 
-      State
-      state() const;
-
       /** The relative changes recorded so far, one per update. */
       const std::vector<double> &
       changes() const;

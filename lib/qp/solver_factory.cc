@@ -12,10 +12,7 @@ namespace dualcontact
     std::string
     solver_names()
     {
-      std::string pattern;
-      for (const std::string &name : SolverRegistry::instance().names())
-        pattern += (pattern.empty() ? "" : "|") + name;
-      return pattern;
+      return join_names(SolverRegistry::instance().names());
     }
 
 

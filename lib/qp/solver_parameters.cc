@@ -9,20 +9,6 @@ namespace dualcontact
 {
   namespace qp
   {
-    namespace
-    {
-      /// @p names separated by '|'
-      std::string
-      join(const std::vector<std::string> &names)
-      {
-        std::string text;
-        for (const std::string &name : names)
-          text += (text.empty() ? "" : "|") + name;
-        return text;
-      }
-    } // namespace
-
-
     std::string
     to_string(const StoppingCriterion criterion)
     {
@@ -373,11 +359,11 @@ namespace dualcontact
         const SolverRegistry &registry = SolverRegistry::instance();
         const SolverEntry    *entry    = registry.find(name);
         AssertThrow(entry != nullptr && entry->chainable,
-                    dealii::ExcMessage("Parameter `" + parameter +
-                                       "' in `subsection QP solver': '" + name +
-                                       "' is not a solver a chain can hold (" +
-                                       join(registry.chainable_names(false)) +
-                                       ")."));
+                    dealii::ExcMessage(
+                      "Parameter `" + parameter +
+                      "' in `subsection QP solver': '" + name +
+                      "' is not a solver a chain can hold (" +
+                      join_names(registry.chainable_names(false)) + ")."));
         AssertThrow(!general ||
                       entry->accepted_sets == AcceptedSets::any_separable,
                     dealii::ExcMessage(
@@ -385,7 +371,7 @@ namespace dualcontact
                       "' in `subsection QP solver': " + name +
                       " takes bound and box constraints only, not discs, "
                       "ellipses or cones (" +
-                      join(registry.chainable_names(true)) + ")."));
+                      join_names(registry.chainable_names(true)) + ")."));
         names.push_back(name);
       }
       AssertThrow(!names.empty(),

@@ -90,16 +90,16 @@ namespace dualcontact
           "Nesterov's accelerated projected gradient descent (thesis 2.3, "
           "algorithm 6)");
         // SolverChain's second constructor argument (the SMALSE-M settings)
-        // keeps its default here; make_solver() passes the caller's
-        DUALCONTACT_QP_REGISTER_SOLVER(
-          registry,
-          SolverChain,
+        // keeps its default here; make_solver() passes the caller's.  Not
+        // chainable: the chain creates the solvers of a chain.
+        registry.add(solver_entry<SolverChain>(
           "auto",
           any,
           "chosen by the constraint types, with fall-back to the next "
           "solver of `Auto chain for bounds' / `Auto chain for general "
           "sets' when one does not converge (SMALSE-M around each with "
-          "equality constraints)");
+          "equality constraints)",
+          false));
       }
     } // namespace
 
@@ -130,9 +130,6 @@ namespace dualcontact
                                      "' is registered twice."));
       Assert(entry.create_serial && entry.create_distributed,
              dealii::ExcInternalError());
-      // the chain creates solvers itself: it cannot be one of its links
-      if (entry.name == "auto")
-        entry.chainable = false;
       entries.push_back(std::move(entry));
     }
 
@@ -166,6 +163,16 @@ namespace dualcontact
             (!general || entry.accepted_sets == AcceptedSets::any_separable))
           result.push_back(entry.name);
       return result;
+    }
+
+
+    std::string
+    join_names(const std::vector<std::string> &names)
+    {
+      std::string text;
+      for (const std::string &name : names)
+        text += (text.empty() ? "" : "|") + name;
+      return text;
     }
 
 

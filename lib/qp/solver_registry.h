@@ -51,7 +51,7 @@ namespace dualcontact
       std::string  description;
       AcceptedSets accepted_sets = AcceptedSets::any_separable;
       /// whether an `Auto chain ...` parameter may name it (false for the
-      /// chain itself)
+      /// chain itself, which creates the solvers of a chain)
       bool chainable = true;
 
       Creator<dealii::Vector<double>>                create_serial;
@@ -92,7 +92,8 @@ namespace dualcontact
       static SolverRegistry &
       instance();
 
-      /// Add @p entry; throws if its name is taken or contains '|' or ','.
+      /// Add @p entry; throws if its name is taken or contains '|', ',' or
+      /// a space.
       void
       add(SolverEntry entry);
 
@@ -121,33 +122,47 @@ namespace dualcontact
 
 
     /**
-     * Registers solver class @p Class (a class template on the vector type
-     * whose constructor takes SolverParameters) as @p key, accepting
-     * @p sets, described by @p text.  Used in
+     * The entry of solver class @p Solver (a class template on the vector
+     * type whose constructor takes SolverParameters) as @p name, accepting
+     * @p sets, described by @p description; @p chainable: whether an `Auto
+     * chain ...` parameter may name it.
+     */
+    template <template <typename> class Solver>
+    SolverEntry
+    solver_entry(const std::string &name,
+                 const AcceptedSets sets,
+                 const std::string &description,
+                 const bool         chainable = true)
+    {
+      SolverEntry entry;
+      entry.name          = name;
+      entry.description   = description;
+      entry.accepted_sets = sets;
+      entry.chainable     = chainable;
+      entry.create_serial = [](const SolverParameters &p)
+        -> std::unique_ptr<SolverBase<dealii::Vector<double>>>
+      { return std::make_unique<Solver<dealii::Vector<double>>>(p); };
+      entry.create_distributed = [](const SolverParameters &p)
+        -> std::unique_ptr<SolverBase<dealii::TrilinosWrappers::MPI::Vector>> {
+        return std::make_unique<Solver<dealii::TrilinosWrappers::MPI::Vector>>(
+          p);
+      };
+      return entry;
+    }
+
+
+    /// @p names separated by '|' (a Patterns::Selection, a --solver list).
+    std::string
+    join_names(const std::vector<std::string> &names);
+
+
+    /**
+     * Registers solver class @p Class as @p key (solver_entry()): used in
      * register_builtin_solvers(); a program adds its own solvers the same
      * way.
      */
-#define DUALCONTACT_QP_REGISTER_SOLVER(registry, Class, key, sets, text)      \
-  do                                                                          \
-  {                                                                           \
-    ::dualcontact::qp::SolverEntry entry_;                                    \
-    entry_.name          = key;                                               \
-    entry_.description   = text;                                              \
-    entry_.accepted_sets = sets;                                              \
-    entry_.create_serial = [](const ::dualcontact::qp::SolverParameters &p)   \
-      -> std::unique_ptr<                                                     \
-        ::dualcontact::qp::SolverBase<dealii::Vector<double>>>                \
-    { return std::make_unique<Class<dealii::Vector<double>>>(p); };           \
-    entry_.create_distributed =                                               \
-      [](const ::dualcontact::qp::SolverParameters &p)                        \
-      -> std::unique_ptr<                                                     \
-        ::dualcontact::qp::SolverBase<dealii::TrilinosWrappers::MPI::Vector>> \
-    {                                                                         \
-      return std::make_unique<Class<dealii::TrilinosWrappers::MPI::Vector>>(  \
-        p);                                                                   \
-    };                                                                        \
-    (registry).add(std::move(entry_));                                        \
-  } while (false)
+#define DUALCONTACT_QP_REGISTER_SOLVER(registry, Class, key, sets, text) \
+  (registry).add(::dualcontact::qp::solver_entry<Class>(key, sets, text))
   } // namespace qp
 } // namespace dualcontact
 
