@@ -38,6 +38,14 @@ namespace dualcontact
        * matrix for `automatic' (estimate_factor_megabytes()).
        */
       double memory_limit = 8192;
+      /**
+       * The preconditioner TFETIDual builds and supplies to the QP:
+       * "lumped", "dirichlet" (the interface Schur complements of the
+       * subdomains, one more factorization each) or anything else for
+       * none.  Not a parameter of this subsection: the driver copies
+       * `QP solver/Preconditioner'.
+       */
+      std::string preconditioner = "none";
 
       static void
       declare_parameters(dealii::ParameterHandler &prm);

@@ -2,9 +2,11 @@
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/timer.h>
 #include <deal.II/dofs/dof_tools.h>
+#include <deal.II/lac/dynamic_sparsity_pattern.h>
 
 #include <decomposition/cell_partition.h>
 #include <decomposition/tfeti_dual.h>
+#include <fem/cholmod_solver.h>
 #include <qp/power_iteration.h>
 #include <qp/separable_set.h>
 
@@ -163,6 +165,16 @@ namespace dualcontact
 
       build_constraint_rows();
       build_coarse_problem();
+      if (parameters.preconditioner == "lumped" ||
+          parameters.preconditioner == "dirichlet")
+      {
+        Timer preconditioner_timer;
+        build_preconditioner_scaling();
+        if (parameters.preconditioner == "dirichlet")
+          build_dirichlet_preconditioner(make_solver);
+        preconditioner_setup_time_ =
+          max_over_processes(preconditioner_timer.wall_time());
+      }
 
       // d = B K^# f - c
       std::vector<VectorType> f(subdomains_.size()), u;
@@ -600,6 +612,153 @@ namespace dualcontact
 
 
     template <int dim>
+    void
+    TFETIDual<dim>::build_dirichlet_preconditioner(
+      const std::function<std::unique_ptr<fem::StiffnessSolver>()>
+        &make_solver)
+    {
+      schur_.resize(subdomains_.size());
+      for (const unsigned int s : owned_)
+      {
+        // the interface: every local dof an entry of B_s touches
+        std::vector<unsigned int> interface;
+        interface.reserve(entries_[s].size());
+        for (const Entry &entry : entries_[s])
+          interface.push_back(entry.local);
+        std::sort(interface.begin(), interface.end());
+        interface.erase(std::unique(interface.begin(), interface.end()),
+                        interface.end());
+        schur_[s] = std::make_unique<InterfaceSchurComplement>(
+          subdomains_[s]->stiffness_matrix(),
+          interface,
+          make_solver(),
+          subdomains_[s]->name());
+      }
+    }
+
+
+    template <int dim>
+    void
+    TFETIDual<dim>::apply_dirichlet(VectorType       &dst,
+                                    const VectorType &src) const
+    {
+      Assert(has_dirichlet_preconditioner(),
+             ExcMessage("TFETIDual: the Dirichlet preconditioner was not "
+                        "built (DecompositionParameters::"
+                        "dirichlet_preconditioner)."));
+      apply_Bt(src, work_);
+      work_x_.resize(subdomains_.size());
+      for (const unsigned int s : owned_)
+        schur_[s]->vmult(work_x_[s], work_[s]);
+      dst.reinit(n_multipliers());
+      add_B(work_x_, dst);
+      sum_over_processes(dst);
+    }
+
+
+    template <int dim>
+    void
+    TFETIDual<dim>::build_preconditioner_scaling()
+    {
+      // (row, row, value) of B_s B_s' for the owned subdomains: the rows
+      // that share a local dof, grouped by subdomain and dof
+      std::vector<double> triples;
+      for (const unsigned int s : owned_)
+      {
+        std::vector<Entry> by_dof = entries_[s];
+        std::sort(by_dof.begin(),
+                  by_dof.end(),
+                  [](const Entry &a, const Entry &b)
+                  { return a.local < b.local; });
+        for (std::size_t begin = 0, end; begin < by_dof.size(); begin = end)
+        {
+          for (end = begin; end < by_dof.size() &&
+                            by_dof[end].local == by_dof[begin].local;
+               ++end)
+            ;
+          for (std::size_t i = begin; i < end; ++i)
+            for (std::size_t j = begin; j < end; ++j)
+              triples.insert(triples.end(),
+                             {static_cast<double>(by_dof[i].row),
+                              static_cast<double>(by_dof[j].row),
+                              by_dof[i].value * by_dof[j].value});
+        }
+      }
+      if (n_processes_ > 1)
+        triples = all_gather(triples, communicator_);
+      DynamicSparsityPattern pattern(n_multipliers());
+      for (std::size_t k = 0; k < triples.size(); k += 3)
+        pattern.add(static_cast<unsigned int>(triples[k]),
+                    static_cast<unsigned int>(triples[k + 1]));
+      bbt_sparsity_.copy_from(pattern);
+      bbt_.reinit(bbt_sparsity_);
+      for (std::size_t k = 0; k < triples.size(); k += 3)
+        bbt_.add(static_cast<unsigned int>(triples[k]),
+                 static_cast<unsigned int>(triples[k + 1]),
+                 triples[k + 2]);
+      bbt_solver_ = std::make_unique<fem::CholmodSolver>();
+      try
+      {
+        bbt_solver_->initialize(bbt_);
+      }
+      catch (const std::exception &error)
+      {
+        AssertThrow(false,
+                    ExcMessage("TFETI: B B', the scaling of the lumped and "
+                               "the Dirichlet preconditioner, is singular "
+                               "(the rows of B are dependent: contact rows "
+                               "on a dof that also carries a Dirichlet "
+                               "condition?); use `QP solver/Preconditioner "
+                               "= none'. " +
+                               std::string(error.what())));
+      }
+    }
+
+
+    template <int dim>
+    void
+    TFETIDual<dim>::apply_preconditioner_scaling(VectorType &v) const
+    {
+      scaled_.reinit(v.size(), true);
+      bbt_solver_->solve(scaled_, v);
+      v.swap(scaled_);
+    }
+
+
+    template <int dim>
+    void
+    TFETIDual<dim>::apply_scaled_preconditioner(VectorType       &dst,
+                                                const VectorType &src,
+                                                const bool dirichlet) const
+    {
+      Assert(bbt_solver_, ExcInternalError());
+      VectorType y = src;
+      apply_preconditioner_scaling(y);
+      if (dirichlet)
+        apply_dirichlet(dst, y);
+      else
+        apply_lumped(dst, y);
+      apply_preconditioner_scaling(dst);
+    }
+
+
+    template <int dim>
+    bool
+    TFETIDual<dim>::has_dirichlet_preconditioner() const
+    {
+      return !schur_.empty();
+    }
+
+
+    template <int dim>
+    double
+    TFETIDual<dim>::preconditioner_setup_time() const
+    {
+      return preconditioner_setup_time_;
+    }
+
+
+    template <int dim>
     qp::Problem<typename TFETIDual<dim>::VectorType>
     TFETIDual<dim>::make_problem() const
     {
@@ -613,13 +772,17 @@ namespace dualcontact
       problem.b /= scale_;
       // the power iteration's estimate approaches from below
       problem.lambda_max = 1.05;
-      // the lumped preconditioner of F / s is s B K B' (one operator for
-      // every free set: the solver zeroes the active entries)
-      problem.free_set_preconditioner = [this](const VectorType &)
+      // the lumped (Dirichlet) preconditioner of F / s is s Q B K B' Q
+      // (s Q B S B' Q): one operator for every free set, the solver zeroes
+      // the active entries
+      if (bbt_solver_)
+        problem.free_set_preconditioner = [this](const VectorType &)
       {
         return [this](VectorType &dst, const VectorType &src)
         {
-          apply_lumped(dst, src);
+          apply_scaled_preconditioner(dst,
+                                      src,
+                                      has_dirichlet_preconditioner());
           dst *= scale_;
         };
       };

@@ -89,10 +89,13 @@ namespace dualcontact
       dealii::ParameterHandler                        &prm    = prm_;
       if (decomposed())
       {
+        decomposition::DecompositionParameters parameters =
+          decomposition_parameters_;
+        parameters.preconditioner = qp_parameters_.preconditioner;
         dual_ = std::make_unique<decomposition::TFETIDual<dim>>(
           bodies,
           *contact_,
-          decomposition_parameters_,
+          parameters,
           [&prm, log = run_log_]()
           {
             auto solver = decomposition::make_subdomain_solver(prm);
@@ -139,6 +142,14 @@ namespace dualcontact
         details.push_back("Multipliers distributed by contact node: " +
                           nodes.str() + " nodes per process");
       }
+    }
+
+
+    template <int dim>
+    bool
+    ContactStage<dim>::needs_global_systems() const
+    {
+      return primal_parameters_.contact_solver == "primal" || !decomposed();
     }
 
 
@@ -195,6 +206,11 @@ namespace dualcontact
       }
       line << "; partition and assembly " << tfeti.decomposition_time()
            << " s, factorizations " << tfeti.stiffness_setup_time() << " s";
+      if (tfeti.preconditioner_setup_time() > 0)
+        line << ", preconditioner "
+             << (tfeti.has_dirichlet_preconditioner() ? "(Dirichlet) " :
+                                                        "(lumped) ")
+             << tfeti.preconditioner_setup_time() << " s";
       details.push_back(line.str());
     }
 

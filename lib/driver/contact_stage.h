@@ -186,6 +186,19 @@ namespace dualcontact
         return pair_results_;
       }
 
+      /**
+       * Whether `Decomposition/Method' resolves to tfeti for this scene
+       * (the bodies set up): the dual is TFETI.
+       */
+      bool
+      decomposed() const;
+      /**
+       * Whether the solve needs the bodies' assembled K and f: every path
+       * but the TFETI dual (the primal method factorizes the bodies' K).
+       */
+      bool
+      needs_global_systems() const;
+
     private:
       /**
        * Appends to the failure reason what makes a frictional scene
@@ -195,9 +208,7 @@ namespace dualcontact
       void
       explain_failure();
 
-      /** Whether `Decomposition/Method' resolves to tfeti for this scene. */
-      bool
-      decomposed() const;
+
       /** The console line on the subdomains and multipliers of TFETI. */
       void
       describe_decomposition(std::vector<std::string> &details) const;

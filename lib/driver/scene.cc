@@ -242,8 +242,15 @@ namespace dualcontact
 
     template <int dim>
     void
-    Scene<dim>::assemble()
+    Scene<dim>::assemble(std::vector<std::string> &details,
+                         const bool                global_systems)
     {
+      if (!global_systems)
+      {
+        details.push_back("no global stiffness matrix: TFETI assembles "
+                          "each subdomain's own (Factorization phase)");
+        return;
+      }
       for (auto &body : bodies_)
         body->assemble();
     }

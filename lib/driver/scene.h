@@ -66,9 +66,15 @@ namespace dualcontact
       /** Setup phase: dofs and constraints of every body. */
       void
       setup(std::vector<std::string> &details);
-      /** Assembly phase: K and f of every body (condensed). */
+      /**
+       * Assembly phase: K and f of every body (condensed), unless
+       * @p global_systems is false (TFETI assembles each subdomain's own
+       * K_s and f_s; the bodies' stiffness_matrix() and load_vector() are
+       * then not available).
+       */
       void
-      assemble();
+      assemble(std::vector<std::string> &details,
+               const bool                global_systems = true);
       /** Solve phase (no contact): u = K^{-1} f per body. */
       void
       solve(std::vector<std::string> &details);

@@ -342,7 +342,16 @@ namespace dualcontact
                     });
         }
         run_phase("Setup", [&]() { scene.setup(details_); });
-        run_phase("Assembly", [&]() { scene.assemble(); });
+        // TFETI needs no global K (FCLIB's export does: it writes the
+        // undecomposed problem)
+        run_phase("Assembly",
+                  [&]()
+                  {
+                    scene.assemble(details_,
+                                   !has_contact ||
+                                     contact_->needs_global_systems() ||
+                                     output_.fclib_problem != "none");
+                  });
         if (has_contact)
         {
           ContactStage<dim> &contact = *contact_;

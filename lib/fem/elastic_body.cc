@@ -150,19 +150,10 @@ namespace dualcontact
                                "root or logarithm of a negative number, an "
                                "overflow)."));
 
-      DynamicSparsityPattern dsp(dof_handler_.n_dofs());
-      // every cell, also on a parallel::shared::Triangulation (where
-      // DoFTools::make_sparsity_pattern would visit the locally owned cells
-      // only): the body's K is the whole matrix on every process
-      std::vector<types::global_dof_index> cell_dofs(fe_.n_dofs_per_cell());
-      for (const auto &cell : dof_handler_.active_cell_iterators())
-      {
-        cell->get_dof_indices(cell_dofs);
-        constraints_.add_entries_local_to_global(cell_dofs, dsp, false);
-      }
-      sparsity_.copy_from(dsp);
-      stiffness_.reinit(sparsity_);
-      load_.reinit(dof_handler_.n_dofs());
+      // a new set of dofs: the system of the old ones is gone
+      stiffness_.clear();
+      sparsity_.reinit(0, 0, 0);
+      load_.reinit(0);
     }
 
 
@@ -368,8 +359,21 @@ namespace dualcontact
     void
     ElasticBody<dim>::assemble()
     {
-      stiffness_ = 0;
-      load_      = 0;
+      Assert(dof_handler_.n_dofs() > 0, ExcMessage(name_ + ": setup() first."));
+      DynamicSparsityPattern dsp(dof_handler_.n_dofs());
+      // every cell, also on a parallel::shared::Triangulation (where
+      // DoFTools::make_sparsity_pattern would visit the locally owned cells
+      // only): the body's K is the whole matrix on every process
+      std::vector<types::global_dof_index> cell_dofs(fe_.n_dofs_per_cell());
+      for (const auto &cell : dof_handler_.active_cell_iterators())
+      {
+        cell->get_dof_indices(cell_dofs);
+        constraints_.add_entries_local_to_global(cell_dofs, dsp, false);
+      }
+      stiffness_.clear();
+      sparsity_.copy_from(dsp);
+      stiffness_.reinit(sparsity_);
+      load_.reinit(dof_handler_.n_dofs());
       CellScratch        scratch(mapping_, curved_mapping_, fe_);
       FullMatrix<double> cell_matrix;
       Vector<double>     cell_rhs;
@@ -721,6 +725,7 @@ namespace dualcontact
     const SparseMatrix<double> &
     ElasticBody<dim>::stiffness_matrix() const
     {
+      Assert(is_assembled(), ExcMessage(name_ + ": assemble() first."));
       return stiffness_;
     }
 
@@ -728,7 +733,15 @@ namespace dualcontact
     const Vector<double> &
     ElasticBody<dim>::load_vector() const
     {
+      Assert(is_assembled(), ExcMessage(name_ + ": assemble() first."));
       return load_;
+    }
+
+    template <int dim>
+    bool
+    ElasticBody<dim>::is_assembled() const
+    {
+      return load_.size() > 0 && load_.size() == dof_handler_.n_dofs();
     }
 
     template <int dim>

@@ -111,17 +111,26 @@ namespace dualcontact
       set_body_force(std::shared_ptr<const dealii::Function<dim>> body_force);
 
       /**
-       * Distribute the degrees of freedom, build the constraints and the
-       * sparsity pattern.  Throws if a cell has a material id without a
-       * material, or a boundary condition names a boundary id that the mesh
-       * does not have.
+       * Distribute the degrees of freedom and build the constraints.
+       * Throws if a cell has a material id without a material, or a
+       * boundary condition names a boundary id that the mesh does not
+       * have.
        */
       void
       setup();
 
-      /** Assemble K and f (requires setup()). */
+      /**
+       * Build the sparsity pattern and assemble K and f, condensed
+       * (requires setup()).  Not needed by TFETI, which assembles each
+       * subdomain's K_s and f_s with assemble_cells(): at 408,483 dofs the
+       * global pattern and matrix are ~0.5 GB that no subdomain uses.
+       */
       void
       assemble();
+
+      /** Whether assemble() was called since the last setup(). */
+      bool
+      is_assembled() const;
 
       /**
        * K_S and f_S of the cells @p cells alone, without any constraint (no

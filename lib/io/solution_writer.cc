@@ -68,6 +68,12 @@ namespace dualcontact
         data_out->build_patches(body.mapping(),
                                 body.fe().degree,
                                 dealii::DataOut<dim>::curved_inner_cells);
+        // zlib's fastest level: deal.II's default (best compression) took
+        // most of the 36 s Output phase of the 128,000-cell brick (issue
+        // 17) for files that are only ~15 % smaller
+        dealii::DataOutBase::VtkFlags flags;
+        flags.compression_level = dealii::DataOutBase::VtkFlags::best_speed;
+        data_out->set_flags(flags);
         folder.write(piece_name(b, rank),
                      [&data_out](std::ostream &out)
                      { data_out->write_vtu(out); });

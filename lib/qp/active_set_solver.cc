@@ -281,11 +281,15 @@ namespace dualcontact
       projected_cg =
         prm.expansion == "projected-cg" && !variant.barzilai_borwein && !weak;
 
-      preconditioned = prm.preconditioner != "none" &&
-                       variant.step == ActiveSetVariant::Step::proportioning &&
-                       !weak;
+      // preconditioning in face changes only the CG steps on the free set
+      // (active blocks stay fixed: apply_preconditioner() zeroes them), so
+      // MPGP and MPGP-BB take it as MPRGP does; the preconditioned release
+      // replaces MPRGP's proportioning step and stays MPRGP's
+      preconditioned = prm.preconditioner != "none" && !weak;
       release_preconditioned =
-        preconditioned && prm.proportioning_step == "preconditioned";
+        preconditioned &&
+        variant.step == ActiveSetVariant::Step::proportioning &&
+        prm.proportioning_step == "preconditioned";
       if (preconditioned)
       {
         mask.reinit(x);

@@ -155,9 +155,10 @@ namespace dualcontact
         "Unit: none.");
       prm.declare_entry("Preconditioner",
                         d.preconditioner,
-                        Selection("none|jacobi|amg|lumped"),
-                        "MPRGP only: preconditioning in face (Dostal 2009, "
-                        "sec. 5.10). The CG steps on the free set use "
+                        Selection("none|jacobi|amg|lumped|dirichlet"),
+                        "MPRGP, MPGP and MPGP-BB: preconditioning in face "
+                        "(Dostal 2009, sec. 5.10). The CG steps on the free "
+                        "set use "
                         "z = M_F^{-1} phi, M_F a preconditioner of the "
                         "free-set block A_FF rebuilt whenever the active set "
                         "changes. none: plain MPRGP; jacobi: M_F = "
@@ -166,8 +167,11 @@ namespace dualcontact
                         "(qpsolve: Trilinos ML AMG on A with the active rows "
                         "and columns replaced by identity rows); lumped: "
                         "TFETI's lumped preconditioner sum_s B_s K_s B_s' "
-                        "(the free-set preconditioner of the TFETI dual). "
-                        "Unit: none.");
+                        "(the free-set preconditioner of the TFETI dual); "
+                        "dirichlet: TFETI's Dirichlet preconditioner "
+                        "sum_s B_s S_s B_s', S_s the Schur complement of "
+                        "K_s onto the dofs B_s touches (one more "
+                        "factorization per subdomain). Unit: none.");
       prm.declare_entry(
         "Proportioning step",
         d.proportioning_step,
@@ -307,10 +311,11 @@ namespace dualcontact
             projected_cg_gradient_factor >= 1.))
         fail("Projected-CG gradient factor", "must be 0 (off) or at least 1.");
       if (preconditioner != "none" && preconditioner != "jacobi" &&
-          preconditioner != "amg" && preconditioner != "lumped")
+          preconditioner != "amg" && preconditioner != "lumped" &&
+          preconditioner != "dirichlet")
         fail("Preconditioner",
-             "must be none, jacobi, amg or lumped (got '" + preconditioner +
-               "').");
+             "must be none, jacobi, amg, lumped or dirichlet (got '" +
+               preconditioner + "').");
       if (proportioning_step != "chopped-gradient" &&
           proportioning_step != "preconditioned")
         fail("Proportioning step",
@@ -318,7 +323,8 @@ namespace dualcontact
                proportioning_step + "').");
       if (proportioning_step == "preconditioned" && preconditioner == "none")
         fail("Proportioning step",
-             "preconditioned needs Preconditioner = jacobi, amg or lumped.");
+             "preconditioned needs Preconditioner = jacobi, amg, lumped or "
+             "dirichlet.");
       if (!(mwpgp_delta > 0. && mwpgp_delta < 0.5))
         fail("MwPGP delta", "must lie in (0, 1/2).");
       if (pbbf_k < 1)

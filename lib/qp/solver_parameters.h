@@ -96,9 +96,11 @@ namespace dualcontact
       /// Problem::diagonal), "amg" (the operator returned by
       /// Problem::free_set_preconditioner for the active set; qpsolve
       /// builds Trilinos ML on A with the active rows and columns
-      /// replaced by identity rows) or "lumped" (the same factory; the
-      /// TFETI dual supplies its lumped preconditioner there).  The proportioning test and the
-      /// expansions are MPRGP's.  Only MPRGP uses it.
+      /// replaced by identity rows), "lumped" or "dirichlet" (the same
+      /// factory; the TFETI dual supplies its lumped or its Dirichlet
+      /// preconditioner there).  MPRGP, MPGP and MPGP-BB use it in their
+      /// CG steps; the proportioning test and the expansions stay each
+      /// solver's own.  MwPGP does not use it.
       std::string preconditioner = "none";
       /// MPRGP's proportioning step: "chopped-gradient" (thesis: steepest
       /// descent along beta, cut at the bounds) or, with a preconditioner
