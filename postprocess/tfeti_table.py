@@ -4,12 +4,14 @@
 Usage: tfeti_table.py BENCH_DIR
 
 One row per run folder (L<level>_<method><subdomains>_tol<tol>_np<processes>
-[_noprojector]; without _np: 1 process; _noprojector: SMALSE-M's penalty
-form without the coarse projector): processes, wall time
+[_noprojector][_prec<preconditioner>]; without _np: 1 process;
+_noprojector: SMALSE-M's penalty form without the coarse projector;
+_prec: `QP solver/Preconditioner', lumped or dirichlet): processes, wall time
 and peak memory (run.json, postprocess/run_case.py), subdomains, dofs of
 the subdomains, multipliers, coarse problem order, SMALSE-M outer and
 inner iterations, Hessian products, time of the factorizations and of the
-QP (statistics.json), and the outcome.
+QP (statistics.json), the largest jump between two copies of a dof
+relative to the largest |u| (the gluing residual), and the outcome.
 """
 import json
 import os
@@ -22,7 +24,7 @@ def main():
     rows = []
     for name in os.listdir(bench_dir):
         m = re.match(r"L(\d+)_(none|tfeti)(\d*)_tol([^_]*)(?:_np(\d+))?"
-                     r"(_noprojector)?$", name)
+                     r"(_noprojector)?(?:_prec(\w+))?$", name)
         if not m:
             continue
         case = os.path.join(bench_dir, name)
@@ -33,7 +35,8 @@ def main():
         stats_file = os.path.join(case, "out", "statistics.json")
         method = m.group(2)
         if method == "tfeti":
-            method += " (penalty)" if m.group(6) else " (projector)"
+            method += " (penalty" if m.group(6) else " (projector"
+            method += (", " + m.group(7) + ")") if m.group(7) else ")"
         row = {"level": int(m.group(1)), "method": method,
                "subdomains": int(m.group(3)) if m.group(3) else 0,
                "tol": m.group(4), "np": int(m.group(5) or 1),
@@ -54,13 +57,15 @@ def main():
             row["n_sub"] = decomposition.get("n_subdomains", 1)
             row["dofs"] = decomposition.get("n_subdomain_dofs", "")
             row["coarse"] = decomposition.get("coarse_problem_order", 0)
+            jump = decomposition.get("relative_interface_jump")
+            row["jump"] = f"{jump:.1e}" if jump is not None else "-"
         rows.append(row)
     rows.sort(key=lambda r: (r["level"], float(r["tol"]), r["method"] != "none",
                              r["subdomains"], r["np"]))
     print("| mesh | tol | method | processes | subdomains | dofs | multipliers | coarse | "
           "outer / inner / products | factorization s | QP s | wall s | peak MB "
-          "(largest process) | load | outcome |")
-    print("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|")
+          "(largest process) | load | jump | outcome |")
+    print("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|")
     for r in rows:
         L = r["level"]
         print(f"| {L}x{2*L}x{L} | {r['tol']} | {r['method']} | {r['np']} | "
@@ -68,7 +73,7 @@ def main():
               f"{r.get('dofs', '-')} | {r.get('multipliers', '-')} | {r.get('coarse', '-')} | "
               f"{r.get('outer', '-')} / {r.get('inner', '-')} / {r.get('products', '-')} | "
               f"{r.get('setup', 0):.1f} | {r.get('qp_time', 0):.1f} | {r['wall']:.1f} | "
-              f"{r['peak']:.0f} | {r['load']} | {r['outcome']} |")
+              f"{r['peak']:.0f} | {r['load']} | {r.get('jump', '-')} | {r['outcome']} |")
 
 
 if __name__ == "__main__":

@@ -687,6 +687,8 @@ namespace dualcontact
       if (n_processes_ > 1)
         triples = all_gather(triples, communicator_);
       DynamicSparsityPattern pattern(n_multipliers());
+      for (unsigned int r = 0; r < n_multipliers(); ++r)
+        pattern.add(r, r);
       for (std::size_t k = 0; k < triples.size(); k += 3)
         pattern.add(static_cast<unsigned int>(triples[k]),
                     static_cast<unsigned int>(triples[k + 1]));
@@ -696,6 +698,12 @@ namespace dualcontact
         bbt_.add(static_cast<unsigned int>(triples[k]),
                  static_cast<unsigned int>(triples[k + 1]),
                  triples[k + 2]);
+      // a zero row of B (a contact node whose dofs are all under Dirichlet
+      // conditions, condensed out of the contact rows) couples to nothing:
+      // Q is the identity there
+      for (unsigned int r = 0; r < n_multipliers(); ++r)
+        if (bbt_.diag_element(r) == 0.)
+          bbt_.diag_element(r) = 1.;
       bbt_solver_ = std::make_unique<fem::CholmodSolver>();
       try
       {
@@ -706,10 +714,10 @@ namespace dualcontact
         AssertThrow(false,
                     ExcMessage("TFETI: B B', the scaling of the lumped and "
                                "the Dirichlet preconditioner, is singular "
-                               "(the rows of B are dependent: contact rows "
-                               "on a dof that also carries a Dirichlet "
-                               "condition?); use `QP solver/Preconditioner "
-                               "= none'. " +
+                               "(the rows of B are linearly dependent: "
+                               "contact rows of two pairs on the same "
+                               "dofs?); use `QP solver/Preconditioner = "
+                               "none'. " +
                                std::string(error.what())));
       }
     }
