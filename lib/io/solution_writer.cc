@@ -68,9 +68,10 @@ namespace dualcontact
         data_out->build_patches(body.mapping(),
                                 body.fe().degree,
                                 dealii::DataOut<dim>::curved_inner_cells);
-        // zlib's fastest level: deal.II's default (best compression) took
-        // most of the 36 s Output phase of the 128,000-cell brick (issue
-        // 17) for files that are only ~15 % smaller
+        // zlib's fastest level: with deal.II's default (best compression)
+        // the Output phase of the 128,000-cell brick took 36 s, with this
+        // 10.7 s on a busier machine, for a body_1.vtu 4 % larger (71.9
+        // against 68.9 MB; issue 17, doc/benchmarks/tfeti.md)
         dealii::DataOutBase::VtkFlags flags;
         flags.compression_level = dealii::DataOutBase::VtkFlags::best_speed;
         data_out->set_flags(flags);
