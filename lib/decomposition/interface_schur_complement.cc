@@ -71,11 +71,12 @@ namespace dualcontact
       catch (const std::exception &error)
       {
         AssertThrow(false,
-                    ExcMessage(name + ": the factorization of its interior "
-                                      "stiffness K_ii (interface clamped) "
-                                      "for the Dirichlet preconditioner "
-                                      "(`QP solver/Preconditioner = "
-                                      "dirichlet') failed: " +
+                    ExcMessage(name +
+                               ": the factorization of its interior "
+                               "stiffness K_ii (interface clamped) "
+                               "for the Dirichlet preconditioner "
+                               "(`QP solver/Preconditioner = "
+                               "dirichlet') failed: " +
                                std::string(error.what()) +
                                " A subdomain whose interface does not hold "
                                "its rigid motions needs lumped or none."));

@@ -38,8 +38,8 @@ namespace dualcontact
        * sorted list of local dofs) and factorizes it with @p solver.
        * @p name (the subdomain's) is in the message when K_ii is singular.
        */
-      InterfaceSchurComplement(const dealii::SparseMatrix<double> &stiffness,
-                               const std::vector<unsigned int>    &interface,
+      InterfaceSchurComplement(const dealii::SparseMatrix<double>   &stiffness,
+                               const std::vector<unsigned int>      &interface,
                                std::unique_ptr<fem::StiffnessSolver> solver,
                                const std::string                    &name);
 
@@ -62,9 +62,9 @@ namespace dualcontact
     private:
       const dealii::SparseMatrix<double> &stiffness_;
       /** The interior dofs in local numbering, ascending. */
-      std::vector<unsigned int> interior_;
-      unsigned int              n_interface_;
-      dealii::SparsityPattern   interior_sparsity_;
+      std::vector<unsigned int>             interior_;
+      unsigned int                          n_interface_;
+      dealii::SparsityPattern               interior_sparsity_;
       dealii::SparseMatrix<double>          interior_stiffness_;
       std::unique_ptr<fem::StiffnessSolver> solver_;
       mutable dealii::Vector<double>        extension_, interior_rhs_,

@@ -614,8 +614,7 @@ namespace dualcontact
     template <int dim>
     void
     TFETIDual<dim>::build_dirichlet_preconditioner(
-      const std::function<std::unique_ptr<fem::StiffnessSolver>()>
-        &make_solver)
+      const std::function<std::unique_ptr<fem::StiffnessSolver>()> &make_solver)
     {
       schur_.resize(subdomains_.size());
       for (const unsigned int s : owned_)
@@ -672,8 +671,8 @@ namespace dualcontact
                   { return a.local < b.local; });
         for (std::size_t begin = 0, end; begin < by_dof.size(); begin = end)
         {
-          for (end = begin; end < by_dof.size() &&
-                            by_dof[end].local == by_dof[begin].local;
+          for (end = begin;
+               end < by_dof.size() && by_dof[end].local == by_dof[begin].local;
                ++end)
             ;
           for (std::size_t i = begin; i < end; ++i)
@@ -785,15 +784,15 @@ namespace dualcontact
       // the active entries
       if (bbt_solver_)
         problem.free_set_preconditioner = [this](const VectorType &)
-      {
-        return [this](VectorType &dst, const VectorType &src)
         {
-          apply_scaled_preconditioner(dst,
-                                      src,
-                                      has_dirichlet_preconditioner());
-          dst *= scale_;
+          return [this](VectorType &dst, const VectorType &src)
+          {
+            apply_scaled_preconditioner(dst,
+                                        src,
+                                        has_dirichlet_preconditioner());
+            dst *= scale_;
+          };
         };
-      };
 
       // the contact blocks; gluing and Dirichlet multipliers are in none:
       // free

@@ -6,11 +6,11 @@
 
 #include <contact/contact_discretization.h>
 #include <contact/dual_formulation.h>
+#include <deal.II/lac/sparse_matrix.h>
+#include <deal.II/lac/sparsity_pattern.h>
 #include <decomposition/decomposition_parameters.h>
 #include <decomposition/interface_schur_complement.h>
 #include <decomposition/subdomain.h>
-#include <deal.II/lac/sparse_matrix.h>
-#include <deal.II/lac/sparsity_pattern.h>
 
 #include <fem/elastic_body.h>
 #include <fem/stiffness_solver.h>
@@ -78,9 +78,10 @@ namespace dualcontact
      * k subdomains (condition number 34 at k = 4, 640 at k = 8), and
      * measured it cost iterations; Q makes the two exact at such a dof
      * (Q B S B' Q = F^{-1} for one dof with equal stiffnesses).  B B' is
-     * sparse (rows meet only at shared dofs) and factorized once.  Used: MPRGP, MPGP and MPGP-BB use it in face
-     * with `Preconditioner = lumped' or `dirichlet' (SMALSE-M composes it
-     * with the coarse projector: P M P + G~'G~ / rho).
+     * sparse (rows meet only at shared dofs) and factorized once.  Used: MPRGP,
+     * MPGP and MPGP-BB use it in face with `Preconditioner = lumped' or
+     * `dirichlet' (SMALSE-M composes it with the coarse projector: P M P +
+     * G~'G~ / rho).
      *
      * <b>Recovery</b>: u_s = K_s^#(f_s - B_s'lambda) + R_s alpha_s, alpha
      * the least-squares solution of G_A' alpha = -(B u - c)_A over the rows
@@ -272,7 +273,7 @@ namespace dualcontact
       /** dst = (B B')^{-1} B_s A_s B_s' (B B')^{-1} src summed over the
        *  subdomains, A_s = K_s (lumped) or S_s (Dirichlet). */
       void
-      apply_scaled_preconditioner(VectorType &dst,
+      apply_scaled_preconditioner(VectorType       &dst,
                                   const VectorType &src,
                                   const bool        dirichlet) const;
       /** The InterfaceSchurComplement of every owned subdomain, on the
@@ -349,10 +350,10 @@ namespace dualcontact
        *  preconditioner). */
       std::vector<std::unique_ptr<InterfaceSchurComplement>> schur_;
       /** B B' and its factor (built with either preconditioner). */
-      dealii::SparsityPattern                bbt_sparsity_;
-      dealii::SparseMatrix<double>           bbt_;
+      dealii::SparsityPattern                       bbt_sparsity_;
+      dealii::SparseMatrix<double>                  bbt_;
       mutable std::unique_ptr<fem::StiffnessSolver> bbt_solver_;
-      mutable VectorType                     scaled_;
+      mutable VectorType                            scaled_;
       double preconditioner_setup_time_ = 0;
     };
   } // namespace decomposition

@@ -491,10 +491,10 @@ namespace
    * SMALSE-M, composed with the coarse projector) on a clamped 3D beam of
    * 16 x 4 x 4 cells in 16 subdomains (gluing and Dirichlet multipliers
    * only) and on the frictionless block on block of E: the same answer as
-   * without it, in fewer iterations.  Both runs also check the projector's outer loop on a
-   * problem without inequalities: from the infeasible start it spent 90
-   * outer iterations without inner work before SMALSE-M tightened M there
-   * (the beam without the preconditioner hit the 100-outer limit).
+   * without it, in fewer iterations.  Both runs also check the projector's
+   * outer loop on a problem without inequalities: from the infeasible start it
+   * spent 90 outer iterations without inner work before SMALSE-M tightened M
+   * there (the beam without the preconditioner hit the 100-outer limit).
    */
   void
   lumped_preconditioner()
@@ -591,8 +591,8 @@ namespace
         (i % 4 == 0 ? interface : interior).push_back(i);
       const decomposition::InterfaceSchurComplement schur(
         K, interface, std::make_unique<fem::CholmodSolver>(), "subdomain 0");
-      FullMatrix<double> Kii(interior.size()), Kib(interior.size(),
-                                                   interface.size());
+      FullMatrix<double> Kii(interior.size()),
+        Kib(interior.size(), interface.size());
       FullMatrix<double> S(interface.size());
       for (unsigned int r = 0; r < interior.size(); ++r)
       {
@@ -663,8 +663,7 @@ namespace
                 iterations.back());
         }
         check(iterations[0] < iterations[1],
-              "  " + name + ", " + solver +
-                ": fewer inner iterations with it",
+              "  " + name + ", " + solver + ": fewer inner iterations with it",
               std::to_string(iterations[0]) + " against " +
                 std::to_string(iterations[1]));
         const double difference = relative_difference(results[0].displacements,
