@@ -112,7 +112,11 @@ namespace dualcontact
           k_hat = 0;
           ++stats.n_fall_back;
         }
-        stop = this->check_stop(stats, this->criterion(problem, x, g, stats));
+        // with the cost of the remembered point, which only falls: a new
+        // least cost is progress (stagnation test)
+        stop = this->check_stop(stats,
+                                this->criterion(problem, x, g, stats),
+                                f_min);
       }
       this->finish(problem, x, stats);
       return stats;
