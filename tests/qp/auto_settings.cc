@@ -13,7 +13,7 @@
 //     iterations (measured 13), and its record says so ("measured: ...
 //     preconditioner=amg"); with `Auto settings = given' (the thesis'
 //     table 14) the same chain needs more than ten times as many (measured
-//     889): bounds that fail if the measured settings are not applied.
+//     932): bounds that fail if the measured settings are not applied.
 #include "planted_problems.h"
 
 #include <qp/free_set_amg.h>

@@ -220,7 +220,7 @@ main()
   // membrane of benchmark B4 (PERMON's variant, h = 100, a sparse Hessian
   // on bounds) runs MPRGP with the AMG in face and the other measured
   // settings: converged in at most 20 iterations (measured 13; the
-  // thesis' settings need 889); `Auto settings = given' keeps the thesis'
+  // thesis' settings need 932); `Auto settings = given' keeps the thesis'
   {
     const Result m = run("--make-membrane --dir " + dir +
                          "/membrane --variant permon --h 100");
