@@ -85,11 +85,10 @@ main(int argc, char **argv)
     SolverParameters prm;
     prm.tolerance = 1e-6;
     const SolverChain<Vec> chain(prm);
-    const auto sparse = make(HessianStorage::sparse_matrix, true);
-    const auto p      = chain.attempt_parameters(sparse, "mprgp");
+    const auto             sparse = make(HessianStorage::sparse_matrix, true);
+    const auto             p      = chain.attempt_parameters(sparse, "mprgp");
     check.check(p.solver == "mprgp" && p.gamma == 2. &&
-                  p.expansion == "projected-cg" &&
-                  p.projected_cg_trials == 8 &&
+                  p.expansion == "projected-cg" && p.projected_cg_trials == 8 &&
                   p.projected_cg_gradient_factor == 1.25 &&
                   p.preconditioner == "amg" &&
                   p.proportioning_step == "preconditioned" &&
@@ -97,8 +96,9 @@ main(int argc, char **argv)
                 "sparse Hessian with an AMG factory: mprgp with Gamma 2, "
                 "projected-CG T8 R1.25, amg, preconditioned release (" +
                   SolverChain<Vec>::describe_settings(p) + ")");
-    const auto no_factory = chain.attempt_parameters(
-      make(HessianStorage::sparse_matrix, false), "mprgp");
+    const auto no_factory =
+      chain.attempt_parameters(make(HessianStorage::sparse_matrix, false),
+                               "mprgp");
     check.check(no_factory.gamma == 2. &&
                   no_factory.expansion == "projected-cg" &&
                   no_factory.projected_cg_trials == 1 &&
@@ -127,8 +127,8 @@ main(int argc, char **argv)
 
     SolverParameters given = prm;
     given.auto_settings    = "given";
-    check.check(thesis_settings(SolverChain<Vec>(given).attempt_parameters(
-                  sparse, "mprgp")),
+    check.check(thesis_settings(
+                  SolverChain<Vec>(given).attempt_parameters(sparse, "mprgp")),
                 "Auto settings = given: the parameters given");
     SolverParameters user = prm;
     user.gamma            = 3.;
@@ -148,7 +148,7 @@ main(int argc, char **argv)
     SolverChain<Vec> chain(prm);
     const auto       problem = make(HessianStorage::sparse_matrix, true);
     Vec              x(n);
-    const auto       s = chain.solve(problem, x);
+    const auto       s  = chain.solve(problem, x);
     measured_iterations = s.iterations;
     std::cout << "membrane (permon) h = 100, defaults: " << s.iterations
               << " iterations, " << s.n_hessian_products << " products, "
