@@ -20,7 +20,7 @@ namespace
   /**
    * Take `--prm FILE' and `--set TEXT' out of @p arguments; if there were
    * any, read them into @p driver's starting parameters: subsection `QP
-   * solver' as dualcontact declares it (default solver mprgp, qpsolve's),
+   * solver' as dualcontact declares it (default solver auto, as qpsolve's),
    * the file and the settings checked like dualcontact's.
    */
   void
@@ -49,9 +49,6 @@ namespace
       return;
     dealii::ParameterHandler prm;
     qp::SolverParameters::declare_parameters(prm);
-    prm.enter_subsection("QP solver");
-    prm.set("Solver", "mprgp");
-    prm.leave_subsection();
     if (!file.empty())
       io::parse_parameter_file(prm, file, false);
     io::apply_parameter_overrides(prm, overrides, false);

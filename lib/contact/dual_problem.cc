@@ -518,6 +518,9 @@ namespace dualcontact
       problem.b /= scale_;
       // the power iteration's estimate approaches from below
       problem.lambda_max = 1.05;
+      // F = B K^+ B' is dense: `auto' keeps the given parameters
+      // (SolverChain::attempt_parameters)
+      problem.hessian_storage = qp::HessianStorage::dense_matrix;
 
       auto set = std::make_shared<qp::SeparableSet<VectorType>>();
       this->add_contact_blocks(*set);
@@ -566,7 +569,8 @@ namespace dualcontact
       };
       problem.b = *d_distributed_;
       problem.b /= scale_;
-      problem.lambda_max = 1.05;
+      problem.lambda_max      = 1.05;
+      problem.hessian_storage = qp::HessianStorage::dense_matrix;
 
       // the blocks of the owned nodes only (the same as make_problem()'s)
       auto               set     = std::make_shared<qp::SeparableSet<V>>();

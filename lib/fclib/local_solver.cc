@@ -493,6 +493,8 @@ namespace dualcontact
       if (scaled)
         qp.b.scale(scale_);
       qp.constraints  = set;
+      // W (dense Delassus operator): `auto' keeps the given parameters
+      qp.hessian_storage = dualcontact::qp::HessianStorage::dense_matrix;
       qp.lambda_max   = scaled ? qp_lambda_max_ : lambda_max_ + rho;
       qp.semidefinite = true;
       // the QP criterion is relative to ||b||; the proximal and lagged

@@ -92,7 +92,7 @@ namespace dualcontact
         ++stats.n_bb;
 
         // fall-back update: remember a point of sufficient decrease
-        const double f = cost(x, g);
+        double f = cost(x, g);
         if (f < f_min)
         {
           projected_step(x_min, g_min, x, g, alpha_bar);
@@ -109,10 +109,14 @@ namespace dualcontact
           x_min = x;
           g_min = g;
           f_min = cost(x_min, g_min);
+          f     = f_min; // x is x_min now
           k_hat = 0;
           ++stats.n_fall_back;
         }
-        stop = this->check_stop(stats, this->criterion(problem, x, g, stats));
+        // with the cost of x: a new least cost is progress (stagnation
+        // test)
+        stop =
+          this->check_stop(stats, this->criterion(problem, x, g, stats), f);
       }
       this->finish(problem, x, stats);
       return stats;

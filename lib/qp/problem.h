@@ -46,6 +46,24 @@ namespace dualcontact
      * Description of a QP.  Solvers count every call of `hessian`, so
      * nothing else should call it during a solve.
      */
+    /**
+     * What the Hessian is, as far as `Solver = auto` cares when it
+     * chooses the settings of its solvers (SolverChain::
+     * attempt_parameters): an assembled sparse matrix whose
+     * Problem::free_set_preconditioner is an AMG of it (qpsolve: the
+     * membrane of benchmark B4, where MPRGP with the AMG in face is 4 to
+     * 20 times faster than without), a dense matrix (the contact dual F,
+     * FCLIB's Delassus W: products cost O(n^2), no multigrid), or an
+     * operator of unknown form (the default; auto then uses the given
+     * parameters).
+     */
+    enum class HessianStorage
+    {
+      operator_only,
+      sparse_matrix,
+      dense_matrix
+    };
+
     template <typename VectorType>
     struct Problem
     {
@@ -84,6 +102,10 @@ namespace dualcontact
       /// hint: A may be singular (SPS).  Informational: MPRGP runs the
       /// solvability test of MPRGPS (thesis 2.4.5) in any case.
       bool semidefinite = false;
+      /// hint for `Solver = auto` (HessianStorage): who builds A as a
+      /// sparse matrix and supplies free_set_preconditioner sets
+      /// sparse_matrix
+      HessianStorage hessian_storage = HessianStorage::operator_only;
       /**
        * Optional: A x0 - b at the start x0 that is passed to solve().
        * Loops that solve QPs with the same A and b one after another, each

@@ -270,8 +270,11 @@ namespace dualcontact
       if (progress)
       {
         progress_iteration = stats.iterations;
+        // the least cost seen at a progress: the same as the last cost
+        // for the monotone solvers, and for the non-monotone ones (SPG-QP,
+        // PBBf) a rise and fall back is not progress
         if (std::isfinite(cost))
-          cost_at_progress = cost;
+          cost_at_progress = std::min(cost_at_progress, cost);
       }
       if (stats.iterations >= prm.max_iterations)
       {

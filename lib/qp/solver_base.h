@@ -130,9 +130,10 @@ namespace dualcontact
        * (converged), stats.iterations >= max_iterations (max_iterations),
        * or for stagnation_window iterations there was no progress
        * (stagnation).  Progress is a new minimum of the criterion, or,
-       * when the solver passes the cost @p cost of its iterate (monotone
-       * solvers: MPRGP, MPGP, MwPGP), a decrease of the cost by more than
-       * a relative 1e-12 since the last progress.  The criterion of the
+       * when the solver passes a cost @p cost (the active-set solvers:
+       * their iterate's; SPG-QP and PBBf: their iterate's, non-monotone),
+       * a cost below the least cost at a progress
+       * by more than a relative 1e-12.  (APGD passes none.)  The criterion of the
        * active-set solvers is not monotone: while the active set is being
        * found (thousands of expansions at n = 10^6) it may stay above its
        * minimum for long stretches in which the cost falls steadily, and

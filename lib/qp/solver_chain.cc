@@ -7,6 +7,7 @@
 #include <deal.II/lac/vector.h>
 
 #include <cmath>
+#include <sstream>
 
 namespace dualcontact
 {
@@ -37,6 +38,84 @@ namespace dualcontact
                SolverParameters::parse_chain(this->prm.auto_chain_bounds,
                                              false,
                                              "Auto chain for bounds");
+    }
+
+
+    template <typename VectorType>
+    SolverParameters
+    SolverChain<VectorType>::attempt_parameters(
+      const Problem<VectorType> &problem,
+      const std::string         &name) const
+    {
+      SolverParameters parameters = this->prm;
+      parameters.solver           = name;
+      if (this->prm.auto_settings != "measured")
+        return parameters;
+      // settings the user chose win: the measured ones replace only the
+      // thesis' table-14 values
+      const SolverParameters thesis;
+      const bool             chosen_by_user =
+        parameters.gamma != thesis.gamma ||
+        parameters.expansion != thesis.expansion ||
+        parameters.projected_cg_trials != thesis.projected_cg_trials ||
+        parameters.projected_cg_gradient_factor !=
+          thesis.projected_cg_gradient_factor ||
+        parameters.preconditioner != thesis.preconditioner ||
+        parameters.proportioning_step != thesis.proportioning_step;
+      if (chosen_by_user)
+        parameters.auto_settings = "given";
+      if (chosen_by_user || name != "mprgp" || problem.equality != nullptr ||
+          problem.hessian_storage != HessianStorage::sparse_matrix)
+        return parameters;
+      // PERMON's best MPGP setting, and ours without a preconditioner
+      // (doc/benchmarks/membrane.md, parts 2 and "Defaults (issue 20)")
+      parameters.gamma     = 2.;
+      parameters.expansion = "projected-cg";
+      if (problem.free_set_preconditioner)
+      {
+        // the AMG in face with the trials that keep its whole step from
+        // over-activating, and the preconditioned release
+        parameters.projected_cg_trials          = 8;
+        parameters.projected_cg_gradient_factor = 1.25;
+        parameters.preconditioner               = "amg";
+        parameters.proportioning_step           = "preconditioned";
+      }
+      return parameters;
+    }
+
+
+    template <typename VectorType>
+    std::string
+    SolverChain<VectorType>::describe_settings(
+      const SolverParameters &parameters)
+    {
+      std::ostringstream s;
+      s << parameters.auto_settings << ":";
+      const std::string &name = parameters.solver;
+      if (name == "mprgp" || name == "mpgp" || name == "mpgp-bb")
+        s << " gamma=" << parameters.gamma;
+      if (name == "mprgp" || name == "mpgp")
+      {
+        s << ", expansion=" << parameters.expansion;
+        if (parameters.expansion == "projected-cg")
+          s << ", projected-cg-trials=" << parameters.projected_cg_trials
+            << ", projected-cg-gradient-factor="
+            << parameters.projected_cg_gradient_factor;
+      }
+      if (name == "mprgp")
+        s << ", preconditioner=" << parameters.preconditioner
+          << ", proportioning=" << parameters.proportioning_step;
+      if (name != "mprgp" && name != "mpgp" && name != "mpgp-bb")
+        s << " table 14";
+      return s.str();
+    }
+
+
+    template <typename VectorType>
+    const SolverParameters &
+    SolverChain<VectorType>::chosen_parameters() const
+    {
+      return last_parameters;
     }
 
 
@@ -81,12 +160,14 @@ namespace dualcontact
           cleared.start_gradient.reset();
           attempt_problem = &cleared;
         }
-        SolverParameters parameters = this->prm;
-        parameters.solver           = names[k];
+        const SolverParameters parameters =
+          attempt_parameters(problem, names[k]);
+        last_parameters = parameters;
         if (problem.equality)
         {
           SMALSEM<VectorType> smalse(parameters, smalse_prm);
           attempts.push_back(smalse.solve(*attempt_problem, x));
+          attempts.back().settings = describe_settings(parameters);
           last_equality_residual    = smalse.equality_residual();
           this->last_gradient_valid = false;
         }
@@ -94,6 +175,7 @@ namespace dualcontact
         {
           auto solver = create<VectorType>(names[k], parameters);
           attempts.push_back(solver->solve(*attempt_problem, x));
+          attempts.back().settings = describe_settings(parameters);
           // the returned iterate's gradient, if its solver ended with it
           const VectorType *gradient = solver->final_gradient();
           this->last_gradient_valid  = gradient != nullptr;

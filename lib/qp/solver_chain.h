@@ -63,6 +63,49 @@ namespace dualcontact
       std::vector<std::string>
       chain(const Problem<VectorType> &problem) const;
 
+      /**
+       * The parameters the attempt with solver @p name gets on @p problem:
+       * the chain's own parameters with `solver = name`, and, with `Auto
+       * settings = measured` (the default), the settings measured best for
+       * the problem's kind (doc/benchmarks/membrane.md, "Defaults (issue
+       * 20)"):
+       * - MPRGP without equality constraints on an assembled sparse
+       *   Hessian (Problem::hessian_storage == sparse_matrix) whose
+       *   problem supplies a free-set preconditioner factory: Gamma = 2,
+       *   Expansion = projected-cg, 8 Projected-CG trials, gradient factor
+       *   1.25, Preconditioner = amg, Proportioning step = preconditioned
+       *   (membrane, PERMON's variant, h = 50 ... 800: 9 to 35 iterations,
+       *   against 244 to 7708 for PERMON's best MPGP setting);
+       * - MPRGP on an assembled sparse Hessian without such a factory:
+       *   Gamma = 2 and Expansion = projected-cg (PERMON's best setting;
+       *   the membrane at h = 400: 2947 iterations against 10,000+ with
+       *   the thesis' defaults);
+       * - everything else (a dense Hessian: the contact dual F, FCLIB's
+       *   W; an operator; the other solvers): the parameters given.
+       * The measured settings replace only the thesis' table-14 values:
+       * when any of Gamma, Expansion, Projected-CG trials, Projected-CG
+       * gradient factor, Preconditioner and Proportioning step differs
+       * from them, every attempt runs with the parameters given (and
+       * its `auto_settings` says "given").
+       */
+      SolverParameters
+      attempt_parameters(const Problem<VectorType> &problem,
+                         const std::string         &name) const;
+
+      /// "measured: gamma=2, expansion=projected-cg, ..." (or "given:
+      /// ..."): the settings of @p parameters that @p parameters.solver
+      /// uses (MPRGP: Gamma, expansion, trials, gradient factor,
+      /// preconditioner, proportioning step; MPGP: the first four;
+      /// MPGP-BB: Gamma; others: the thesis' table-14 parameters, not
+      /// listed), as SolverStatistics::settings of each attempt.
+      static std::string
+      describe_settings(const SolverParameters &parameters);
+
+      /// The parameters of the attempt whose record the last solve()
+      /// returned (SolverStatistics::chosen_attempt).
+      const SolverParameters &
+      chosen_parameters() const;
+
       SolverStatistics
       solve(const Problem<VectorType> &problem, VectorType &x) override;
 
@@ -73,6 +116,7 @@ namespace dualcontact
     private:
       SMALSEMParameters smalse_prm;
       double            last_equality_residual = 0.;
+      SolverParameters  last_parameters;
     };
   } // namespace qp
 } // namespace dualcontact

@@ -84,6 +84,22 @@ namespace dualcontact
                         "iterate of the failed attempt (true) or from the "
                         "initial guess (false); after a non-finite value it "
                         "always starts from the initial guess. Unit: none.");
+      prm.declare_entry("Auto settings",
+                        d.auto_settings,
+                        Selection("measured|given"),
+                        "Solver auto: measured (default): the chain's "
+                        "solvers get the settings measured best for the "
+                        "problem's kind (lib/qp/README.md, doc/benchmarks/"
+                        "membrane.md, section Defaults): MPRGP on bounds "
+                        "with an assembled sparse Hessian (qpsolve) runs "
+                        "with Gamma = 2, Expansion = projected-cg, 8 "
+                        "Projected-CG trials, gradient factor 1.25, "
+                        "Preconditioner = amg and Proportioning step = "
+                        "preconditioned; a dense or matrix-free Hessian (the "
+                        "contact dual, FCLIB) keeps the parameters of this "
+                        "subsection. given: every solver of the chain runs "
+                        "with the parameters of this subsection (the "
+                        "thesis' table 14 unless set). Unit: none.");
       prm.declare_entry("Tolerance",
                         "1e-8",
                         Double(0., 1.),
@@ -280,6 +296,7 @@ namespace dualcontact
       auto_chain_bounds  = prm.get("Auto chain for bounds");
       auto_chain_general = prm.get("Auto chain for general sets");
       auto_warm_start    = prm.get_bool("Auto warm start");
+      auto_settings      = prm.get("Auto settings");
       prm.leave_subsection();
       check();
     }
@@ -345,6 +362,9 @@ namespace dualcontact
         fail("Power iteration maximum iterations", "must be at least 1.");
       if (!(power_tolerance > 0.))
         fail("Power iteration tolerance", "must be positive.");
+      if (auto_settings != "measured" && auto_settings != "given")
+        fail("Auto settings",
+             "must be measured or given (got '" + auto_settings + "').");
       parse_chain(auto_chain_bounds, false, "Auto chain for bounds");
       parse_chain(auto_chain_general, true, "Auto chain for general sets");
     }

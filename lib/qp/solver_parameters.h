@@ -156,6 +156,16 @@ namespace dualcontact
       /// (true) or from the initial guess (false); a non-finite iterate
       /// always restarts from the initial guess
       bool auto_warm_start = true;
+      /// auto: "measured" (default): SolverChain::attempt_parameters gives
+      /// each attempt the settings measured best for the problem's kind
+      /// (Problem::hessian_storage): MPRGP on bounds with an assembled
+      /// sparse Hessian and a free-set preconditioner factory runs with
+      /// Gamma 2, projected-CG expansion with 8 trials and gradient factor
+      /// 1.25, the AMG in face and the preconditioned release (benchmark
+      /// B4, doc/benchmarks/membrane.md "Defaults (issue 20)"); every
+      /// other case keeps the parameters given.  "given": every attempt
+      /// runs with the parameters given (the thesis' table 14 unless set).
+      std::string auto_settings = "measured";
 
       /// Not a parameter of the .prm: what a program that wants to show
       /// progress during a long solve sets (see solver_progress.h).  Every

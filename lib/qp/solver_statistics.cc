@@ -94,6 +94,8 @@ namespace dualcontact
       j["converged"]          = converged();
       if (!message.empty())
         j["message"] = message;
+      if (!settings.empty())
+        j["settings"] = settings;
       j["iterations"]         = iterations;
       j["iterations_by_kind"] = {{"cg", n_cg},
                                  {"half_step", n_half_steps},

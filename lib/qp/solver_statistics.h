@@ -79,6 +79,10 @@ namespace dualcontact
       ConvergenceReason reason = ConvergenceReason::max_iterations;
       /// free text with details of a failure (empty on success)
       std::string message;
+      /// the settings the solver ran with, where a caller chose them
+      /// (the chain `auto`, SolverChain::describe_settings: "gamma=2,
+      /// expansion=projected-cg, ..."); empty otherwise
+      std::string settings;
 
       unsigned int iterations      = 0;
       unsigned int n_cg            = 0;

@@ -117,7 +117,9 @@ namespace dualcontact
         // inverse Rayleigh quotient, within [1/lambda_max, 1/lambda_min]
         alpha = dAd > 0. ? dd / dAd : prm.spg_alpha0_factor / lmax;
 
-        stop = this->check_stop(stats, this->criterion(problem, x, g, stats));
+        // with the cost: a new least cost is progress (stagnation test)
+        stop =
+          this->check_stop(stats, this->criterion(problem, x, g, stats), f);
       }
       this->finish(problem, x, stats);
       return stats;

@@ -4,6 +4,7 @@
 #include <qp/membrane_generator.h>
 #include <qp/problem_io.h>
 #include <qp/smalse_m.h>
+#include <qp/solver_chain.h>
 #include <qp/solver_factory.h>
 #include <tools/command_line.h>
 #include <tools/qpsolve_driver.h>
@@ -36,7 +37,8 @@ namespace dualcontact
       struct Options
       {
         std::string problem_file;
-        std::string solver = "mprgp";
+        /// the fall-back chain with measured settings, as dualcontact's
+        std::string solver = "auto";
         /// --solver given (else a base parameter set's solver is used)
         bool        solver_given = false;
         double      tolerance    = -1.;
@@ -220,7 +222,7 @@ namespace dualcontact
              "[--set \"QP solver/Entry=value\"]...\n"
              "--prm, --set: the QP solver's parameters by the names of "
              "dualcontact's .prm (subsection `QP solver', see `dualcontact "
-             "--print-parameters'; default solver mprgp); the options above "
+             "--print-parameters'; default solver auto); the options above "
              "override them.\n"
              "--preconditioner: MPRGP with preconditioning in face (jacobi: "
              "diag(A) on the free set; amg: Trilinos ML on A with the active "
@@ -230,6 +232,14 @@ namespace dualcontact
              "place for each active set; 0: a full setup each time; "
              "--amg-keep-fraction F (default 0) keeps the hierarchy while "
              "at most F * n unknowns changed state).\n"
+             "--solver auto (the default): the fall-back chain; on bound and box "
+             "constraints it runs MPRGP with the settings measured best "
+             "(Gamma 2, projected-CG expansion with 8 trials and gradient "
+             "factor 1.25, AMG in face, preconditioned release) unless one "
+             "of --gamma, --expansion, --projected-cg-trials, "
+             "--projected-cg-gradient-factor, --proportioning is given "
+             "(then it uses those; `QP solver/Auto settings=given' keeps "
+             "the thesis' table 14).\n"
              "--projected-cg-gradient-factor R (>= 1; 0 = off): keep the "
              "least-cost projected-CG trial among those whose ||g^P|| is "
              "within R of the least.\n"
@@ -377,10 +387,11 @@ namespace dualcontact
         if (!options.proportioning.empty())
           prm.proportioning_step = options.proportioning;
         if (prm.preconditioner != "none")
-          AssertThrow(options.solver == "mprgp",
+          AssertThrow(options.solver == "mprgp" || options.solver == "auto",
                       dealii::ExcMessage(
                         "--preconditioner " + prm.preconditioner +
-                        ": only --solver mprgp preconditions in face"));
+                        ": only --solver mprgp (or auto, whose MPRGP) "
+                        "preconditions in face"));
         prm.check();
 
         const ProblemData &d = *data;
@@ -390,8 +401,19 @@ namespace dualcontact
         auto diagonal = std::make_shared<Vec>(d.size());
         for (unsigned int i = 0; i < d.size(); ++i)
           (*diagonal)[i] = d.hessian.diag_element(i);
-        problem.diagonal = diagonal;
-        if (prm.preconditioner == "amg")
+        problem.diagonal        = diagonal;
+        problem.hessian_storage = HessianStorage::sparse_matrix;
+        // the chain `auto' with measured settings runs MPRGP with the AMG
+        // in face on bound and box constraints without equalities
+        // (SolverChain::attempt_parameters): it needs the factory
+        bool only_bounds = true;
+        for (const auto &block : d.constraints)
+          only_bounds =
+            only_bounds && (block.type == "bound" || block.type == "box");
+        const bool auto_amg = prm.solver == "auto" &&
+                              prm.auto_settings == "measured" &&
+                              only_bounds && !d.has_equality();
+        if (prm.preconditioner == "amg" || auto_amg)
         {
           FreeSetAMG::Parameters amg_parameters;
           if (options.amg_keep_fraction >= 0.)
@@ -477,6 +499,8 @@ namespace dualcontact
       double least_cpu_time = std::numeric_limits<double>::infinity();
       // FreeSetAMG's counters before the last run
       unsigned int amg_full_setups = 0, amg_recomputes = 0, amg_kept = 0;
+      // the preconditioner the (chosen) solver ran with
+      std::string chosen_preconditioner = prm.preconditioner;
       for (long run = 0; run < options.repeat; ++run)
       {
         try
@@ -525,6 +549,10 @@ namespace dualcontact
             // equality constraints, or the solver itself
             auto solver = make_solver<Vec>(prm, SMALSEMParameters(), problem);
             stats       = solver->solve(problem, x);
+            // the settings the chain chose (its chosen attempt's)
+            if (const auto *chain =
+                  dynamic_cast<const SolverChain<Vec> *>(solver.get()))
+              chosen_preconditioner = chain->chosen_parameters().preconditioner;
             if (problem.equality)
               equality_residual = solver->equality_residual();
           }
@@ -575,7 +603,9 @@ namespace dualcontact
       j["runs"]                      = options.repeat;
       j["cpu_time"]                  = number(least_cpu_time);
       j["final_criterion"]           = number(stats.final_criterion);
-      j["preconditioner"]            = prm.preconditioner;
+      j["preconditioner"]            = chosen_preconditioner;
+      if (!stats.settings.empty())
+        j["settings"] = stats.settings;
       j["preconditioner_setups"]     = stats.n_preconditioner_setups;
       j["preconditioner_setup_time"] = number(stats.preconditioner_setup_time);
       j["preconditioner_applications"] = stats.n_preconditioner_applications;

@@ -10,6 +10,9 @@
 //    equality_residual reported;
 //  - the bound problem with --solver mprgp --preconditioner jacobi|amg:
 //    exit 0, preconditioner setups reported;
+//  - the defaults (no --solver: auto) on the B4 membrane at h = 100: mprgp
+//    with the AMG in face and the measured settings, <= 20 iterations; with
+//    `Auto settings = given' or --gamma the settings given;
 //  - --max-iter 2: exit 2, reason max_iterations;
 //  - bad inputs (missing file, bad field, unknown solver, cgc with a disc
 //    block, bad --tol): exit 1 with a message naming the file/field/option.
@@ -211,6 +214,50 @@ main()
     check(e.code == 0 && contains(e.out, "smalse-m(mprgp)") &&
             contains(e.out, "\"equality_residual\""),
           "--solver auto with equality constraints: SMALSE-M around mprgp");
+  }
+
+  // the defaults (issue 20): no solver option is `auto', which on the
+  // membrane of benchmark B4 (PERMON's variant, h = 100, a sparse Hessian
+  // on bounds) runs MPRGP with the AMG in face and the other measured
+  // settings: converged in at most 20 iterations (measured 13; the
+  // thesis' settings need 932); `Auto settings = given' keeps the thesis'
+  {
+    const Result m = run("--make-membrane --dir " + dir +
+                         "/membrane --variant permon --h 100");
+    check(m.code == 0, "qpsolve --make-membrane --h 100: exit 0");
+    const Result r = run(dir + "/membrane/membrane.json --tol 1e-6");
+    unsigned int iterations = 0;
+    const auto   at         = r.out.find("\n  \"iterations\": ");
+    if (at != std::string::npos)
+      iterations = std::stoul(r.out.substr(at + 17));
+    check(r.code == 0 && contains(r.out, "\"solver\": \"auto\"") &&
+            contains(r.out, "\"chosen_solver\": \"mprgp\"") &&
+            contains(r.out, "\"preconditioner\": \"amg\"") &&
+            contains(r.out, "\"settings\": \"measured: gamma=2, "
+                            "expansion=projected-cg, projected-cg-trials=8, "
+                            "projected-cg-gradient-factor=1.25, "
+                            "preconditioner=amg, "
+                            "proportioning=preconditioned\"") &&
+            iterations >= 1 && iterations <= 20,
+          "qpsolve membrane (no solver option): auto chooses mprgp with the "
+          "AMG in face, converged in " +
+            std::to_string(iterations) + " <= 20 iterations");
+    if (!(r.code == 0 && iterations >= 1 && iterations <= 20))
+      std::cout << r.out << r.err;
+    const Result g = run(dir + "/membrane/membrane.json --tol 1e-6 "
+                               "--set 'QP solver/Auto settings=given'");
+    check(g.code == 0 && contains(g.out, "\"preconditioner\": \"none\"") &&
+            contains(g.out, "\"settings\": \"given: gamma=1, "
+                            "expansion=alpha-bar"),
+          "qpsolve --set 'QP solver/Auto settings=given': the thesis' "
+          "MPRGP");
+    const Result u = run(dir + "/membrane/membrane.json --tol 1e-6 "
+                               "--gamma 2 --expansion projected-cg");
+    check(u.code == 0 && contains(u.out, "\"preconditioner\": \"none\"") &&
+            contains(u.out, "\"settings\": \"given: gamma=2, "
+                            "expansion=projected-cg"),
+          "qpsolve --gamma 2 --expansion projected-cg (auto): the settings "
+          "given, no AMG added");
   }
 
   // the .prm names (issue 18): `--prm FILE' and `--set', with the options
