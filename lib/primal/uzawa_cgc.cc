@@ -679,6 +679,7 @@ namespace dualcontact
         {"rho", rho},
         {"norm_G_Kinv_Gt", lipschitz},
         {"last_mu_change", mu_changes.empty() ? 0. : mu_changes.back()},
+        {"mu_changes", mu_changes},
         {"cgc_solves", n_cgc_solves},
         {"inner_iterations", total_inner_iterations},
         {"outer_iterations", total_outer_iterations},
