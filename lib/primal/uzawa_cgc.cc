@@ -701,9 +701,9 @@ namespace dualcontact
       // bound sum_m c_{m,r} psi_m (per node: psi mu and psi)
       VectorType psi_mu(psi_);
       psi_mu.scale(mu_);
-      const VectorType force = to_rows(psi_mu);
+      const VectorType force      = to_rows(psi_mu);
       result.friction_multipliers = mu_;
-      const VectorType bound = to_rows(psi_);
+      const VectorType bound      = to_rows(psi_);
       result.lambda.reinit(contact_.n_nodes() + force.size());
       const VectorType l = lambda_N();
       for (unsigned int i = 0; i < contact_.n_nodes(); ++i)

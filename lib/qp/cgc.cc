@@ -627,9 +627,8 @@ namespace dualcontact
         }
 
         const unsigned int steps_before = stats.iterations;
-        const auto  exit = run.cg(facet, tolerance, facet.size() != J.size());
-        release_one_next =
-          J.size() - facet.size() > 1 && run.blocked_at_start;
+        const auto exit  = run.cg(facet, tolerance, facet.size() != J.size());
+        release_one_next = J.size() - facet.size() > 1 && run.blocked_at_start;
         OuterRecord record;
         record.n_active         = J.size();
         record.n_facet          = facet.size();

@@ -223,7 +223,7 @@ per_edge_conditions(const std::string &name, Scene &scene)
   check(result.friction_multipliers.size() == faces.size(),
         name + " per edge: one multiplier per slave face, faces",
         faces.size());
-  const Vector<double> s = nodal_slip(scene, result.displacements);
+  const Vector<double> s     = nodal_slip(scene, result.displacements);
   double               s_max = 0.;
   std::vector<double>  s_face(faces.size(), 0.);
   for (unsigned int f = 0; f < faces.size(); ++f)
@@ -272,7 +272,7 @@ per_edge_all_stick(const std::string &name, Scene &scene)
   // every face sticks in the mean: int_f slip ds = 0 (the prescribed
   // sideways move is 2e-4 m over faces of 1/6 m); the nodal slips need not
   // vanish (n - 1 faces, n nodes: P0 multipliers leave one zigzag mode)
-  const Vector<double> s = nodal_slip(scene, result.displacements);
+  const Vector<double> s          = nodal_slip(scene, result.displacements);
   double               s_face_max = 0.;
   for (const auto &face : scene.contact->faces())
   {
