@@ -13,32 +13,46 @@
 //             [26,30]x[12,30], deck (region 5) [10,50]x[30,32], glued
 //             (one conforming mesh, three material regions)
 //
+// The three contact lines are separate, as the report's "10 - 15, 16 - 11
+// and 14 - 17" (six distinct end vertices): the slip surface runs the whole
+// incline (32,8)-(56,20); the foundation stands on the ground line only
+// between x = 24 and x = 30 (the last metre pair [30,32] at the corner is
+// free); the slope's lower end face touches the foundation's right face
+// only between y = 10 and y = 12 (its lower part [8,10] is free).  So no
+// point belongs to two contact lines, and every contact row acts on its own
+// two nodes.
+//
+// The meshes match along the contact lines (node-to-node rows, as the
+// report's: LJA = 40 = 10 rows x 4 entries): both sides of each contact line
+// have the same nodes.
+//
 // Physical tags: cells get the region number as material id (1..5); the
 // boundary lines get these boundary ids (distinct over all bodies):
 //   bedrock:  1 bottom y = 0 (fixed), 2 flat ground under the foundation
-//             x in [24,32] (slave of contact 2), 3 incline under the slope
+//             x in [24,30] (slave of contact 2), 3 incline under the slope
 //             mass x in [32,56] (master of contact 1), 4 the other (free)
 //             lines
-//   slope:    5 slip surface (slave of contact 1), 6 lower end face x = 32
-//             (slave of contact 3), 7 up-slope end face x = 56 (prescribed
-//             displacement u0), 8 top (free)
-//   pier:     9 foundation bottom (master of contact 2), 10 foundation right
-//             face x = 32 (master of contact 3), 11 deck top (load P),
-//             12 deck left end x = 10 (pinned), 13 deck right end x = 50
-//             (roller), 14 the other (free) lines
+//   slope:    5 slip surface (slave of contact 1), 6 upper part y in
+//             [10,12] of the lower end face x = 32 (slave of contact 3),
+//             7 up-slope end face x = 56 (prescribed displacement u0),
+//             8 top and the lower part of the end face (free)
+//   pier:     9 foundation bottom x in [24,30] (master of contact 2),
+//             10 foundation right face y in [10,12] (master of contact 3),
+//             11 deck top (load P), 12 deck left end x = 10 (pinned),
+//             13 deck right end x = 50 (roller), 14 the other (free) lines
 //
-// The app needs quadrilaterals (deal.II): the bedrock is meshed with
-// triangles recombined into quads (Blossom), the slope mass and the pier
-// body are structured; the report used 551 linear triangles.  Every line is
-// divided into a fixed number of segments, times 2^level (transfinite
-// lines, even totals so that Blossom leaves no triangle).  The slave lines
-// are coarse so that the coarse level has the report's 10 contact nodes
-// (5 on the slip surface, 3 under the foundation, 2 on the slope's lower end
-// face); the master surfaces of the pier body are finer (1 m cells; the
-// meshes need not match).  Coarse level: 360 vertices, 261 quadrilaterals
-// (report: 380 vertices, 551 triangles).
+// The app needs quadrilaterals (deal.II): the bedrock and the foundation are
+// meshed with triangles recombined into quads (Blossom), the slope mass, the
+// pier and the deck are structured; the report used 551 linear triangles.
+// Every line is divided into a fixed number of segments, times 2^level
+// (transfinite lines, even totals per recombined surface so that Blossom
+// leaves no triangle).  The contact lines are coarse so that the coarse
+// level has the report's 10 contact node pairs (5 on the slip surface, 3
+// under the foundation, 2 on the slope's lower end face).
 //
-// Generate (meshes/make_bridge_pier regenerates all nine files):
+// Generate (meshes/make_bridge_pier regenerates all nine files and rounds
+// the node coordinates so that the two sides of a contact line agree
+// exactly):
 //   gmsh -2 -format msh22 -setnumber body 1 -setnumber level 0 \
 //        bridge_pier.geo -o bridge_pier_body1_level0.msh
 
@@ -59,11 +73,12 @@ Mesh.ElementOrder = 1;
 Mesh.SaveAll = 0;                 // only the physical groups
 Mesh.MshFileVersion = 2.2;
 
-// number of segments of the slave lines (coarse level: 4 + 2 + 1 segments,
-// 5 + 3 + 2 = 10 slave nodes)
-n_incline = 4 * f;
-n_flat    = 2 * f;
-n_end     = 1 * f;
+// segments of the contact lines (coarse level: 4 + 2 + 1 segments,
+// 5 + 3 + 2 = 10 contact node pairs) and of the free pieces between them
+n_incline = 4 * f;   // slip surface (32,8)-(56,20)
+n_flat    = 2 * f;   // ground under the foundation (24,8)-(30,8)
+n_end     = 1 * f;   // slope end face on the foundation (32,10)-(32,12)
+n_gap     = 1 * f;   // free pieces (30,8)-(32,8) and (32,8)-(32,10)
 
 If (body == 1)
   Point(1) = {0, 0, 0, lc_rock / f};
@@ -71,31 +86,34 @@ If (body == 1)
   Point(3) = {60, 22, 0, lc_rock / f};
   Point(4) = {56, 20, 0, lc_slope / f};
   Point(5) = {32, 8, 0, lc_found / f};
+  Point(8) = {30, 8, 0, lc_found / f};
   Point(6) = {24, 8, 0, lc_found / f};
   Point(7) = {0, 8, 0, lc_rock / f};
   Line(1) = {1, 2};
   Line(2) = {2, 3};
   Line(3) = {3, 4};
-  Line(4) = {4, 5};   // incline under the slope mass
-  Line(5) = {5, 6};   // flat ground under the foundation
+  Line(4) = {5, 4};   // incline under the slope mass (same direction as the slope's)
+  Line(5) = {5, 8};   // free piece of the ground at the corner
+  Line(8) = {6, 8};   // ground under the foundation (same direction as the foundation's)
   Line(6) = {6, 7};
   Line(7) = {7, 1};
   Transfinite Line{4} = n_incline + 1;
-  Transfinite Line{5} = n_flat + 1;
+  Transfinite Line{8} = n_flat + 1;
+  Transfinite Line{5} = n_gap + 1;
   // every line's division fixed, with an even total, so that Blossom
   // recombines into quadrilaterals only
   Transfinite Line{1} = 20 * f + 1;
   Transfinite Line{2} = 8 * f + 1;
   Transfinite Line{3} = 1 * f + 1;
   Transfinite Line{6} = 8 * f + 1;
-  Transfinite Line{7} = 3 * f + 1;
-  Curve Loop(1) = {1, 2, 3, 4, 5, 6, 7};
+  Transfinite Line{7} = 2 * f + 1;
+  Curve Loop(1) = {1, 2, 3, -4, 5, -8, 6, 7};
   Plane Surface(1) = {1};
   Physical Surface(1) = {1};
   Physical Line(1) = {1};
-  Physical Line(2) = {5};
+  Physical Line(2) = {8};
   Physical Line(3) = {4};
-  Physical Line(4) = {2, 3, 6, 7};
+  Physical Line(4) = {2, 3, 5, 6, 7};
 EndIf
 
 If (body == 2)
@@ -103,20 +121,24 @@ If (body == 2)
   Point(2) = {56, 20, 0, lc_slope / f};
   Point(3) = {56, 24, 0, lc_slope / f};
   Point(4) = {32, 12, 0, lc_slope / f};
+  Point(5) = {32, 10, 0, lc_slope / f};
   Line(1) = {1, 2};   // slip surface
   Line(2) = {2, 3};   // up-slope end face
   Line(3) = {3, 4};   // top
-  Line(4) = {4, 1};   // lower end face (against the foundation)
+  Line(4) = {5, 4};   // upper part of the lower end face (against the foundation)
+  Line(5) = {5, 1};   // lower part of the lower end face (free)
   Transfinite Line{1, 3} = n_incline + 1;
-  Transfinite Line{2, 4} = n_end + 1;
-  Curve Loop(1) = {1, 2, 3, 4};
+  Transfinite Line{4} = n_end + 1;
+  Transfinite Line{5} = n_gap + 1;
+  Transfinite Line{2} = n_end + n_gap + 1;
+  Curve Loop(1) = {1, 2, 3, -4, 5};
   Plane Surface(1) = {1};
-  Transfinite Surface{1};
+  Transfinite Surface{1} = {1, 2, 3, 4};
   Physical Surface(2) = {1};
   Physical Line(5) = {1};
   Physical Line(6) = {4};
   Physical Line(7) = {2};
-  Physical Line(8) = {3};
+  Physical Line(8) = {3, 5};
 EndIf
 
 If (body == 3)
@@ -127,6 +149,8 @@ If (body == 3)
   Point(4) = {30, 12, 0, lc_pier / f};
   Point(5) = {26, 12, 0, lc_pier / f};
   Point(6) = {24, 12, 0, lc_pier / f};
+  Point(15) = {30, 8, 0, lc_pier / f};
+  Point(16) = {32, 10, 0, lc_pier / f};
   // pier top = deck bottom
   Point(7) = {30, 30, 0, lc_pier / f};
   Point(8) = {26, 30, 0, lc_pier / f};
@@ -135,8 +159,10 @@ If (body == 3)
   Point(10) = {50, 32, 0, lc_pier / f};
   Point(11) = {10, 32, 0, lc_pier / f};
   Point(12) = {10, 30, 0, lc_pier / f};
-  Line(1) = {1, 2};    // foundation bottom
-  Line(2) = {2, 3};    // foundation right face
+  Line(1) = {1, 15};   // foundation bottom on the ground (contact 2)
+  Line(15) = {15, 2};  // foundation bottom at the corner (free)
+  Line(16) = {2, 16};  // foundation right face, lower part (free)
+  Line(2) = {16, 3};   // foundation right face, upper part (contact 3)
   Line(3) = {3, 4};
   Line(4) = {4, 5};    // foundation / pier
   Line(5) = {5, 6};
@@ -149,10 +175,14 @@ If (body == 3)
   Line(12) = {10, 11}; // deck top
   Line(13) = {11, 12}; // deck left end
   Line(14) = {12, 8};  // deck bottom left
-  // structured: 1 m cells on the coarse level (the master surfaces of
-  // contacts 2 and 3 may be finer than the slave lines)
-  Transfinite Line{1} = 8 * f + 1;
-  Transfinite Line{2, 6} = 4 * f + 1;
+  // the contact lines as coarse as their partners' (matching nodes); the
+  // foundation is recombined (Blossom, even total: 2+1+2+1+2+4+2+4 = 18),
+  // the pier and the deck structured with 1 m cells
+  Transfinite Line{1} = n_flat + 1;
+  Transfinite Line{15} = n_gap + 1;
+  Transfinite Line{16} = 2 * n_gap + 1;
+  Transfinite Line{2} = n_end + 1;
+  Transfinite Line{6} = 4 * f + 1;
   Transfinite Line{3, 5} = 2 * f + 1;
   Transfinite Line{4, 8} = 4 * f + 1;
   Transfinite Line{7, 9} = 18 * f + 1;
@@ -160,9 +190,8 @@ If (body == 3)
   Transfinite Line{11, 13} = 2 * f + 1;
   Transfinite Line{12} = 40 * f + 1;
   Transfinite Line{14} = 16 * f + 1;
-  Curve Loop(1) = {1, 2, 3, 4, 5, 6};
+  Curve Loop(1) = {1, 15, 16, 2, 3, 4, 5, 6};
   Plane Surface(1) = {1};
-  Transfinite Surface{1} = {1, 2, 3, 6};
   Curve Loop(2) = {-4, 7, 8, 9};
   Plane Surface(2) = {2};
   Transfinite Surface{2};
@@ -177,5 +206,5 @@ If (body == 3)
   Physical Line(11) = {12};
   Physical Line(12) = {13};
   Physical Line(13) = {11};
-  Physical Line(14) = {3, 5, 6, 7, 9, 10, 14};
+  Physical Line(14) = {3, 5, 6, 7, 9, 10, 14, 15, 16};
 EndIf

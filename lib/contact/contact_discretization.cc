@@ -156,6 +156,8 @@ namespace dualcontact
           Tensor<1, dim>                           normal;
         };
         std::map<types::global_dof_index, Accumulated> accumulated;
+        // per slave face: node key (first-component dof) -> int_f phi ds
+        std::vector<std::map<types::global_dof_index, double>> face_weights;
         const QGauss<dim - 1>                quadrature(fe.degree + 1);
         FEFaceValues<dim>                    fe_face(slave.mapping(),
                                   fe,
@@ -172,6 +174,7 @@ namespace dualcontact
               found_boundary = true;
               fe_face.reinit(cell, f);
               cell->get_dof_indices(cell_dofs);
+              face_weights.emplace_back();
               for (unsigned int k = 0; k < fe.n_dofs_per_cell(); ++k)
                 if (fe.system_to_component_index(k).first == 0 &&
                     fe.has_support_on_face(k, f))
@@ -186,6 +189,7 @@ namespace dualcontact
                   {
                     const double w = fe_face.shape_value(k, q) * fe_face.JxW(q);
                     a.weight += w;
+                    face_weights.back()[cell_dofs[k]] += w;
                     a.normal += w * fe_face.normal_vector(q);
                   }
                 }
@@ -218,6 +222,16 @@ namespace dualcontact
             }
             const auto *line = hanging.get_constraint_entries(it->first);
             Assert(line != nullptr, ExcInternalError());
+            for (auto &face : face_weights)
+            {
+              const auto h = face.find(it->first);
+              if (h == face.end())
+                continue;
+              const double w = h->second;
+              face.erase(h);
+              for (const auto &[parent, coefficient] : *line)
+                face[parent] += coefficient * w;
+            }
             for (const auto &[parent, coefficient] : *line)
             {
               const auto to = accumulated.find(parent);
@@ -270,6 +284,7 @@ namespace dualcontact
         summary.name    = pair.name;
         summary.min_gap = std::numeric_limits<double>::max();
         summary.max_gap = -std::numeric_limits<double>::max();
+        std::map<types::global_dof_index, unsigned int> node_of_key;
         for (const auto &[key, a] : accumulated)
         {
           ContactNode<dim> node;
@@ -363,7 +378,21 @@ namespace dualcontact
           summary.min_gap = std::min(summary.min_gap, node.gap);
           summary.max_gap = std::max(summary.max_gap, node.gap);
           summary.area += node.weight;
+          node_of_key[key] = nodes_.size();
           nodes_.push_back(node);
+        }
+        for (const auto &face : face_weights)
+        {
+          ContactFace contact_face;
+          contact_face.pair = p;
+          for (const auto &[key, w] : face)
+          {
+            const auto n = node_of_key.find(key);
+            if (n != node_of_key.end())
+              contact_face.nodes.emplace_back(n->second, w);
+          }
+          if (!contact_face.nodes.empty())
+            faces_.push_back(contact_face);
         }
         AssertThrow(summary.n_nodes > 0,
                     ExcMessage("Contact pair `" + pair.name +
@@ -440,6 +469,14 @@ namespace dualcontact
     ContactDiscretization<dim>::pair_summaries() const
     {
       return summaries_;
+    }
+
+
+    template <int dim>
+    const std::vector<ContactFace> &
+    ContactDiscretization<dim>::faces() const
+    {
+      return faces_;
     }
 
     template <int dim>

@@ -43,6 +43,20 @@ namespace dualcontact
 
 
     /**
+     * One slave face (an edge in 2D) of a contact pair: the contact nodes
+     * on it with their shares w_{f,i} = int_f phi_i ds of the face [m^2; m
+     * in 2D] (summed over the faces of a node they give its weight).  The
+     * report's friction multipliers are piecewise constant on these faces.
+     */
+    struct ContactFace
+    {
+      unsigned int pair = 0;
+      /** (index into nodes(), w_{f,i}) */
+      std::vector<std::pair<unsigned int, double>> nodes;
+    };
+
+
+    /**
      * Node-to-surface contact discretization (small displacements, reference
      * configuration) of all contact pairs of a scene.
      *
@@ -89,6 +103,11 @@ namespace dualcontact
       nodes() const;
       const std::vector<PairSummary> &
       pair_summaries() const;
+      /** The slave faces of every pair with their contact nodes (nodes
+       * without a master within the search distance left out; faces left
+       * with no node dropped). */
+      const std::vector<ContactFace> &
+      faces() const;
       const std::vector<ContactPair<dim>> &
       pairs() const;
 
@@ -122,6 +141,7 @@ namespace dualcontact
       std::vector<dealii::types::global_dof_index> offsets_;
       std::vector<ContactNode<dim>>                nodes_;
       std::vector<PairSummary>                     summaries_;
+      std::vector<ContactFace>                     faces_;
       dealii::SparsityPattern                      normal_pattern_;
       dealii::SparsityPattern                      tangential_pattern_;
       dealii::SparseMatrix<double>                 normal_matrix_;

@@ -81,6 +81,23 @@ namespace dualcontact
                         dealii::Patterns::Double(0.),
                         "Uzawa stops when the largest change of a friction "
                         "multiplier mu_i (|mu_i| <= 1) is at most this [-].");
+      prm.declare_entry(
+        "Uzawa stopping test",
+        "max change",
+        dealii::Patterns::Selection("max change|relative"),
+        "How `Uzawa tolerance' is applied: max change (the largest change "
+        "|mu_i^{k+1} - mu_i^k| of a friction multiplier) or relative (the "
+        "report's form, remark 7.2: ||mu^{k+1} - mu^k|| / max(1, ||mu^k||), "
+        "Euclidean norms over all multipliers) [-].");
+      prm.declare_entry(
+        "Friction multipliers",
+        "per node",
+        dealii::Patterns::Selection("per node|per edge"),
+        "Where the friction multipliers mu (|mu| <= 1) live: per node (one "
+        "per contact node and tangent, the nodal slip bound g w_i) or per "
+        "edge (the report's (4.4): one per slave face, piecewise constant, "
+        "acting on the integral of the slip over the face; Tresca friction "
+        "only).");
       prm.declare_entry("Uzawa maximum iterations",
                         "20000",
                         dealii::Patterns::Integer(1),
@@ -107,6 +124,8 @@ namespace dualcontact
       uzawa_step           = prm.get_double("Uzawa step");
       uzawa_tolerance      = prm.get_double("Uzawa tolerance");
       uzawa_max_iterations = prm.get_integer("Uzawa maximum iterations");
+      uzawa_stopping_test  = prm.get("Uzawa stopping test");
+      friction_multipliers = prm.get("Friction multipliers");
       prm.leave_subsection();
       const std::string where = "' in `subsection Primal solver').";
       AssertThrow(omega > 0. && omega < 2.,
@@ -125,6 +144,18 @@ namespace dualcontact
                   dealii::ExcMessage("Uzawa tolerance must be positive (`set "
                                      "Uzawa tolerance" +
                                      where));
+      AssertThrow(uzawa_stopping_test == "max change" ||
+                    uzawa_stopping_test == "relative",
+                  dealii::ExcMessage("Uzawa stopping test must be `max "
+                                     "change' or `relative', got `" +
+                                     uzawa_stopping_test +
+                                     "' (`set Uzawa stopping test" + where));
+      AssertThrow(friction_multipliers == "per node" ||
+                    friction_multipliers == "per edge",
+                  dealii::ExcMessage("Friction multipliers must be `per "
+                                     "node' or `per edge', got `" +
+                                     friction_multipliers +
+                                     "' (`set Friction multipliers" + where));
       AssertThrow(uzawa_step > 0. ||
                     (uzawa_step_factor > 0. && uzawa_step_factor < 2.),
                   dealii::ExcMessage(

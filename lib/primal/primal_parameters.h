@@ -48,6 +48,17 @@ namespace dualcontact
       double uzawa_step = 0.;
       /** Stop when max_i |mu_i^{k+1} - mu_i^k| <= this. */
       double uzawa_tolerance = 1e-9;
+      /** How the Uzawa tolerance is applied: "max change" (max_i
+       * |mu_i^{k+1} - mu_i^k| <= tolerance) or "relative" (the report's
+       * form of its tests, remark 7.2: ||mu^{k+1} - mu^k|| / max(1,
+       * ||mu^k||) <= tolerance, Euclidean norms over all multipliers). */
+      std::string uzawa_stopping_test = "max change";
+      /** Where the friction multipliers live: "per node" (one mu per
+       * contact node and tangent, G = diag(g w_i) B_T) or "per edge" (the
+       * report's Lambda_h, (4.4): piecewise constant on the slave faces,
+       * G_e = g sum_{i in e} w_{e,i} B_T,i with w_{e,i} = int_e phi_i ds;
+       * Tresca only). */
+      std::string friction_multipliers = "per node";
       /** Limit on the Uzawa iterations (per Tresca problem). */
       unsigned int uzawa_max_iterations = 20000;
 

@@ -232,7 +232,41 @@ namespace dualcontact
           frictional_index_[i] = frictional_nodes_.size();
           frictional_nodes_.push_back(i);
         }
-      psi_.reinit((dim - 1) * frictional_nodes_.size());
+      per_edge_ = parameters.friction_multipliers == "per edge";
+      if (!per_edge_)
+        for (unsigned int j = 0; j < frictional_nodes_.size(); ++j)
+          for (unsigned int k = 0; k + 1 < dim; ++k)
+          {
+            mult_rows_.push_back({{(dim - 1) * j + k, 1.}});
+            mult_source_.push_back(j);
+          }
+      else
+      {
+        for (const auto &pair : contact.pairs())
+          AssertThrow(!pair.friction.is_coulomb(),
+                      dealii::ExcMessage(
+                        "Friction multipliers = per edge needs given "
+                        "(Tresca) friction; contact pair `" +
+                        pair.name +
+                        "' has Coulomb friction (`set Friction multipliers "
+                        "= per node' in `subsection Primal solver')."));
+        for (const auto &face : contact.faces())
+        {
+          if (!contact.pairs()[face.pair].friction.has_friction())
+            continue;
+          for (unsigned int k = 0; k + 1 < dim; ++k)
+          {
+            std::vector<std::pair<unsigned int, double>> entries;
+            for (const auto &[node, w] : face.nodes)
+              if (frictional_index_[node] >= 0)
+                entries.emplace_back((dim - 1) * frictional_index_[node] + k,
+                                     w);
+            mult_rows_.push_back(entries);
+            mult_source_.push_back(face.pair);
+          }
+        }
+      }
+      psi_.reinit(mult_rows_.size());
       mu_.reinit(psi_.size());
       u_.reinit(n);
 
@@ -260,20 +294,38 @@ namespace dualcontact
 
     template <int dim>
     void
-    UzawaCGC<dim>::tangential_slip(const VectorType &u, VectorType &dst) const
+    UzawaCGC<dim>::tangential_slip(const VectorType &u,
+                                   VectorType       &dst,
+                                   const bool        with_offset) const
     {
       const auto &BT = contact_.tangential_matrix();
       const auto &oT = contact_.tangential_offset();
-      dst.reinit(psi_.size());
+      VectorType  rows((dim - 1) * frictional_nodes_.size());
       for (unsigned int j = 0; j < frictional_nodes_.size(); ++j)
         for (unsigned int k = 0; k + 1 < dim; ++k)
         {
           const unsigned int row = (dim - 1) * frictional_nodes_[j] + k;
-          double             sum = oT(row);
+          double             sum = with_offset ? oT(row) : 0.;
           for (auto it = BT.begin(row); it != BT.end(row); ++it)
             sum += it->value() * u(it->column());
-          dst((dim - 1) * j + k) = sum;
+          rows((dim - 1) * j + k) = sum;
         }
+      dst.reinit(mult_rows_.size());
+      for (unsigned int m = 0; m < mult_rows_.size(); ++m)
+        for (const auto &[r, c] : mult_rows_[m])
+          dst(m) += c * rows(r);
+    }
+
+
+    template <int dim>
+    typename UzawaCGC<dim>::VectorType
+    UzawaCGC<dim>::to_rows(const VectorType &v) const
+    {
+      VectorType rows((dim - 1) * frictional_nodes_.size());
+      for (unsigned int m = 0; m < mult_rows_.size(); ++m)
+        for (const auto &[r, c] : mult_rows_[m])
+          rows(r) += c * v(m);
+      return rows;
     }
 
 
@@ -282,12 +334,13 @@ namespace dualcontact
     UzawaCGC<dim>::add_tangential_transpose(const VectorType &w,
                                             VectorType       &dst) const
     {
-      const auto &BT = contact_.tangential_matrix();
+      const VectorType rows = to_rows(w);
+      const auto      &BT   = contact_.tangential_matrix();
       for (unsigned int j = 0; j < frictional_nodes_.size(); ++j)
         for (unsigned int k = 0; k + 1 < dim; ++k)
         {
           const unsigned int row = (dim - 1) * frictional_nodes_[j] + k;
-          const double       wk  = w((dim - 1) * j + k);
+          const double       wk  = rows((dim - 1) * j + k);
           for (auto it = BT.begin(row); it != BT.end(row); ++it)
             dst(it->column()) += it->value() * wk;
         }
@@ -298,19 +351,27 @@ namespace dualcontact
     void
     UzawaCGC<dim>::update_slip_bounds(const VectorType *lambda_N)
     {
-      for (unsigned int j = 0; j < frictional_nodes_.size(); ++j)
+      for (unsigned int m = 0; m < mult_rows_.size(); ++m)
       {
-        const unsigned int          node = frictional_nodes_[j];
+        const unsigned int k = m % (dim - 1);
+        if (per_edge_)
+        {
+          // psi_f = g: the face's G row already carries int_f phi_i ds
+          const contact::FrictionLaw &law =
+            contact_.pairs()[mult_source_[m]].friction;
+          psi_(m) = (k == 1 && law.is_orthotropic()) ? law.second : law.first;
+          continue;
+        }
+        const unsigned int          node = frictional_nodes_[mult_source_[m]];
         const auto                 &n    = contact_.nodes()[node];
         const contact::FrictionLaw &law  = contact_.pairs()[n.pair].friction;
         const double                value[2] = {law.first,
                                  law.is_orthotropic() ? law.second : law.first};
-        for (unsigned int k = 0; k + 1 < dim; ++k)
-          psi_((dim - 1) * j + k) =
-            law.is_coulomb() ? (lambda_N != nullptr ?
-                                  value[k] * std::max(0., (*lambda_N)(node)) :
-                                  0.) :
-                               value[k] * n.weight;
+        psi_(m) =
+          law.is_coulomb() ?
+            (lambda_N != nullptr ? value[k] * std::max(0., (*lambda_N)(node)) :
+                                   0.) :
+            value[k] * n.weight;
       }
     }
 
@@ -342,16 +403,8 @@ namespace dualcontact
         w = 0.;
         add_tangential_transpose(pv, w);
         inverse->apply_inverse(z, w);
-        const auto &BT = contact_.tangential_matrix();
-        for (unsigned int j = 0; j < frictional_nodes_.size(); ++j)
-          for (unsigned int k = 0; k + 1 < dim; ++k)
-          {
-            const unsigned int row = (dim - 1) * frictional_nodes_[j] + k;
-            double             sum = 0.;
-            for (auto e = BT.begin(row); e != BT.end(row); ++e)
-              sum += e->value() * z(e->column());
-            Mv((dim - 1) * j + k) = psi_((dim - 1) * j + k) * sum;
-          }
+        tangential_slip(z, Mv, false);
+        Mv.scale(psi_);
         const double lambda_new = v * Mv;
         const double norm       = Mv.l2_norm();
         if (norm == 0.)
@@ -495,8 +548,8 @@ namespace dualcontact
         // mu <- Pi(mu + rho psi (B_T u + o_T)), Pi onto the unit ball of
         // every node (|mu_i| <= 1 in 2D)
         tangential_slip(u_, slip);
-        double change = 0.;
-        for (unsigned int j = 0; j < frictional_nodes_.size(); ++j)
+        double change = 0., change_sq = 0.;
+        for (unsigned int j = 0; j < mu_.size() / (dim - 1); ++j)
         {
           double norm_sq = 0.;
           for (unsigned int c = 0; c + 1 < dim; ++c)
@@ -511,8 +564,13 @@ namespace dualcontact
             const unsigned int r = (dim - 1) * j + c;
             mu_new(r) *= scale;
             change = std::max(change, std::abs(mu_new(r) - mu_(r)));
+            change_sq += (mu_new(r) - mu_(r)) * (mu_new(r) - mu_(r));
           }
         }
+        // the report's form (remark 7.2): ||mu^{k+1} - mu^k|| / max(1,
+        // ||mu^k||)
+        if (parameters_.uzawa_stopping_test == "relative")
+          change = std::sqrt(change_sq) / std::max(1., mu_.l2_norm());
         result.mu_changes.push_back(change);
         // (u, mu) is the answer when mu is a fixed point of the update
         if (change <= parameters_.uzawa_tolerance)
@@ -639,18 +697,25 @@ namespace dualcontact
           d(i) = u_(contact_.body_offset(b) + i);
         bodies_[b]->distribute(d);
       }
-      result.lambda.reinit(contact_.n_nodes() + psi_.size());
+      // per frictional row: the force sum_m c_{m,r} psi_m mu_m and the
+      // bound sum_m c_{m,r} psi_m (per node: psi mu and psi)
+      VectorType psi_mu(psi_);
+      psi_mu.scale(mu_);
+      const VectorType force      = to_rows(psi_mu);
+      result.friction_multipliers = mu_;
+      const VectorType bound      = to_rows(psi_);
+      result.lambda.reinit(contact_.n_nodes() + force.size());
       const VectorType l = lambda_N();
       for (unsigned int i = 0; i < contact_.n_nodes(); ++i)
         result.lambda(i) = l(i);
-      for (unsigned int r = 0; r < psi_.size(); ++r)
-        result.lambda(contact_.n_nodes() + r) = psi_(r) * mu_(r);
+      for (unsigned int r = 0; r < force.size(); ++r)
+        result.lambda(contact_.n_nodes() + r) = force(r);
       result.slip_bounds_first.assign(frictional_nodes_.size(), 0.);
       result.slip_bounds_second.assign(frictional_nodes_.size(), 0.);
       for (unsigned int j = 0; j < frictional_nodes_.size(); ++j)
       {
-        result.slip_bounds_first[j]  = psi_((dim - 1) * j);
-        result.slip_bounds_second[j] = psi_((dim - 1) * j + dim - 2);
+        result.slip_bounds_first[j]  = bound((dim - 1) * j);
+        result.slip_bounds_second[j] = bound((dim - 1) * j + dim - 2);
       }
       result.total_time = timer.wall_time();
       return result;
@@ -679,6 +744,7 @@ namespace dualcontact
         {"rho", rho},
         {"norm_G_Kinv_Gt", lipschitz},
         {"last_mu_change", mu_changes.empty() ? 0. : mu_changes.back()},
+        {"mu_changes", mu_changes},
         {"cgc_solves", n_cgc_solves},
         {"inner_iterations", total_inner_iterations},
         {"outer_iterations", total_outer_iterations},

@@ -63,6 +63,11 @@ namespace dualcontact
         std::vector<VectorType> displacements;
         /** Multipliers in the dual layout [lambda_N; lambda_T]. */
         VectorType lambda;
+        /** The friction multipliers mu (|mu| <= 1), (dim - 1) per frictional
+         * contact node, or per slave face with `Friction multipliers = per
+         * edge' (in the order of ContactDiscretization::faces(), faces of
+         * frictionless pairs left out). */
+        VectorType friction_multipliers;
         /** Nodal slip bounds psi [N; N/m in 2D] of the frictional nodes
          * (second: along the second tangent, 3D), as
          * contact::DualProblem::set_slip_bounds() takes them. */
@@ -141,12 +146,19 @@ namespace dualcontact
       /** Set psi_ from the pairs' laws; Coulomb from @p lambda_N. */
       void
       update_slip_bounds(const VectorType *lambda_N);
-      /** dst = B_T,fric u + o_T (one entry per frictional row). */
+      /** dst_m = sum_r c_{m,r} (B_T,fric u + o_T)_r, one entry per
+       * friction multiplier m (G u = psi dst); without the offset o_T if
+       * @p with_offset is false. */
       void
-      tangential_slip(const VectorType &u, VectorType &dst) const;
-      /** dst += B_T,fric' w. */
+      tangential_slip(const VectorType &u,
+                      VectorType       &dst,
+                      const bool        with_offset = true) const;
+      /** dst += B_T,fric' C' w (C the multiplier-to-row weights). */
       void
       add_tangential_transpose(const VectorType &w, VectorType &dst) const;
+      /** Per frictional row r: sum_m c_{m,r} v_m. */
+      VectorType
+      to_rows(const VectorType &v) const;
 
       std::vector<const fem::ElasticBody<dim> *> bodies_;
       const contact::ContactDiscretization<dim> &contact_;
@@ -167,9 +179,19 @@ namespace dualcontact
 
       std::vector<unsigned int> frictional_nodes_;
       std::vector<int>          frictional_index_;
-      /** psi per frictional row ((dim - 1) per frictional node). */
+      /** Per friction multiplier m: the frictional rows it acts on,
+       * (dim - 1) j + k for node j and tangent k, with their weights
+       * c_{m,r} (per node: the row itself with 1; per edge: the face's
+       * nodes with w_{f,i}); (dim - 1) consecutive multipliers form the
+       * vector projected onto the unit ball. */
+      std::vector<std::vector<std::pair<unsigned int, double>>> mult_rows_;
+      /** Per multiplier: the frictional node index j (per node) or the
+       * pair of the face (per edge), and the tangent k. */
+      std::vector<unsigned int> mult_source_;
+      bool                      per_edge_ = false;
+      /** psi per friction multiplier: g w_i per node, g per edge. */
       VectorType psi_;
-      /** Friction multipliers mu, (dim - 1) per frictional node. */
+      /** Friction multipliers mu, (dim - 1) per node or per face. */
       VectorType mu_;
       /** Current displacements (condensed) and, for PCG-1, y = E'u. */
       VectorType u_, y_;

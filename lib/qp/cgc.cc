@@ -263,6 +263,7 @@ namespace dualcontact
           std::fill(in_facet.begin(), in_facet.end(), 0);
           for (const auto j : J)
             in_facet[j] = 1;
+          blocked_at_start = false;
           std::vector<double> u;
           double              rho_old = 0.;
           for (unsigned int k = 0;; ++k)
@@ -339,6 +340,7 @@ namespace dualcontact
               }
             if (!blocking.empty())
             {
+              blocked_at_start = k == 0 && alpha_max == 0.;
               x.add(alpha_max, p);
               r.add(alpha_max, Cp);
               // put single-entry rows (bounds) exactly on the bound so
@@ -383,6 +385,9 @@ namespace dualcontact
         VectorType                    r, p, Cp, Pr, z, t;
         std::vector<char>             in_facet;
         bool                          orthogonal = false;
+        /// the last cg() stopped at its first step with step length 0 (a
+        /// row outside the facet, active at x, blocks the first direction)
+        bool blocked_at_start = false;
       };
     } // namespace
 
@@ -528,6 +533,13 @@ namespace dualcontact
         data.release == Release::all_negative ||
         (data.release == Release::automatic && run.orthogonal);
 
+      // Lemma 7.2 holds for mutually orthogonal rows and no
+      // preconditioning; with a preconditioner (or rows that are not
+      // orthogonal) a released row may block the first direction at once
+      // (step length 0), and releasing the same rows again would cycle.
+      // Then the next release at this point drops the most negative
+      // multiplier only (lemma 7.1), whatever the rule.
+      bool                   release_one_next = false;
       double                 best = std::numeric_limits<double>::infinity();
       unsigned int           best_iteration = 0;
       bool                   strict_phase   = false;
@@ -596,7 +608,9 @@ namespace dualcontact
             }
             for (std::size_t k = 0; k < J.size(); ++k)
             {
-              const bool release = release_all ? u[k] < 0. : k == most_negative;
+              const bool release = (release_all && !release_one_next) ?
+                                     u[k] < 0. :
+                                     k == most_negative;
               if (!release)
                 kept.push_back(J[k]);
             }
@@ -613,7 +627,8 @@ namespace dualcontact
         }
 
         const unsigned int steps_before = stats.iterations;
-        const auto  exit = run.cg(facet, tolerance, facet.size() != J.size());
+        const auto exit  = run.cg(facet, tolerance, facet.size() != J.size());
+        release_one_next = J.size() - facet.size() > 1 && run.blocked_at_start;
         OuterRecord record;
         record.n_active         = J.size();
         record.n_facet          = facet.size();
