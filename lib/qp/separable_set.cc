@@ -1,10 +1,11 @@
 /**
  * @file separable_set.cc
- * SeparableSet: building the set (add_*, finalize) and what it says of a
- * point's active set.  The projections and steps are in
- * separable_set_steps.cc, the gradient splits and norms in
- * separable_set_gradients.cc, the CG passes in separable_set_cg_passes.cc;
- * the arithmetic of each block kind in qp/blocks/.
+ * SeparableSet: building the set (add_*, finalize) and the counts of its
+ * blocks, active or all.  The projections and steps are in
+ * separable_set_steps.cc, the gradient splits and norms (and zero_active,
+ * the free part of any vector) in separable_set_gradients.cc, the CG
+ * passes in separable_set_cg_passes.cc; the arithmetic of each block kind
+ * in qp/blocks/.
  */
 #include <qp/separable_set.h>
 #include <qp/vector_helpers.h>
@@ -357,41 +358,6 @@ namespace dualcontact
 
 
     // ======================== the active set ============================
-
-    template <typename VectorType>
-    void
-    SeparableSet<VectorType>::zero_active(const VectorType &x,
-                                          VectorType       &v) const
-    {
-      // phi of v (taken as a "gradient") is v on free blocks and 0 on
-      // active ones; the sweep reads a block before the sink writes it
-      double *o    = v.begin();
-      auto    sink = [o](const size_type off,
-                      const unsigned  w,
-                      const double   *phi,
-                      const double *,
-                      const double *)
-      {
-        for (unsigned c = 0; c < w; ++c)
-          o[off + c] = phi[c];
-      };
-      const VectorType &view = v;
-      sweep(x, view, 1., false, sink);
-    }
-
-
-    template <typename VectorType>
-    void
-    SeparableSet<VectorType>::active_mask(const VectorType &x,
-                                          VectorType       &mask) const
-    {
-      mask = 1.;
-      zero_active(x, mask); // 1 on free entries, 0 on active ones
-      double *m = mask.begin();
-      for (std::size_t i = 0; i < local_size; ++i)
-        m[i] = 1. - m[i];
-    }
-
 
     template <typename VectorType>
     std::array<typename SeparableSet<VectorType>::size_type, n_block_types>

@@ -2,7 +2,8 @@
  * @file separable_set_gradients.cc
  * SeparableSet: the free/chopped split of the gradient (thesis 1.31), the
  * reduced gradients (thesis 1.33, 1.4.3), their squared norms in one sweep,
- * and the complementarity measure.  Each block's part is its kind's
+ * the free part of any vector (zero_active, active_mask) and the
+ * complementarity measure.  Each block's part is its kind's
  * (qp/blocks/); the sweep (separable_set.h) visits the kinds in BlockType
  * order, the norms treat the runs of bounds and boxes in loops of their
  * own (the bounds' in VectorKernels).
@@ -40,6 +41,23 @@ namespace dualcontact
         for (unsigned int c = 1; c < width; ++c)
           sum += blocks::square(x[c] - z[c]);
         return sum;
+      }
+
+      /// A sink for SeparableSet's sweep that writes part(phi, beta,
+      /// reduced beta) of every component of a block to @p out.
+      template <typename Part>
+      auto
+      writer(double *out, const Part &part)
+      {
+        return [out, part](const auto     offset,
+                           const unsigned width,
+                           const double  *phi,
+                           const double  *beta,
+                           const double  *reduced)
+        {
+          for (unsigned c = 0; c < width; ++c)
+            out[offset + c] = part(phi[c], beta[c], reduced[c]);
+        };
       }
     } // namespace
 
@@ -97,15 +115,7 @@ namespace dualcontact
         for (std::size_t i = 0; i < run.count; ++i)
           f[i] = box[i].block.classify(y + i, tolerance).active ? 0. : f[i];
       }
-      auto sink = [o](const size_type o_,
-                      const unsigned  w,
-                      const double   *phi,
-                      const double *,
-                      const double *)
-      {
-        for (unsigned c = 0; c < w; ++c)
-          o[o_ + c] = phi[c];
-      };
+      auto sink = writer(o, [](double phi, double, double) { return phi; });
       sweep(x, g, 1., false, sink, BlockType::disc);
     }
 
@@ -116,17 +126,9 @@ namespace dualcontact
                                                const VectorType &g,
                                                VectorType       &out) const
     {
-      out          = 0.;
-      double *o    = out.begin();
-      auto    sink = [o](const size_type o_,
-                      const unsigned  w,
-                      const double *,
-                      const double *beta,
-                      const double *)
-      {
-        for (unsigned c = 0; c < w; ++c)
-          o[o_ + c] = beta[c];
-      };
+      out = 0.;
+      auto sink =
+        writer(out.begin(), [](double, double beta, double) { return beta; });
       sweep(x, g, 1., false, sink);
     }
 
@@ -137,17 +139,10 @@ namespace dualcontact
                                                  const VectorType &g,
                                                  VectorType       &out) const
     {
-      out          = g;
-      double *o    = out.begin();
-      auto    sink = [o](const size_type o_,
-                      const unsigned  w,
-                      const double   *phi,
-                      const double   *beta,
-                      const double *)
-      {
-        for (unsigned c = 0; c < w; ++c)
-          o[o_ + c] = phi[c] + beta[c];
-      };
+      out = g;
+      auto sink =
+        writer(out.begin(),
+               [](double phi, double beta, double) { return phi + beta; });
       sweep(x, g, 1., false, sink);
     }
 
@@ -179,17 +174,10 @@ namespace dualcontact
       AssertThrow(alpha > 0.,
                   dealii::ExcMessage(
                     "reduced projected gradient: alpha must be > 0"));
-      out          = g;
-      double *o    = out.begin();
-      auto    sink = [o](const size_type o_,
-                      const unsigned  w,
-                      const double   *phi,
-                      const double *,
-                      const double *red)
-      {
-        for (unsigned c = 0; c < w; ++c)
-          o[o_ + c] = phi[c] + red[c];
-      };
+      out       = g;
+      auto sink = writer(out.begin(),
+                         [](double phi, double, double reduced)
+                         { return phi + reduced; });
       sweep(x, g, alpha, true, sink);
     }
 
@@ -404,6 +392,33 @@ namespace dualcontact
     }
 
 
+    template <typename VectorType>
+    void
+    SeparableSet<VectorType>::zero_active(const VectorType &x,
+                                          VectorType       &v) const
+    {
+      // phi of v (taken as a "gradient") is v on free blocks and 0 on
+      // active ones; the sweep reads a block before the sink writes it
+      auto sink =
+        writer(v.begin(), [](double phi, double, double) { return phi; });
+      const VectorType &view = v;
+      sweep(x, view, 1., false, sink);
+    }
+
+
+    template <typename VectorType>
+    void
+    SeparableSet<VectorType>::active_mask(const VectorType &x,
+                                          VectorType       &mask) const
+    {
+      mask = 1.;
+      zero_active(x, mask); // 1 on free entries, 0 on active ones
+      double *m = mask.begin();
+      for (std::size_t i = 0; i < local_size; ++i)
+        m[i] = 1. - m[i];
+    }
+
+
 #define DUALCONTACT_INSTANTIATE_SET_GRADIENTS(V)                                 \
   template void SeparableSet<V>::split_gradient(const V &,                       \
                                                 const V &,                       \
@@ -437,7 +452,10 @@ namespace dualcontact
   template double SeparableSet<V>::reduced_gradient_norm(const V &,              \
                                                          const V &,              \
                                                          double) const;          \
-  template double SeparableSet<V>::complementarity(const V &, const V &) const;
+  template double SeparableSet<V>::complementarity(const V &, const V &)         \
+    const;                                                                       \
+  template void SeparableSet<V>::zero_active(const V &, V &) const;              \
+  template void SeparableSet<V>::active_mask(const V &, V &) const;
 
     DUALCONTACT_INSTANTIATE_SET_GRADIENTS(dealii::Vector<double>)
     DUALCONTACT_INSTANTIATE_SET_GRADIENTS(dealii::TrilinosWrappers::MPI::Vector)

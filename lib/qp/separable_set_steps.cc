@@ -20,6 +20,21 @@ namespace dualcontact
 {
   namespace qp
   {
+    namespace
+    {
+      /// f(box, i) for every box block in @p runs of @p boxes (the set's
+      /// box_runs and boxes), i its local offset, in the runs' order
+      template <typename Runs, typename Boxes, typename Function>
+      void
+      for_each_box(const Runs &runs, const Boxes &boxes, const Function &f)
+      {
+        for (const auto &run : runs)
+          for (std::size_t i = 0; i < run.count; ++i)
+            f(boxes[run.first + i].block, run.begin + i);
+      }
+    } // namespace
+
+
     template <typename VectorType>
     void
     SeparableSet<VectorType>::project(VectorType &x) const
@@ -33,13 +48,10 @@ namespace dualcontact
         for (std::size_t i = 0; i < run.count; ++i)
           blocks::Bound{l[i]}.project(y + i);
       }
-      for (const Run &run : box_runs)
-      {
-        double     *y   = v + run.begin;
-        const auto *box = boxes.data() + run.first;
-        for (std::size_t i = 0; i < run.count; ++i)
-          box[i].block.project(y + i);
-      }
+      for_each_box(box_runs,
+                   boxes,
+                   [v](const blocks::Box &box, const std::size_t i)
+                   { box.project(v + i); });
       project_curved(v);
     }
 
@@ -104,14 +116,11 @@ namespace dualcontact
                                 bound_lower.data() + run.first,
                                 ratio);
       blocks::MinRatio box_ratio{ratio.num[0], ratio.den[0]};
-      for (const Run &run : box_runs)
-      {
-        const double *y   = v + run.begin;
-        const double *q   = d + run.begin;
-        const auto   *box = boxes.data() + run.first;
-        for (std::size_t i = 0; i < run.count; ++i)
-          box[i].block.offer_step(y + i, q + i, box_ratio);
-      }
+      for_each_box(box_runs,
+                   boxes,
+                   [v, d, &box_ratio](const blocks::Box &box,
+                                      const std::size_t  i)
+                   { box.offer_step(v + i, d + i, box_ratio); });
       double alpha = VectorKernels::min_ratio(ratio);
       alpha        = std::min(alpha, curved_max_step(v, d));
       return internal::min(alpha, x);
@@ -166,14 +175,10 @@ namespace dualcontact
                                      d + run.begin,
                                      bound_lower.data() + run.first,
                                      alpha);
-      for (const Run &run : box_runs)
-      {
-        double       *y   = v + run.begin;
-        const double *q   = d + run.begin;
-        const auto   *box = boxes.data() + run.first;
-        for (std::size_t i = 0; i < run.count; ++i)
-          box[i].block.feasible_step(y + i, q + i, alpha);
-      }
+      for_each_box(box_runs,
+                   boxes,
+                   [v, d, alpha](const blocks::Box &box, const std::size_t i)
+                   { box.feasible_step(v + i, d + i, alpha); });
       for_each_curved_kind(
         [v, d, alpha](const auto &placed_blocks)
         {
@@ -216,14 +221,10 @@ namespace dualcontact
           y[c] -= alpha * (active ? 0. : gj[c]);
         block.project(y);
       };
-      for (const Run &run : box_runs)
-      {
-        double       *y   = v + run.begin;
-        const double *q   = gv + run.begin;
-        const auto   *box = boxes.data() + run.first;
-        for (std::size_t i = 0; i < run.count; ++i)
-          step(box[i].block, y + i, q + i);
-      }
+      for_each_box(box_runs,
+                   boxes,
+                   [&](const blocks::Box &box, const std::size_t i)
+                   { step(box, v + i, gv + i); });
       for_each_curved_kind(
         [&](const auto &placed_blocks)
         {
