@@ -8,39 +8,26 @@
 #ifndef dualcontact_qp_separable_set_h
 #define dualcontact_qp_separable_set_h
 
+#include <deal.II/base/exceptions.h>
 #include <deal.II/base/index_set.h>
 #include <deal.II/base/types.h>
 
+#include <qp/block_type.h>
+#include <qp/blocks/bound.h>
+#include <qp/blocks/box.h>
+#include <qp/blocks/cone.h>
+#include <qp/blocks/disc.h>
+#include <qp/blocks/ellipse.h>
+
 #include <array>
 #include <cstdint>
+#include <type_traits>
 #include <vector>
 
 namespace dualcontact
 {
   namespace qp
   {
-    /// The kinds of blocks a SeparableSet is made of.
-    enum class BlockType
-    {
-      /// x_i >= l
-      bound,
-      /// l <= x_i <= u
-      box,
-      /// ||(x_f, x_{f+1})|| <= r
-      disc,
-      /// (x_f/a)^2 + (x_{f+1}/b)^2 <= 1 in a frame rotated by an angle
-      ellipse,
-      /// ||(x_{f+1}, x_{f+2})|| <= mu x_f  (normal component first)
-      cone
-    };
-
-    /// Number of BlockType values (for arrays indexed by type).
-    constexpr unsigned int n_block_types = 5;
-
-    /// "bound", "box", "disc", "ellipse", "cone".
-    const char *
-    block_type_name(BlockType type);
-
     /**
      * Squared norms of the pieces of the gradient, computed in one sweep
      * without forming any vector (what a solver needs every iteration).
@@ -58,7 +45,8 @@ namespace dualcontact
     };
 
     /**
-     * A separable convex set, the product of blocks of the BlockType kinds;
+     * A separable convex set, the product of blocks of the BlockType kinds
+     * (one type each in qp/blocks/, which hold each kind's arithmetic);
      * unknowns in no block are free (unconstrained).
      *
      * Building: call the add_*() functions with GLOBAL indices (every rank
@@ -335,12 +323,51 @@ namespace dualcontact
       complementarity(const VectorType &x, const VectorType &g) const;
 
     private:
-      /// One sweep over all blocks computing phi_j, beta_j and (if
-      /// @p reduced) beta~_alpha_j, handed to sink(offset, width, phi,
-      /// beta, reduced_beta); all gradient functions are built on it.
-      /// (With @p curved_only, bound and box blocks are skipped, with
-      /// @p skip_bounds the bound blocks: the hot paths treat them in
-      /// their own loops over runs, the bounds' in VectorKernels.)
+      /// A block of kind Block whose first unknown is @p first: the global
+      /// index as added, the local offset into v.begin() after finalize().
+      template <typename Block>
+      struct Placed
+      {
+        size_type first;
+        Block     block;
+      };
+
+      /**
+       * f(blocks) for the list of placed blocks of every kind, in the
+       * order of BlockType: every pass over the blocks visits them in this
+       * order, which is the order of its sums.
+       */
+      template <typename Function>
+      void
+      for_each_kind(const Function &f) const
+      {
+        f(bounds);
+        f(boxes);
+        f(discs);
+        f(ellipses);
+        f(cones);
+      }
+
+      /// for_each_kind() over the disc, ellipse and cone blocks only (the
+      /// bounds and boxes have passes over runs of their own)
+      template <typename Function>
+      void
+      for_each_curved_kind(const Function &f) const
+      {
+        f(discs);
+        f(ellipses);
+        f(cones);
+      }
+
+      /**
+       * One sweep over the blocks of the kinds from @p first_kind on (in
+       * BlockType order) computing the free/chopped split (thesis 1.31)
+       * phi_j, beta_j and, with @p reduced, beta~_alpha_j (thesis 1.4.3),
+       * handed to sink(offset, width, phi, beta, reduced_beta); the
+       * gradient functions are built on it.  (The hot paths treat the
+       * bounds, or the bounds and boxes, in their own loops over runs,
+       * the bounds' in VectorKernels, and start the sweep after them.)
+       */
       template <typename Sink>
       void
       sweep(const VectorType &x,
@@ -348,8 +375,7 @@ namespace dualcontact
             double            alpha,
             bool              reduced,
             Sink             &sink,
-            bool              curved_only = false,
-            bool              skip_bounds = false) const;
+            BlockType         first_kind = BlockType::bound) const;
 
       /// max_feasible_step() over the disc, ellipse and cone blocks only,
       /// local (no reduction); v, d: local entries of x and p
@@ -374,54 +400,28 @@ namespace dualcontact
             bool              reduced,
             double           *phi = nullptr) const;
 
-      struct Bound
-      {
-        size_type global;
-        double    lower;
-      };
-      struct Box
-      {
-        size_type global;
-        double    lower, upper;
-      };
-      struct Disc
-      {
-        size_type global;
-        double    radius;
-      };
-      struct Ellipse
-      {
-        size_type global;
-        double    a, b, cos_angle, sin_angle;
-      };
-      struct Cone
-      {
-        size_type global;
-        double    mu;
-      };
-
       double tolerance;
       bool   finalized = false;
 
       // as added (global indices)
-      std::vector<Bound>   added_bounds;
-      std::vector<Box>     added_boxes;
-      std::vector<Disc>    added_discs;
-      std::vector<Ellipse> added_ellipses;
-      std::vector<Cone>    added_cones;
+      std::vector<Placed<blocks::Bound>>   added_bounds;
+      std::vector<Placed<blocks::Box>>     added_boxes;
+      std::vector<Placed<blocks::Disc>>    added_discs;
+      std::vector<Placed<blocks::Ellipse>> added_ellipses;
+      std::vector<Placed<blocks::Cone>>    added_cones;
 
-      // after finalize: locally owned blocks, `global` replaced by the
-      // local offset into v.begin(), stored type by type so that each
-      // operation is a tight loop without dispatch.
-      std::vector<Bound>   bounds;
-      std::vector<Box>     boxes;
-      std::vector<Disc>    discs;
-      std::vector<Ellipse> ellipses;
-      std::vector<Cone>    cones;
+      // after finalize: locally owned blocks at local offsets, sorted by
+      // offset, kind by kind so that each operation is a tight loop
+      // without dispatch.
+      std::vector<Placed<blocks::Bound>>   bounds;
+      std::vector<Placed<blocks::Box>>     boxes;
+      std::vector<Placed<blocks::Disc>>    discs;
+      std::vector<Placed<blocks::Ellipse>> ellipses;
+      std::vector<Placed<blocks::Cone>>    cones;
 
       /// A maximal set of bound (or box) blocks at consecutive local
-      /// offsets [begin, begin + count); `first` indexes the type's
-      /// vectors (bounds / bound_lower, ...).  In the dual contact
+      /// offsets [begin, begin + count); `first` indexes the kind's
+      /// vectors (bounds and bound_lower, or boxes).  In the dual contact
       /// problem all normal multipliers form one run, so the hot loops
       /// (norms, free gradient, steps) are plain streaming loops without
       /// indirection or unpredictable branches.
@@ -429,8 +429,9 @@ namespace dualcontact
       {
         std::size_t begin, count, first;
       };
-      std::vector<Run>    bound_runs, box_runs;
-      std::vector<double> bound_lower, box_lower, box_upper;
+      std::vector<Run> bound_runs, box_runs;
+      /// the bounds' l, contiguous for VectorKernels
+      std::vector<double> bound_lower;
       /// unconstrained local entries, as ranges [first, second)
       std::vector<std::pair<std::size_t, std::size_t>> free_ranges;
 
@@ -438,6 +439,54 @@ namespace dualcontact
       dealii::IndexSet                     owned;
       std::size_t                          local_size = 0;
     };
+
+
+    template <typename VectorType>
+    template <typename Sink>
+    void
+    SeparableSet<VectorType>::sweep(const VectorType &x,
+                                    const VectorType &g,
+                                    const double      alpha,
+                                    const bool        reduced,
+                                    Sink             &sink,
+                                    const BlockType   first_kind) const
+    {
+      Assert(finalized, dealii::ExcMessage("call finalize() first"));
+      const double *v     = x.begin();
+      const double *gv    = g.begin();
+      const auto    split = [&](const auto &placed_blocks)
+      {
+        using Block = decltype(placed_blocks[0].block);
+        using Kind  = std::remove_const_t<std::remove_reference_t<Block>>;
+        constexpr unsigned int width = Kind::n_components;
+        if (Kind::type < first_kind)
+          return;
+        // red is only written with `reduced` (and only read then)
+        double phi[width], beta[width], red[width] = {};
+        for (const auto &placed : placed_blocks)
+        {
+          const Kind   &block = placed.block;
+          const double *y = v + placed.first, *gj = gv + placed.first;
+          const auto    state = block.classify(y, tolerance);
+          if (!state.active)
+            for (unsigned int c = 0; c < width; ++c)
+            {
+              phi[c]  = gj[c];
+              beta[c] = red[c] = 0.;
+            }
+          else
+          {
+            for (unsigned int c = 0; c < width; ++c)
+              phi[c] = 0.;
+            block.chopped_gradient(y, gj, state, beta);
+            if (reduced)
+              block.reduced_chopped_gradient(y, gj, alpha, state, red);
+          }
+          sink(placed.first, width, phi, beta, red);
+        }
+      };
+      for_each_kind(split);
+    }
   } // namespace qp
 } // namespace dualcontact
 

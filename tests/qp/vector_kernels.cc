@@ -2,17 +2,20 @@
 // (printed), against scalar loops that follow the documented lane order
 // (lane j takes the entries i = j mod 8 of a run; of a remainder of four to
 // seven entries the first four go to lanes 0-3; the last one to three
-// entries go to lane 0) and the expressions of SeparableSet's scalar loops:
+// entries go to lane 0) and the expressions of a bound block
+// (qp::blocks::Bound: active test, chopped and reduced chopped gradient,
+// largest and feasible step, projection):
 //  - every sum and every vector written bitwise equal, so that the results
 //    do not depend on the machine's instruction set;
 //  - the largest feasible steps (max_step, conjugate_direction) equal to
-//    the least room/p over p > 0 found by the MinRatio rule entry by entry;
+//    the least room/p over p > 0 found by Bound::offer_step entry by entry;
 //  - p'Ap within 1e-14 (sum of |terms|) of the sum in long double;
 // on runs of 0 to 1001 entries with active, nearly active, infeasible and
 // free entries, lower bounds of both signs and zero (also -0), directions
 // with zeros of both signs, and lanes that already hold partial sums.
 #include "planted_problems.h"
 
+#include <qp/blocks/bound.h>
 #include <qp/vector_kernels.h>
 
 #include <cmath>
@@ -23,6 +26,7 @@
 
 using namespace qptest;
 using dualcontact::qp::VectorKernels;
+using dualcontact::qp::blocks::Bound;
 using Lanes      = VectorKernels::Lanes;
 using RatioLanes = VectorKernels::RatioLanes;
 
@@ -81,19 +85,19 @@ namespace
   bool
   is_active(const double x, const double l)
   {
-    return x - l <= tol * std::abs(l);
+    return Bound{l}.classify(&x, tol).active;
   }
 
-  // MinRatio::offer of SeparableSet, entry by entry
+  // the largest feasible step of bound blocks (Bound::offer_step), entry
+  // by entry
   struct Ratio
   {
     double num = 1., den = 0.;
     void
-    offer(const double room, const double q)
+    offer(const double x, const double l, const double p)
     {
-      const bool take = q > 0. && room * den < num * q;
-      num             = take ? room : num;
-      den             = take ? q : den;
+      dualcontact::qp::blocks::MinRatio ratio{num, den};
+      Bound{l}.offer_step(&x, &p, ratio);
     }
     double
     value() const
@@ -250,9 +254,9 @@ main()
         const double       y = rx[i], gi = rg[i];
         const double       gm = std::min(gi, 0.);
         const unsigned int j  = lane(i, n);
-        const double       red =
-          !active ? 0. :
-                          (gi < 0. ? gi : (y - std::max(d.l[i], y - ra * gi)) / ra);
+        double             red    = 0.;
+        if (active)
+          Bound{d.l[i]}.reduced_chopped_gradient(&y, &gi, ra, {true}, &red);
         rfs.v[j] += active ? 0. : gi * gi;
         rbs.v[j] += active ? gm * gm : 0.;
         rpa.v[j] += active ? 0. : gi * d.Ap[i];
@@ -292,7 +296,7 @@ main()
         rp[i]                     = di;
         rpp.v[j] += di * di;
         rgp.v[j] += d.g[i] * di;
-        reference.offer(std::max(d.x[i] - d.l[i], 0.), di);
+        reference.offer(d.x[i], d.l[i], di);
       }
       VectorKernels::conjugate_direction(n,
                                          d.x.data(),
@@ -324,10 +328,9 @@ main()
         const unsigned int j   = lane(i, n);
         const double       phi = active ? 0. : gi,
                      beta      = active ? std::min(gi, 0.) : 0.;
-        const double red =
-          !active ?
-            0. :
-            (gi < 0. ? gi : (y - std::max(d.l[i], y - alpha * gi)) / alpha);
+        double red = 0.;
+        if (active)
+          Bound{d.l[i]}.reduced_chopped_gradient(&y, &gi, alpha, {true}, &red);
         rfs.v[j] += phi * phi;
         rbs.v[j] += beta * beta;
         rrs.v[j] += red * red;
@@ -343,7 +346,7 @@ main()
       RatioLanes ratio;
       Ratio      reference;
       for (std::size_t i = 0; i < n; ++i)
-        reference.offer(std::max(d.x[i] - d.l[i], 0.), d.p[i]);
+        reference.offer(d.x[i], d.l[i], d.p[i]);
       VectorKernels::max_step(n, d.x.data(), d.p.data(), d.l.data(), ratio);
       c.check(close(VectorKernels::min_ratio(ratio), reference.value(), 1e-15),
               "max_step: " + sci(VectorKernels::min_ratio(ratio)) + " vs " +
@@ -379,19 +382,12 @@ main()
                 ": bitwise" + at);
     }
 
-    // feasible_step: SeparableSet's old loop
+    // feasible_step
     {
       const double        alpha = uniform(rng, 0., 2.);
       std::vector<double> x = d.x, rx = d.x;
       for (std::size_t i = 0; i < n; ++i)
-      {
-        const double yi = rx[i] - alpha * d.p[i];
-        const double scale =
-          std::abs(yi) + std::abs(alpha * d.p[i]) + std::abs(d.l[i]);
-        const bool snap = std::abs(yi - d.l[i]) <=
-                          8. * std::numeric_limits<double>::epsilon() * scale;
-        rx[i] = (yi < d.l[i] || snap) ? d.l[i] : yi;
-      }
+        Bound{d.l[i]}.feasible_step(&rx[i], &d.p[i], alpha);
       VectorKernels::feasible_step(n, x.data(), d.p.data(), d.l.data(), alpha);
       c.check(same_bits(x, rx), "feasible_step: bitwise" + at);
     }
@@ -404,7 +400,8 @@ main()
       for (std::size_t i = 0; i < n; ++i)
       {
         const bool active = free_only && is_active(rx[i], d.l[i]);
-        rx[i] = std::max(rx[i] - alpha * (active ? 0. : d.g[i]), d.l[i]);
+        rx[i] -= alpha * (active ? 0. : d.g[i]);
+        Bound{d.l[i]}.project(&rx[i]);
       }
       VectorKernels::projected_step(
         n, x.data(), d.g.data(), d.l.data(), tol, alpha, free_only);
