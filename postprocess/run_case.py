@@ -31,6 +31,9 @@ def main():
     program, case_dir, prm = argv[0:3]
     limit = float(argv[3]) if len(argv) > 3 and float(argv[3]) > 0 else None
     processes = int(argv[4]) if len(argv) > 4 else 1
+    if not (os.path.isfile(program) and os.access(program, os.X_OK)):
+        sys.exit(f"run_case.py: the program `{program}' does not exist or "
+                 "is not executable (BIN_DIR?)")
     command = [program, prm] + extra
     env = dict(os.environ)
     if processes > 1:
