@@ -486,28 +486,30 @@ namespace
   }
 
 
+  /** The clamped 3D beam of G and H: 16 x 4 x 4 cells, end traction. */
+  std::unique_ptr<fem::ElasticBody<3>>
+  clamped_beam()
+  {
+    return make_body<3>("beam",
+                        Point<3>(0, 0, 0),
+                        Point<3>(4, 1, 1),
+                        {16, 4, 4},
+                        {{0, mask<3>({0, 1, 2}), constant<3>({0, 0, 0})}},
+                        {{1, constant<3>({0, 0, -100})}});
+  }
+
+
   /**
-   * G. The lumped preconditioner Q B K B' Q in MPRGP (inside
-   * SMALSE-M, composed with the coarse projector) on a clamped 3D beam of
-   * 16 x 4 x 4 cells in 16 subdomains (gluing and Dirichlet multipliers
-   * only) and on the frictionless block on block of E: the same answer as
-   * without it, in fewer iterations.  Both runs also check the projector's
-   * outer loop on a problem without inequalities: from the infeasible start it
-   * spent 90 outer iterations without inner work before SMALSE-M tightened M
-   * there (the beam without the preconditioner hit the 100-outer limit).
+   * Each of @p solvers (inside SMALSE-M with the coarse projector) with
+   * `Preconditioner = @p preconditioner' against none on the beam (16
+   * subdomains) and on E's frictionless block on block (4 per body):
+   * converged, fewer inner iterations with it, the same displacements.
    */
   void
-  lumped_preconditioner()
+  compare_preconditioner(const std::string              &preconditioner,
+                         const std::vector<std::string> &solvers)
   {
-    std::cout << "G. MPRGP with and without the lumped preconditioner"
-              << std::endl;
-    const auto beam =
-      make_body<3>("beam",
-                   Point<3>(0, 0, 0),
-                   Point<3>(4, 1, 1),
-                   {16, 4, 4},
-                   {{0, mask<3>({0, 1, 2}), constant<3>({0, 0, 0})}},
-                   {{1, constant<3>({0, 0, -100})}});
+    const auto beam  = clamped_beam();
     const auto lower = lower_block(4);
     const auto upper = upper_block();
     const auto pair  = block_pair();
@@ -525,35 +527,54 @@ namespace
       const contact::ContactDiscretization<3> contact(bodies, pairs);
       decomposition::DecompositionParameters  parameters;
       parameters.subdomains_per_body = {count};
-      parameters.preconditioner      = "lumped";
+      parameters.preconditioner      = preconditioner;
       decomposition::TFETIDual<3> tfeti(bodies, contact, parameters, cholmod());
-      std::vector<contact::ContactSolver<3>::Result> results;
-      std::vector<unsigned int>                      iterations;
-      for (const std::string preconditioner : {"lumped", "none"})
+      for (const std::string &solver : solvers)
       {
-        results.push_back(
-          solve(tfeti, "mprgp", 1e-8, qp::SMALSEMParameters(), preconditioner));
-        const unsigned int n = inner_iterations<3>(results.back());
-        iterations.push_back(n);
-        check(results.back().converged,
-              "  " + name + ", Preconditioner = " + preconditioner + ": " +
-                results.back().reason + " (" +
-                results.back().qp_statistics.back().message +
-                "), inner iterations",
-              n);
+        std::vector<contact::ContactSolver<3>::Result> results;
+        std::vector<unsigned int>                      iterations;
+        for (const std::string &used : {preconditioner, std::string("none")})
+        {
+          results.push_back(
+            solve(tfeti, solver, 1e-8, qp::SMALSEMParameters(), used));
+          iterations.push_back(inner_iterations<3>(results.back()));
+          check(results.back().converged,
+                "  " + name + ", " + solver + ", Preconditioner = " + used +
+                  ": " + results.back().reason + " (" +
+                  results.back().qp_statistics.back().message +
+                  "), inner iterations",
+                iterations.back());
+        }
+        check(iterations[0] < iterations[1],
+              "  " + name + ", " + solver + ": fewer inner iterations with it",
+              std::to_string(iterations[0]) + " against " +
+                std::to_string(iterations[1]));
+        const double difference = relative_difference(results[0].displacements,
+                                                      results[1].displacements);
+        check(difference < 1e-6,
+              "  " + name + ", " + solver +
+                ": displacements with and without it",
+              difference);
       }
-      // unscaled (B K B' without Q = (B B')^{-1}) it cost iterations
-      // here: 162 against 93 and 97 against 69; scaled 38 and 22
-      check(iterations[0] < iterations[1],
-            "  " + name + ": fewer inner iterations with it",
-            std::to_string(iterations[0]) + " against " +
-              std::to_string(iterations[1]));
-      const double difference =
-        relative_difference(results[0].displacements, results[1].displacements);
-      check(difference < 1e-6,
-            "  " + name + ": displacements with and without it",
-            difference);
     }
+  }
+
+
+  /**
+   * G. The lumped preconditioner Q B K B' Q in MPRGP (compare_preconditioner).
+   * Both runs also check the projector's outer loop on a problem without
+   * inequalities: from the infeasible start it spent 90 outer iterations
+   * without inner work before SMALSE-M tightened M there (the beam
+   * without the preconditioner hit the 100-outer limit).  Unscaled (B K B'
+   * without Q = (B B')^{-1}) it cost iterations here: 162 against 93 and
+   * 97 against 69; scaled 38 and 22.
+   */
+  void
+  lumped_preconditioner()
+  {
+    std::cout << "G. MPRGP with and without the lumped preconditioner"
+              << std::endl;
+    compare_preconditioner("lumped", {"mprgp"});
   }
 
 
@@ -561,21 +582,13 @@ namespace
    * H. The Dirichlet preconditioner.  First InterfaceSchurComplement
    * against the dense S = K_bb - K_bi K_ii^{-1} K_ib of a beam subdomain
    * (an interface of scattered dofs, every fourth); then MPRGP and MPGP
-   * (inside SMALSE-M with the coarse projector) with Preconditioner =
-   * dirichlet against none on G's beam and block on block: the same
-   * displacements, and fewer inner iterations with it.
+   * with Preconditioner = dirichlet against none (compare_preconditioner).
    */
   void
   dirichlet_preconditioner()
   {
     std::cout << "H. the Dirichlet preconditioner" << std::endl;
-    const auto beam =
-      make_body<3>("beam",
-                   Point<3>(0, 0, 0),
-                   Point<3>(4, 1, 1),
-                   {16, 4, 4},
-                   {{0, mask<3>({0, 1, 2}), constant<3>({0, 0, 0})}},
-                   {{1, constant<3>({0, 0, -100})}});
+    const auto beam = clamped_beam();
     {
       const contact::ContactDiscretization<3> contact({beam.get()}, {});
       decomposition::DecompositionParameters  parameters;
@@ -629,51 +642,7 @@ namespace
             error / Sv.linfty_norm());
     }
 
-    const auto lower = lower_block(4);
-    const auto upper = upper_block();
-    const auto pair  = block_pair();
-    for (const auto &[name, bodies, pairs, count] :
-         std::vector<std::tuple<std::string,
-                                std::vector<const fem::ElasticBody<3> *>,
-                                std::vector<contact::ContactPair<3>>,
-                                unsigned int>>{
-           {"beam, 16 subdomains", {beam.get()}, {}, 16},
-           {"block on block, 4 subdomains per body",
-            {lower.get(), upper.get()},
-            {pair},
-            4}})
-    {
-      const contact::ContactDiscretization<3> contact(bodies, pairs);
-      decomposition::DecompositionParameters  parameters;
-      parameters.subdomains_per_body = {count};
-      parameters.preconditioner      = "dirichlet";
-      decomposition::TFETIDual<3> tfeti(bodies, contact, parameters, cholmod());
-      for (const std::string solver : {"mprgp", "mpgp"})
-      {
-        std::vector<contact::ContactSolver<3>::Result> results;
-        std::vector<unsigned int>                      iterations;
-        for (const std::string preconditioner : {"dirichlet", "none"})
-        {
-          results.push_back(solve(
-            tfeti, solver, 1e-8, qp::SMALSEMParameters(), preconditioner));
-          iterations.push_back(inner_iterations<3>(results.back()));
-          check(results.back().converged,
-                "  " + name + ", " + solver + ", " + preconditioner + ": " +
-                  results.back().reason + ", inner iterations",
-                iterations.back());
-        }
-        check(iterations[0] < iterations[1],
-              "  " + name + ", " + solver + ": fewer inner iterations with it",
-              std::to_string(iterations[0]) + " against " +
-                std::to_string(iterations[1]));
-        const double difference = relative_difference(results[0].displacements,
-                                                      results[1].displacements);
-        check(difference < 1e-6,
-              "  " + name + ", " + solver +
-                ": displacements with and without it",
-              difference);
-      }
-    }
+    compare_preconditioner("dirichlet", {"mprgp", "mpgp"});
   }
 
 
