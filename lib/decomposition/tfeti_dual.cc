@@ -598,12 +598,29 @@ namespace dualcontact
     void
     TFETIDual<dim>::apply_lumped(VectorType &dst, const VectorType &src) const
     {
+      apply_between_B(dst,
+                      src,
+                      [this](const unsigned int s,
+                             VectorType        &y,
+                             const VectorType  &v)
+                      { subdomains_[s]->stiffness_matrix().vmult(y, v); });
+    }
+
+
+    template <int dim>
+    void
+    TFETIDual<dim>::apply_between_B(
+      VectorType       &dst,
+      const VectorType &src,
+      const std::function<void(unsigned int, VectorType &, const VectorType &)>
+        &local) const
+    {
       apply_Bt(src, work_);
       work_x_.resize(subdomains_.size());
       for (const unsigned int s : owned_)
       {
         work_x_[s].reinit(subdomains_[s]->n_dofs());
-        subdomains_[s]->stiffness_matrix().vmult(work_x_[s], work_[s]);
+        local(s, work_x_[s], work_[s]);
       }
       dst.reinit(n_multipliers());
       add_B(work_x_, dst);
@@ -643,15 +660,12 @@ namespace dualcontact
     {
       Assert(has_dirichlet_preconditioner(),
              ExcMessage("TFETIDual: the Dirichlet preconditioner was not "
-                        "built (DecompositionParameters::"
-                        "dirichlet_preconditioner)."));
-      apply_Bt(src, work_);
-      work_x_.resize(subdomains_.size());
-      for (const unsigned int s : owned_)
-        schur_[s]->vmult(work_x_[s], work_[s]);
-      dst.reinit(n_multipliers());
-      add_B(work_x_, dst);
-      sum_over_processes(dst);
+                        "built (DecompositionParameters::preconditioner)."));
+      apply_between_B(dst,
+                      src,
+                      [this](const unsigned int s,
+                             VectorType        &y,
+                             const VectorType  &v) { schur_[s]->vmult(y, v); });
     }
 
 

@@ -255,6 +255,18 @@ namespace dualcontact
       /** v := the sum of v over the processes. */
       void
       sum_over_processes(VectorType &v) const;
+      /**
+       * dst = sum_s B_s A_s B_s' src (collective), A_s applied by
+       * @p local(s, y, v): y = A_s v in the local numbering of subdomain s
+       * (y comes sized and zeroed); the lumped and the Dirichlet
+       * preconditioner.
+       */
+      void
+      apply_between_B(
+        VectorType       &dst,
+        const VectorType &src,
+        const std::function<
+          void(unsigned int, VectorType &, const VectorType &)> &local) const;
       /** Contact, gluing and Dirichlet rows (entries_, c_). */
       void
       build_constraint_rows();
