@@ -90,6 +90,11 @@ namespace dualcontact
         , bodies_(bodies)
         , rows_(contact, frictional_nodes_)
         , inverse_(bodies, contact)
+        , rigid_body_fit_(contact,
+                          rows_,
+                          frictional_nodes_,
+                          rigid_modes_,
+                          G_rows_)
     {
       // The dofs of each body that B touches (C_b) and the rows of B that
       // touch it; and the memory the assembled form would take.
@@ -322,7 +327,7 @@ namespace dualcontact
     unsigned int
     DualProblem<dim>::n_multipliers() const
     {
-      return contact_.n_nodes() + (dim - 1) * frictional_nodes_.size();
+      return this->n_contact_multipliers();
     }
 
     template <int dim>
@@ -411,26 +416,11 @@ namespace dualcontact
       problem.hessian_storage = qp::HessianStorage::dense_matrix;
 
       // the blocks of the owned nodes only (the same as make_problem()'s)
-      auto               set     = std::make_shared<qp::SeparableSet<V>>();
-      const unsigned int n_nodes = contact_.n_nodes();
-      for (const unsigned int i : distribution_->owned_nodes())
-        set->add_bound(i, 0.);
-      for (const unsigned int j : distribution_->owned_frictional())
-      {
-        const unsigned int first = n_nodes + (dim - 1) * j;
-        const FrictionLaw &law =
-          contact_.pairs()[contact_.nodes()[frictional_nodes_[j]].pair]
-            .friction;
-        if (std::isinf(psi_first_[j]) || std::isinf(psi_second_[j]))
-          continue;
-        if (dim == 2)
-          set->add_box(first, -psi_first_[j], psi_first_[j]);
-        else if (law.is_orthotropic() && psi_first_[j] > 0 &&
-                 psi_second_[j] > 0)
-          set->add_ellipse(first, psi_first_[j], psi_second_[j]);
-        else
-          set->add_disc(first, std::min(psi_first_[j], psi_second_[j]));
-      }
+      auto             set = std::make_shared<qp::SeparableSet<V>>();
+      std::vector<int> owned_index(n_multipliers(), -1);
+      for (const unsigned int r : distribution_->owned_rows())
+        owned_index[r] = r;
+      this->add_contact_blocks(*set, owned_index);
       set->finalize(problem.b);
       problem.constraints = set;
 
@@ -583,7 +573,6 @@ namespace dualcontact
       const std::vector<unsigned int> &owned_frictional =
         distribution_->owned_frictional();
       const MPI_Comm     communicator = distribution_->communicator();
-      const unsigned int n_nodes      = contact_.n_nodes();
       const unsigned int n_owned      = distribution_->owned_nodes().size();
       double             scale        = 0;
       for (unsigned int q = 0; q < n_owned; ++q)
@@ -602,76 +591,10 @@ namespace dualcontact
           for (unsigned int k = 0; k + 1 < dim; ++k)
             active[first + k] = true;
       }
-      // alpha = (G_A G_A')^{-1} G_A (-r_A): G_A' alpha = -r_A in the
-      // least-squares sense, r the residual of the constraints without
-      // the rigid motion, r = B u - [c; -o_T] (= d - F lambda)
-      const Vector<double> c = contact_.normal_bound();
-      const unsigned int   m = rigid_modes_.size();
-      // GGt and rhs in one buffer, summed over the processes
-      std::vector<double> sums(m * m + m, 0.), total(m * m + m);
-      for (unsigned int l = 0; l < owned_rows.size(); ++l)
-      {
-        if (!active[l])
-          continue;
-        const unsigned int r        = owned_rows[l];
-        double             residual = rows_.row_times(r, u);
-        if (r < n_nodes)
-          residual -= c(r);
-        else
-          residual += contact_.tangential_offset()(
-            (dim - 1) * frictional_nodes_[(r - n_nodes) / (dim - 1)] +
-            (r - n_nodes) % (dim - 1));
-        for (unsigned int k = 0; k < m; ++k)
-        {
-          sums[m * m + k] -= G_rows_[k](r) * residual;
-          for (unsigned int l2 = 0; l2 < m; ++l2)
-            sums[k * m + l2] += G_rows_[k](r) * G_rows_[l2](r);
-        }
-      }
-      Utilities::MPI::sum(sums, communicator, total);
-      FullMatrix<double> GGt(m, m);
-      Vector<double>     rhs(m);
-      for (unsigned int k = 0; k < m; ++k)
-      {
-        rhs(k) = total[m * m + k];
-        for (unsigned int l2 = 0; l2 < m; ++l2)
-          GGt(k, l2) = total[k * m + l2];
-      }
-      const bool determined = add_rigid_motion(GGt, rhs, u, require_determined);
+      const bool determined = rigid_body_fit_.add(
+        u, owned_rows, active, communicator, require_determined);
       split_displacements(u, displacements);
       return determined;
-    }
-
-
-    template <int dim>
-    bool
-    DualProblem<dim>::add_rigid_motion(FullMatrix<double>   &GGt,
-                                       const Vector<double> &rhs,
-                                       Vector<double>       &u,
-                                       const bool require_determined) const
-    {
-      const unsigned int m    = rigid_modes_.size();
-      double             diag = 0;
-      for (unsigned int k = 0; k < m; ++k)
-        diag = std::max(diag, GGt(k, k));
-      AssertThrow(diag > 0 || !require_determined,
-                  ExcMessage("The rigid-body motion of a floating body is "
-                             "not determined: no active contact "
-                             "constraint holds it."));
-      if (!(diag > 0))
-        return false;
-      // Tikhonov-free solve; a singular G_A G_A' means a mode that no
-      // active constraint sees (e.g. tangential motion without
-      // friction): it is left at zero by the pseudo-inverse below.
-      for (unsigned int k = 0; k < m; ++k)
-        GGt(k, k) += 1e-14 * diag;
-      FullMatrix<double> inverse(m, m);
-      inverse.invert(GGt);
-      Vector<double> alpha(m);
-      inverse.vmult(alpha, rhs);
-      for (unsigned int k = 0; k < m; ++k)
-        u.add(alpha(k), rigid_modes_[k]);
-      return true;
     }
 
 

@@ -13,6 +13,7 @@
 #include <contact/dual_operator.h>
 #include <contact/dual_transforms.h>
 #include <contact/multiplier_distribution.h>
+#include <contact/rigid_body_fit.h>
 #include <contact/stiffness_inverse.h>
 #include <fem/elastic_body.h>
 #include <fem/rigid_body_modes.h>
@@ -305,17 +306,6 @@ namespace dualcontact
                       std::vector<dealii::Vector<double>> &displacements,
                       const bool require_determined) const;
 
-      /**
-       * u += R alpha with alpha solving (G_A G_A') alpha = rhs (the
-       * rigid-body amplitudes of recover()); @p GGt is regularized.  A zero
-       * G_A G_A' (no active constraint sees a rigid mode) throws with
-       * @p require_determined, else leaves u and returns false.
-       */
-      bool
-      add_rigid_motion(dealii::FullMatrix<double>   &GGt,
-                       const dealii::Vector<double> &rhs,
-                       dealii::Vector<double>       &u,
-                       const bool                    require_determined) const;
       /** The bodies' parts of @p u, their constraints distributed. */
       void
       split_displacements(
@@ -341,6 +331,8 @@ namespace dualcontact
       std::vector<VectorType> G_rows_;
       VectorType              e_;
       VectorType              d_;
+      /** The rigid-body amplitudes of the recovery. */
+      RigidBodyFit<dim> rigid_body_fit_;
       /** The transforms of the QP: F / s, d / s, and G~, e~. */
       std::unique_ptr<LambdaMaxScaling>      scaling_;
       std::unique_ptr<OrthonormalEqualities> equalities_;
