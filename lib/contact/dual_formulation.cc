@@ -189,10 +189,11 @@ namespace dualcontact
 
 
     template <int dim>
+    template <typename V>
     void
     DualFormulation<dim>::add_contact_blocks(
-      qp::SeparableSet<VectorType> &set,
-      const std::vector<int>       &new_index) const
+      qp::SeparableSet<V>    &set,
+      const std::vector<int> &new_index) const
     {
       const unsigned int n_nodes = contact_.n_nodes();
       for (unsigned int i = 0; i < n_nodes; ++i)
@@ -307,6 +308,22 @@ namespace dualcontact
     }
 
 
+    template void
+    DualFormulation<2>::add_contact_blocks(
+      qp::SeparableSet<dealii::Vector<double>> &,
+      const std::vector<int> &) const;
+    template void
+    DualFormulation<2>::add_contact_blocks(
+      qp::SeparableSet<dealii::TrilinosWrappers::MPI::Vector> &,
+      const std::vector<int> &) const;
+    template void
+    DualFormulation<3>::add_contact_blocks(
+      qp::SeparableSet<dealii::Vector<double>> &,
+      const std::vector<int> &) const;
+    template void
+    DualFormulation<3>::add_contact_blocks(
+      qp::SeparableSet<dealii::TrilinosWrappers::MPI::Vector> &,
+      const std::vector<int> &) const;
     template class DualFormulation<2>;
     template class DualFormulation<3>;
   } // namespace contact

@@ -198,11 +198,13 @@ namespace dualcontact
        * multipliers only (contact::WorkingSet): multiplier r is at
        * @p new_index[r] of the smaller QP, or dropped (fixed at zero) when
        * that is negative.  A node's tangential block is kept or dropped
-       * whole (the first of its rows decides).
+       * whole (the first of its rows decides).  On DistributedVector:
+       * the blocks of a process' own multipliers (DualProblem).
        */
+      template <typename V>
       void
-      add_contact_blocks(qp::SeparableSet<VectorType> &set,
-                         const std::vector<int>       &new_index) const;
+      add_contact_blocks(qp::SeparableSet<V>    &set,
+                         const std::vector<int> &new_index) const;
 
     protected:
       /** friction_utilization() from the node's dim - 1 tangential values. */

@@ -8,7 +8,13 @@
 #include <deal.II/lac/vector.h>
 
 #include <contact/contact_discretization.h>
+#include <contact/contact_rows.h>
 #include <contact/dual_formulation.h>
+#include <contact/dual_operator.h>
+#include <contact/dual_transforms.h>
+#include <contact/multiplier_distribution.h>
+#include <contact/rigid_body_fit.h>
+#include <contact/stiffness_inverse.h>
 #include <fem/elastic_body.h>
 #include <fem/rigid_body_modes.h>
 #include <fem/stiffness_solver.h>
@@ -284,27 +290,15 @@ namespace dualcontact
       using DualFormulation<dim>::psi_first_;
       using DualFormulation<dim>::psi_second_;
 
-      /** Calls @p f(column, value) for the entries of row @p r of B. */
-      template <typename Function>
-      void
-      for_each_in_row(const unsigned int r, const Function &f) const;
-
-      /**
-       * F = sum_b W_b'W_b with W_b = L_b^{-1} (B_b)_C' from the bodies'
-       * Schur factors.
-       */
-      void
-      assemble_operator(std::vector<fem::StiffnessSolver::SchurFactor> &schur,
-                        const std::vector<std::vector<unsigned int>>   &rows);
-
       /**
        * The two recover()s once u = B'lambda: u = K^#(f - u), plus the
        * rigid-body motion R alpha fitted so that the active rows hold, then
        * the bodies' parts.  @p lambda: the owned multipliers in the local
-       * order of owned_rows_ (replicated: all rows); the sums over the
-       * owned rows are reduced over communicator_ (one process when
-       * replicated).  Collective when distributed; @p require_determined
-       * and the return value as in recover().
+       * order of MultiplierDistribution::owned_rows() (replicated: all
+       * rows); the sums over the owned rows are reduced over its
+       * communicator (one process when replicated).  Collective when
+       * distributed; @p require_determined and the return value as in
+       * recover().
        */
       bool
       finish_recovery(const double                        *lambda,
@@ -312,48 +306,24 @@ namespace dualcontact
                       std::vector<dealii::Vector<double>> &displacements,
                       const bool require_determined) const;
 
-      /**
-       * u += R alpha with alpha solving (G_A G_A') alpha = rhs (the
-       * rigid-body amplitudes of recover()); @p GGt is regularized.  A zero
-       * G_A G_A' (no active constraint sees a rigid mode) throws with
-       * @p require_determined, else leaves u and returns false.
-       */
-      bool
-      add_rigid_motion(dealii::FullMatrix<double>   &GGt,
-                       const dealii::Vector<double> &rhs,
-                       dealii::Vector<double>       &u,
-                       const bool                    require_determined) const;
       /** The bodies' parts of @p u, their constraints distributed. */
       void
       split_displacements(
         const dealii::Vector<double>        &u,
         std::vector<dealii::Vector<double>> &displacements) const;
 
-      /** Owners of the contact nodes and the index sets (constructor). */
+      /** The owners of the multipliers (constructor, last). */
       void
       distribute_multipliers(const DualProblemParameters &parameters);
 
-      /**
-       * u = B' lambda from the owned multipliers only (the local part of
-       * B'lambda), summed over the processes: u whole on every process.
-       */
-      void
-      apply_Bt_distributed(const DistributedVector &lambda,
-                           dealii::Vector<double>  &u) const;
-      /** Row r of B u. */
-      double
-      row_times(const unsigned int r, const dealii::Vector<double> &u) const;
-
-      void
-      apply_K_inverse(dealii::Vector<double> &x) const;
-      void
-      apply_B(const dealii::Vector<double> &u, VectorType &lambda) const;
-      void
-      apply_Bt(const VectorType &lambda, dealii::Vector<double> &u) const;
-
       std::vector<const fem::ElasticBody<dim> *>             bodies_;
       std::vector<std::unique_ptr<fem::RigidBodyModes<dim>>> modes_;
-      std::vector<std::unique_ptr<fem::StiffnessSolver>>     solvers_;
+      /** B in the multipliers' layout. */
+      ContactRows<dim> rows_;
+      /** K^# of the bodies (their factorized solvers). */
+      StiffnessInverse<dim> inverse_;
+      /** F: assembled or implicit. */
+      std::unique_ptr<DualOperator<dim>> operator_;
       /** Stacked load f and the columns of R over all dofs. */
       dealii::Vector<double>              load_;
       std::vector<dealii::Vector<double>> rigid_modes_;
@@ -361,36 +331,17 @@ namespace dualcontact
       std::vector<VectorType> G_rows_;
       VectorType              e_;
       VectorType              d_;
-      /** lambda_max(F), the scale of the QP handed to the solvers. */
-      double scale_ = 1;
-      /** Products with F spent on the power iteration. */
-      unsigned int n_power_products_ = 0;
-      /** Orthonormalized G and the correspondingly transformed e. */
-      std::vector<VectorType> G_orthonormal_;
-      VectorType              e_orthonormal_;
-      mutable unsigned long   n_stiffness_solves_ = 0;
-      /** The assembled F, m x m column-major (empty if implicit). */
-      std::vector<double>            F_dense_;
-      std::string                    operator_description_;
-      double                         assembly_time_ = 0;
-      mutable dealii::Vector<double> work_u_, work_t_;
+      /** The rigid-body amplitudes of the recovery. */
+      RigidBodyFit<dim> rigid_body_fit_;
+      /** The transforms of the QP: F / s, d / s, and G~, e~. */
+      std::unique_ptr<LambdaMaxScaling>      scaling_;
+      std::unique_ptr<OrthonormalEqualities> equalities_;
 
-      /** Distribution (see above); replicated: all rows, one process. */
-      bool             distributed_  = false;
-      MPI_Comm         communicator_ = MPI_COMM_SELF;
-      dealii::IndexSet owned_multipliers_;
-      /** The owned multipliers' global indices, in local order. */
-      std::vector<unsigned int> owned_rows_;
-      /** The owned contact nodes and frictional nodes (indices j), sorted. */
-      std::vector<unsigned int> owned_nodes_, owned_frictional_;
-      std::vector<unsigned int> nodes_per_process_, multipliers_per_process_;
-      /** The rows of G (equality multipliers) live on process 0. */
-      dealii::IndexSet owned_modes_;
+      /** Which process owns which multipliers (see "Distribution"). */
+      std::unique_ptr<MultiplierDistribution> distribution_;
       /** Made only when distributed: the constructor of a Trilinos vector
        *  calls MPI, which serial programs do not initialize. */
-      std::unique_ptr<DistributedVector> d_distributed_, e_distributed_;
-      /** The gathered multipliers of an assembled distributed product. */
-      mutable dealii::Vector<double> work_lambda_;
+      std::unique_ptr<DistributedVector> d_distributed_;
     };
   } // namespace contact
 } // namespace dualcontact

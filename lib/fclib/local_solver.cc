@@ -492,11 +492,11 @@ namespace dualcontact
       }
       if (scaled)
         qp.b.scale(scale_);
-      qp.constraints  = set;
+      qp.constraints = set;
       // W (dense Delassus operator): `auto' keeps the given parameters
       qp.hessian_storage = dualcontact::qp::HessianStorage::dense_matrix;
-      qp.lambda_max   = scaled ? qp_lambda_max_ : lambda_max_ + rho;
-      qp.semidefinite = true;
+      qp.lambda_max      = scaled ? qp_lambda_max_ : lambda_max_ + rho;
+      qp.semidefinite    = true;
       // the QP criterion is relative to ||b||; the proximal and lagged
       // terms make ||b|| larger than ||q||, and the error that matters is
       // the one in q: tolerance relative to ||q||

@@ -51,6 +51,9 @@ namespace dualcontact
       bool bounds_only = false;
     };
 
+    template <typename VectorType>
+    class ActiveSetIteration;
+
     /**
      * Engine of the active-set solvers; see the derived classes MPRGP,
      * MPGP, MPGPBB, MwPGP for the published algorithms.  With every
@@ -79,9 +82,9 @@ namespace dualcontact
        * The state of one solve() and its steps (algorithm 7 in the
        * thesis' order: start gradient, proportionality test, CG step or
        * feasible half-step with expansion, proportioning or expansion,
-       * the check of a converged iterate); active_set_solver.cc.
+       * the check of a converged iterate); active_set_iteration.h.
        */
-      class Iteration;
+      friend class ActiveSetIteration<VectorType>;
 
       const ActiveSetVariant variant;
       /**

@@ -133,8 +133,8 @@ namespace dualcontact
        * when the solver passes a cost @p cost (the active-set solvers:
        * their iterate's; SPG-QP and PBBf: their iterate's, non-monotone),
        * a cost below the least cost at a progress
-       * by more than a relative 1e-12.  (APGD passes none.)  The criterion of the
-       * active-set solvers is not monotone: while the active set is being
+       * by more than a relative 1e-12.  (APGD passes none.)  The criterion of
+       * the active-set solvers is not monotone: while the active set is being
        * found (thousands of expansions at n = 10^6) it may stay above its
        * minimum for long stretches in which the cost falls steadily, and
        * that is progress, not stagnation.  Call once per iteration, after

@@ -167,7 +167,7 @@ namespace dualcontact
         {
           SMALSEM<VectorType> smalse(parameters, smalse_prm);
           attempts.push_back(smalse.solve(*attempt_problem, x));
-          attempts.back().settings = describe_settings(parameters);
+          attempts.back().settings  = describe_settings(parameters);
           last_equality_residual    = smalse.equality_residual();
           this->last_gradient_valid = false;
         }

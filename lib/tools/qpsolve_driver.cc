@@ -232,7 +232,8 @@ namespace dualcontact
              "place for each active set; 0: a full setup each time; "
              "--amg-keep-fraction F (default 0) keeps the hierarchy while "
              "at most F * n unknowns changed state).\n"
-             "--solver auto (the default): the fall-back chain; on bound and box "
+             "--solver auto (the default): the fall-back chain; on bound and "
+             "box "
              "constraints it runs MPRGP with the settings measured best "
              "(Gamma 2, projected-CG expansion with 8 trials and gradient "
              "factor 1.25, AMG in face, preconditioned release) unless one "
@@ -411,8 +412,8 @@ namespace dualcontact
           only_bounds =
             only_bounds && (block.type == "bound" || block.type == "box");
         const bool auto_amg = prm.solver == "auto" &&
-                              prm.auto_settings == "measured" &&
-                              only_bounds && !d.has_equality();
+                              prm.auto_settings == "measured" && only_bounds &&
+                              !d.has_equality();
         if (prm.preconditioner == "amg" || auto_amg)
         {
           FreeSetAMG::Parameters amg_parameters;
@@ -594,16 +595,16 @@ namespace dualcontact
         j["statistics"] = nlohmann::json::parse(s.str());
       }
       // the headline figures also at the top level
-      j["solver"]                    = stats.solver;
-      j["reason"]                    = to_string(stats.reason);
-      j["converged"]                 = stats.converged();
-      j["iterations"]                = stats.iterations;
-      j["hessian_products"]          = stats.n_hessian_products;
-      j["time"]                      = number(least_time);
-      j["runs"]                      = options.repeat;
-      j["cpu_time"]                  = number(least_cpu_time);
-      j["final_criterion"]           = number(stats.final_criterion);
-      j["preconditioner"]            = chosen_preconditioner;
+      j["solver"]           = stats.solver;
+      j["reason"]           = to_string(stats.reason);
+      j["converged"]        = stats.converged();
+      j["iterations"]       = stats.iterations;
+      j["hessian_products"] = stats.n_hessian_products;
+      j["time"]             = number(least_time);
+      j["runs"]             = options.repeat;
+      j["cpu_time"]         = number(least_cpu_time);
+      j["final_criterion"]  = number(stats.final_criterion);
+      j["preconditioner"]   = chosen_preconditioner;
       if (!stats.settings.empty())
         j["settings"] = stats.settings;
       j["preconditioner_setups"]     = stats.n_preconditioner_setups;

@@ -225,7 +225,7 @@ main()
     const Result m = run("--make-membrane --dir " + dir +
                          "/membrane --variant permon --h 100");
     check(m.code == 0, "qpsolve --make-membrane --h 100: exit 0");
-    const Result r = run(dir + "/membrane/membrane.json --tol 1e-6");
+    const Result r          = run(dir + "/membrane/membrane.json --tol 1e-6");
     unsigned int iterations = 0;
     const auto   at         = r.out.find("\n  \"iterations\": ");
     if (at != std::string::npos)
@@ -233,11 +233,12 @@ main()
     check(r.code == 0 && contains(r.out, "\"solver\": \"auto\"") &&
             contains(r.out, "\"chosen_solver\": \"mprgp\"") &&
             contains(r.out, "\"preconditioner\": \"amg\"") &&
-            contains(r.out, "\"settings\": \"measured: gamma=2, "
-                            "expansion=projected-cg, projected-cg-trials=8, "
-                            "projected-cg-gradient-factor=1.25, "
-                            "preconditioner=amg, "
-                            "proportioning=preconditioned\"") &&
+            contains(r.out,
+                     "\"settings\": \"measured: gamma=2, "
+                     "expansion=projected-cg, projected-cg-trials=8, "
+                     "projected-cg-gradient-factor=1.25, "
+                     "preconditioner=amg, "
+                     "proportioning=preconditioned\"") &&
             iterations >= 1 && iterations <= 20,
           "qpsolve membrane (no solver option): auto chooses mprgp with the "
           "AMG in face, converged in " +
@@ -247,15 +248,17 @@ main()
     const Result g = run(dir + "/membrane/membrane.json --tol 1e-6 "
                                "--set 'QP solver/Auto settings=given'");
     check(g.code == 0 && contains(g.out, "\"preconditioner\": \"none\"") &&
-            contains(g.out, "\"settings\": \"given: gamma=1, "
-                            "expansion=alpha-bar"),
+            contains(g.out,
+                     "\"settings\": \"given: gamma=1, "
+                     "expansion=alpha-bar"),
           "qpsolve --set 'QP solver/Auto settings=given': the thesis' "
           "MPRGP");
     const Result u = run(dir + "/membrane/membrane.json --tol 1e-6 "
                                "--gamma 2 --expansion projected-cg");
     check(u.code == 0 && contains(u.out, "\"preconditioner\": \"none\"") &&
-            contains(u.out, "\"settings\": \"given: gamma=2, "
-                            "expansion=projected-cg"),
+            contains(u.out,
+                     "\"settings\": \"given: gamma=2, "
+                     "expansion=projected-cg"),
           "qpsolve --gamma 2 --expansion projected-cg (auto): the settings "
           "given, no AMG added");
   }

@@ -252,9 +252,9 @@ main()
         rg[i] -= alpha * d.Ap[i];
         const bool         active = is_active(rx[i], d.l[i]);
         const double       y = rx[i], gi = rg[i];
-        const double       gm = std::min(gi, 0.);
-        const unsigned int j  = lane(i, n);
-        double             red    = 0.;
+        const double       gm  = std::min(gi, 0.);
+        const unsigned int j   = lane(i, n);
+        double             red = 0.;
         if (active)
           Bound{d.l[i]}.reduced_chopped_gradient(&y, &gi, ra, {true}, &red);
         rfs.v[j] += active ? 0. : gi * gi;
@@ -328,7 +328,7 @@ main()
         const unsigned int j   = lane(i, n);
         const double       phi = active ? 0. : gi,
                      beta      = active ? std::min(gi, 0.) : 0.;
-        double red = 0.;
+        double red             = 0.;
         if (active)
           Bound{d.l[i]}.reduced_chopped_gradient(&y, &gi, alpha, {true}, &red);
         rfs.v[j] += phi * phi;
