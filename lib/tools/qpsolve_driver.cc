@@ -330,41 +330,45 @@ namespace dualcontact
     }
 
 
-    int
-    QPSolveDriver::run(const std::vector<std::string> &arguments,
-                       std::ostream                   &out,
-                       std::ostream                   &err) const
+    namespace
     {
-      if (!arguments.empty() && arguments[0] == "--make-membrane")
-        return make_membrane(arguments, out, err);
-      Options options;
-      try
+      /// The QP of a problem file as the solvers take it; the lambdas
+      /// refer to the ProblemData, which must outlive it.
+      struct BuiltProblem
       {
-        options = parse(arguments);
-        if (base_parameters && !options.solver_given)
-          options.solver = base_parameters->solver;
-      }
-      catch (const UsageError &e)
-      {
-        if (std::string(e.what()).size() > 0)
-          err << "qpsolve: " << e.what() << '\n';
-        err << usage() << std::endl;
-        return 1;
-      }
+        Problem<Vec>                              problem;
+        std::shared_ptr<SeparableSet<Vec>>        set;
+        std::shared_ptr<EqualityConstraints<Vec>> equality;
+        std::unique_ptr<FreeSetAMG>               amg;
+      };
 
-      // ---- read and build (every failure here is bad input: exit 1)
-      dealii::Timer                             read_timer;
-      std::unique_ptr<ProblemData>              data;
-      Problem<Vec>                              problem;
-      SolverParameters                          prm;
-      std::shared_ptr<SeparableSet<Vec>>        set;
-      std::shared_ptr<EqualityConstraints<Vec>> equality;
-      std::unique_ptr<FreeSetAMG>               amg;
-      try
+
+      /// What the runs of one solve give the report.
+      struct SolveResult
       {
-        data = read_problem(options.problem_file);
-        if (base_parameters)
-          prm = *base_parameters;
+        Vec              x;
+        SolverStatistics stats;
+        double           equality_residual = -1.;
+        double           least_time = std::numeric_limits<double>::infinity();
+        // processor time of this process (std::clock): on a machine shared
+        // with other jobs it excludes the time the solve waited for a core
+        double least_cpu_time = std::numeric_limits<double>::infinity();
+        // FreeSetAMG's counters before the last run
+        unsigned int amg_full_setups = 0, amg_recomputes = 0, amg_kept = 0;
+        // the preconditioner the (chosen) solver ran with
+        std::string chosen_preconditioner;
+      };
+
+
+      /// The solver's parameters: the .prm ones (--prm, --set) with the
+      /// command-line options over them.
+      SolverParameters
+      solver_parameters(const Options                         &options,
+                        const std::optional<SolverParameters> &base)
+      {
+        SolverParameters prm;
+        if (base)
+          prm = *base;
         prm.solver = options.solver == "cgc" ? "mprgp" : options.solver;
         if (options.tolerance > 0.)
           prm.tolerance = options.tolerance;
@@ -394,38 +398,15 @@ namespace dualcontact
                         ": only --solver mprgp (or auto, whose MPRGP) "
                         "preconditions in face"));
         prm.check();
+        return prm;
+      }
 
-        const ProblemData &d = *data;
-        problem.hessian      = [&d](Vec &dst, const Vec &src)
-        { d.hessian.vmult(dst, src); };
-        problem.b     = d.rhs;
-        auto diagonal = std::make_shared<Vec>(d.size());
-        for (unsigned int i = 0; i < d.size(); ++i)
-          (*diagonal)[i] = d.hessian.diag_element(i);
-        problem.diagonal        = diagonal;
-        problem.hessian_storage = HessianStorage::sparse_matrix;
-        // the chain `auto' with measured settings runs MPRGP with the AMG
-        // in face on bound and box constraints without equalities
-        // (SolverChain::attempt_parameters): it needs the factory
-        bool only_bounds = true;
-        for (const auto &block : d.constraints)
-          only_bounds =
-            only_bounds && (block.type == "bound" || block.type == "box");
-        const bool auto_amg = prm.solver == "auto" &&
-                              prm.auto_settings == "measured" && only_bounds &&
-                              !d.has_equality();
-        if (prm.preconditioner == "amg" || auto_amg)
-        {
-          FreeSetAMG::Parameters amg_parameters;
-          if (options.amg_keep_fraction >= 0.)
-            amg_parameters.keep_fraction = options.amg_keep_fraction;
-          if (options.amg_reuse_aggregates >= 0)
-            amg_parameters.reuse_aggregates = options.amg_reuse_aggregates;
-          amg = std::make_unique<FreeSetAMG>(d.hessian, amg_parameters);
-          problem.free_set_preconditioner = amg->factory();
-        }
 
-        set = std::make_shared<SeparableSet<Vec>>();
+      /// The separable set of the file's constraint blocks.
+      std::shared_ptr<SeparableSet<Vec>>
+      make_set(const ProblemData &d)
+      {
+        auto set = std::make_shared<SeparableSet<Vec>>();
         for (const auto &block : d.constraints)
           for (unsigned int k = 0; k < block.count; ++k)
           {
@@ -443,12 +424,52 @@ namespace dualcontact
             else if (block.type == "cone")
               set->add_cone(block.first + 3 * k, block.mu[k]);
           }
-        set->finalize(problem.b);
-        problem.constraints = set;
+        set->finalize(d.rhs);
+        return set;
+      }
 
+
+      /// Hessian, diagonal, the AMG in face where asked for (or where
+      /// `auto` with measured settings runs MPRGP with it: bounds and
+      /// boxes, no equalities; SolverChain::attempt_parameters), the set
+      /// and the equality constraints.
+      void
+      build_problem(const ProblemData      &d,
+                    const Options          &options,
+                    const SolverParameters &prm,
+                    BuiltProblem           &built)
+      {
+        Problem<Vec> &problem = built.problem;
+        problem.hessian       = [&d](Vec &dst, const Vec &src)
+        { d.hessian.vmult(dst, src); };
+        problem.b     = d.rhs;
+        auto diagonal = std::make_shared<Vec>(d.size());
+        for (unsigned int i = 0; i < d.size(); ++i)
+          (*diagonal)[i] = d.hessian.diag_element(i);
+        problem.diagonal        = diagonal;
+        problem.hessian_storage = HessianStorage::sparse_matrix;
+        bool only_bounds        = true;
+        for (const auto &block : d.constraints)
+          only_bounds =
+            only_bounds && (block.type == "bound" || block.type == "box");
+        const bool auto_amg = prm.solver == "auto" &&
+                              prm.auto_settings == "measured" && only_bounds &&
+                              !d.has_equality();
+        if (prm.preconditioner == "amg" || auto_amg)
+        {
+          FreeSetAMG::Parameters amg_parameters;
+          if (options.amg_keep_fraction >= 0.)
+            amg_parameters.keep_fraction = options.amg_keep_fraction;
+          if (options.amg_reuse_aggregates >= 0)
+            amg_parameters.reuse_aggregates = options.amg_reuse_aggregates;
+          built.amg = std::make_unique<FreeSetAMG>(d.hessian, amg_parameters);
+          problem.free_set_preconditioner = built.amg->factory();
+        }
+        built.set           = make_set(d);
+        problem.constraints = built.set;
         if (d.has_equality())
         {
-          equality        = std::make_shared<EqualityConstraints<Vec>>();
+          auto equality   = std::make_shared<EqualityConstraints<Vec>>();
           equality->vmult = [&d](Vec &dst, const Vec &src)
           { d.equality_matrix.vmult(dst, src); };
           equality->Tvmult = [&d](Vec &dst, const Vec &src)
@@ -456,184 +477,132 @@ namespace dualcontact
           equality->c             = d.equality_rhs;
           equality->n_constraints = d.equality_rhs.size();
           problem.equality        = equality;
+          built.equality          = equality;
           AssertThrow(prm.preconditioner == "none",
                       dealii::ExcMessage(
                         options.problem_file +
                         ": --preconditioner is not available with "
                         "equality constraints (SMALSE-M)"));
         }
-        if (options.solver == "cgc")
-        {
-          for (const auto &block : d.constraints)
-            AssertThrow(block.type == "bound" || block.type == "box",
-                        dealii::ExcMessage(
-                          options.problem_file +
-                          ": --solver cgc accepts only bound and box "
-                          "constraints (linear inequalities), the "
-                          "problem has a '" +
-                          block.type + "' block"));
-          AssertThrow(!d.has_equality(),
+      }
+
+
+      /// --solver cgc takes bounds and boxes only, no equalities, and the
+      /// projected criterion.
+      void
+      check_cgc_input(const ProblemData      &d,
+                      const Options          &options,
+                      const SolverParameters &prm)
+      {
+        for (const auto &block : d.constraints)
+          AssertThrow(block.type == "bound" || block.type == "box",
                       dealii::ExcMessage(
                         options.problem_file +
-                        ": --solver cgc does not take equality "
-                        "constraints (field 'equality')"));
-          AssertThrow(prm.stopping_criterion == StoppingCriterion::projected,
-                      dealii::ExcMessage(
-                        "--solver cgc supports only --criterion "
-                        "projected"));
-        }
+                        ": --solver cgc accepts only bound and box "
+                        "constraints (linear inequalities), the "
+                        "problem has a '" +
+                        block.type + "' block"));
+        AssertThrow(!d.has_equality(),
+                    dealii::ExcMessage(options.problem_file +
+                                       ": --solver cgc does not take equality "
+                                       "constraints (field 'equality')"));
+        AssertThrow(prm.stopping_criterion == StoppingCriterion::projected,
+                    dealii::ExcMessage("--solver cgc supports only --criterion "
+                                       "projected"));
       }
-      catch (const std::exception &e)
-      {
-        err << "qpsolve: " << plain_message(e) << std::endl;
-        return 1;
-      }
-      const double read_time = read_timer.wall_time();
 
-      // ---- solve
-      Vec              x(data->size());
-      SolverStatistics stats;
-      double           equality_residual = -1.;
-      double           least_time = std::numeric_limits<double>::infinity();
-      // processor time of this process (std::clock): on a machine shared
-      // with other jobs it excludes the time the solve waited for a core
-      double least_cpu_time = std::numeric_limits<double>::infinity();
-      // FreeSetAMG's counters before the last run
-      unsigned int amg_full_setups = 0, amg_recomputes = 0, amg_kept = 0;
-      // the preconditioner the (chosen) solver ran with
-      std::string chosen_preconditioner = prm.preconditioner;
-      for (long run = 0; run < options.repeat; ++run)
+
+      /// The 1996 report's CGC on the bounds and boxes as linear
+      /// inequalities, with the KKT report of every other solver.
+      SolverStatistics
+      solve_with_cgc(const ProblemData      &d,
+                     const Problem<Vec>     &problem,
+                     const SolverParameters &prm,
+                     Vec                    &x)
       {
-        try
+        auto rows = std::make_shared<LinearInequalities>();
+        for (const auto &block : d.constraints)
+          for (unsigned int k = 0; k < block.count; ++k)
+          {
+            rows->add_lower_bound(block.first + k, block.lower[k]);
+            if (block.type == "box")
+              rows->add_upper_bound(block.first + k, block.upper[k]);
+          }
+        CGCProblem<Vec> cgc_problem;
+        cgc_problem.hessian     = problem.hessian;
+        cgc_problem.b           = problem.b;
+        cgc_problem.constraints = rows;
+        CGC<Vec>::AdditionalData cgc_data;
+        cgc_data.tolerance         = prm.tolerance;
+        cgc_data.max_iterations    = prm.max_iterations;
+        cgc_data.stagnation_window = prm.stagnation_window;
+        CGC<Vec>         cgc(cgc_data);
+        SolverStatistics stats        = cgc.solve(cgc_problem, x);
+        const double     stationarity = stats.kkt.stationarity;
+        stats.kkt                     = compute_kkt_residuals(problem, x);
+        stats.kkt.stationarity = std::min(stationarity, stats.kkt.stationarity);
+        return stats;
+      }
+
+
+      /// --repeat N solves from the same start; the least wall and
+      /// processor times.
+      SolveResult
+      solve_repeatedly(const ProblemData      &d,
+                       const Options          &options,
+                       const SolverParameters &prm,
+                       BuiltProblem           &built)
+      {
+        SolveResult result;
+        result.x.reinit(d.size());
+        result.chosen_preconditioner = prm.preconditioner;
+        Vec                &x        = result.x;
+        const Problem<Vec> &problem  = built.problem;
+        for (long run = 0; run < options.repeat; ++run)
         {
           const std::clock_t cpu_start = std::clock();
-          if (amg)
+          if (built.amg)
           {
             // every run from scratch: no aggregates of the previous run
-            amg->reset();
-            amg_full_setups = amg->n_full_setups();
-            amg_recomputes  = amg->n_recomputes();
-            amg_kept        = amg->n_kept();
+            built.amg->reset();
+            result.amg_full_setups = built.amg->n_full_setups();
+            result.amg_recomputes  = built.amg->n_recomputes();
+            result.amg_kept        = built.amg->n_kept();
           }
           x = 0.;
-          if (data->x0.size() > 0)
-            x = data->x0;
+          if (d.x0.size() > 0)
+            x = d.x0;
           if (options.solver == "cgc")
-          {
-            auto rows = std::make_shared<LinearInequalities>();
-            for (const auto &block : data->constraints)
-              for (unsigned int k = 0; k < block.count; ++k)
-              {
-                rows->add_lower_bound(block.first + k, block.lower[k]);
-                if (block.type == "box")
-                  rows->add_upper_bound(block.first + k, block.upper[k]);
-              }
-            CGCProblem<Vec> cgc_problem;
-            cgc_problem.hessian     = problem.hessian;
-            cgc_problem.b           = problem.b;
-            cgc_problem.constraints = rows;
-            CGC<Vec>::AdditionalData cgc_data;
-            cgc_data.tolerance         = prm.tolerance;
-            cgc_data.max_iterations    = prm.max_iterations;
-            cgc_data.stagnation_window = prm.stagnation_window;
-            CGC<Vec> cgc(cgc_data);
-            stats = cgc.solve(cgc_problem, x);
-            // the same KKT report as every other solver
-            const double stationarity = stats.kkt.stationarity;
-            stats.kkt                 = compute_kkt_residuals(problem, x);
-            stats.kkt.stationarity =
-              std::min(stationarity, stats.kkt.stationarity);
-          }
+            result.stats = solve_with_cgc(d, problem, prm, x);
           else
           {
             // the fall-back chain, SMALSE-M around the solver with
             // equality constraints, or the solver itself
-            auto solver = make_solver<Vec>(prm, SMALSEMParameters(), problem);
-            stats       = solver->solve(problem, x);
+            auto solver  = make_solver<Vec>(prm, SMALSEMParameters(), problem);
+            result.stats = solver->solve(problem, x);
             // the settings the chain chose (its chosen attempt's)
             if (const auto *chain =
                   dynamic_cast<const SolverChain<Vec> *>(solver.get()))
-              chosen_preconditioner = chain->chosen_parameters().preconditioner;
+              result.chosen_preconditioner =
+                chain->chosen_parameters().preconditioner;
             if (problem.equality)
-              equality_residual = solver->equality_residual();
+              result.equality_residual = solver->equality_residual();
           }
-          least_time = std::min(least_time, stats.wall_time);
-          least_cpu_time =
-            std::min(least_cpu_time,
+          result.least_time =
+            std::min(result.least_time, result.stats.wall_time);
+          result.least_cpu_time =
+            std::min(result.least_cpu_time,
                      double(std::clock() - cpu_start) / CLOCKS_PER_SEC);
         }
-        catch (const std::exception &e)
-        {
-          err << "qpsolve: " << plain_message(e) << std::endl;
-          return 1;
-        }
+        return result;
       }
 
-      // ---- report
-      nlohmann::json j;
-      j["problem"]          = options.problem_file;
-      j["n"]                = data->size();
-      j["nonzeros"]         = data->hessian.n_nonzero_elements();
-      nlohmann::json blocks = nlohmann::json::object();
-      for (const char *type : {"bound", "box", "disc", "ellipse", "cone"})
-        blocks[type] = 0;
-      std::size_t n_constrained = 0;
-      for (const auto &block : data->constraints)
+
+      /// One sparse mat-vec, for the cost per Hessian product: the least
+      /// average over 10 batches (robust to other processes' load).
+      void
+      add_matvec_time(const ProblemData &d, const Vec &x, nlohmann::json &j)
       {
-        blocks[block.type] =
-          blocks[block.type].get<unsigned int>() + block.count;
-        n_constrained += block.n_unknowns();
-      }
-      blocks["free_unknowns"] = data->size() - n_constrained;
-      j["blocks"]             = blocks;
-      if (data->has_equality())
-        j["equality_constraints"] = data->equality_rhs.size();
-      j["read_time"] = number(read_time);
-      {
-        std::ostringstream s;
-        stats.write_json(s, false);
-        j["statistics"] = nlohmann::json::parse(s.str());
-      }
-      // the headline figures also at the top level
-      j["solver"]           = stats.solver;
-      j["reason"]           = to_string(stats.reason);
-      j["converged"]        = stats.converged();
-      j["iterations"]       = stats.iterations;
-      j["hessian_products"] = stats.n_hessian_products;
-      j["time"]             = number(least_time);
-      j["runs"]             = options.repeat;
-      j["cpu_time"]         = number(least_cpu_time);
-      j["final_criterion"]  = number(stats.final_criterion);
-      j["preconditioner"]   = chosen_preconditioner;
-      if (!stats.settings.empty())
-        j["settings"] = stats.settings;
-      j["preconditioner_setups"]     = stats.n_preconditioner_setups;
-      j["preconditioner_setup_time"] = number(stats.preconditioner_setup_time);
-      j["preconditioner_applications"] = stats.n_preconditioner_applications;
-      j["preconditioner_apply_time"] = number(stats.preconditioner_apply_time);
-      if (amg)
-      {
-        // of the last run: full ML setups and in-place recomputes
-        j["amg_full_setups"] = amg->n_full_setups() - amg_full_setups;
-        j["amg_recomputes"]  = amg->n_recomputes() - amg_recomputes;
-        j["amg_kept"]        = amg->n_kept() - amg_kept;
-      }
-      j["kkt"] = j["statistics"]["kkt"];
-      if (equality_residual >= 0.)
-      {
-        j["equality_residual"] = number(equality_residual);
-        j["outer_iterations"]  = stats.n_outer;
-      }
-      {
-        const auto     active = set->n_active_blocks(x);
-        nlohmann::json a;
-        for (unsigned int t = 0; t < n_block_types; ++t)
-          a[block_type_name(static_cast<BlockType>(t))] = active[t];
-        j["active_blocks"] = a;
-      }
-      {
-        // one sparse mat-vec, for the cost per Hessian product: the least
-        // average over 10 batches (robust to other processes' load)
         Vec    y(x.size());
         double least     = std::numeric_limits<double>::infinity();
         double least_cpu = std::numeric_limits<double>::infinity();
@@ -644,7 +613,7 @@ namespace dualcontact
           unsigned int       n_products = 0;
           do
           {
-            data->hessian.vmult(y, x);
+            d.hessian.vmult(y, x);
             ++n_products;
           } while (timer.wall_time() < 0.02 && n_products < 100);
           least     = std::min(least, timer.wall_time() / n_products);
@@ -659,10 +628,102 @@ namespace dualcontact
         // on one.  DEAL_II_NUM_THREADS=1 compares like with like.
         j["threads"] = dealii::MultithreadInfo::n_threads();
       }
-      const std::string text = j.dump(2);
-      out << text << std::endl;
 
-      try
+
+      /// The problem's size and blocks.
+      void
+      add_problem_summary(const ProblemData &d,
+                          const Options     &options,
+                          nlohmann::json    &j)
+      {
+        j["problem"]          = options.problem_file;
+        j["n"]                = d.size();
+        j["nonzeros"]         = d.hessian.n_nonzero_elements();
+        nlohmann::json blocks = nlohmann::json::object();
+        for (const char *type : {"bound", "box", "disc", "ellipse", "cone"})
+          blocks[type] = 0;
+        std::size_t n_constrained = 0;
+        for (const auto &block : d.constraints)
+        {
+          blocks[block.type] =
+            blocks[block.type].get<unsigned int>() + block.count;
+          n_constrained += block.n_unknowns();
+        }
+        blocks["free_unknowns"] = d.size() - n_constrained;
+        j["blocks"]             = blocks;
+        if (d.has_equality())
+          j["equality_constraints"] = d.equality_rhs.size();
+      }
+
+
+      /// The JSON report (stdout and --json-out).
+      nlohmann::json
+      report(const ProblemData  &d,
+             const Options      &options,
+             const double        read_time,
+             const SolveResult  &result,
+             const BuiltProblem &built)
+      {
+        const SolverStatistics &stats = result.stats;
+        nlohmann::json          j;
+        add_problem_summary(d, options, j);
+        j["read_time"] = number(read_time);
+        {
+          std::ostringstream s;
+          stats.write_json(s, false);
+          j["statistics"] = nlohmann::json::parse(s.str());
+        }
+        // the headline figures also at the top level
+        j["solver"]           = stats.solver;
+        j["reason"]           = to_string(stats.reason);
+        j["converged"]        = stats.converged();
+        j["iterations"]       = stats.iterations;
+        j["hessian_products"] = stats.n_hessian_products;
+        j["time"]             = number(result.least_time);
+        j["runs"]             = options.repeat;
+        j["cpu_time"]         = number(result.least_cpu_time);
+        j["final_criterion"]  = number(stats.final_criterion);
+        j["preconditioner"]   = result.chosen_preconditioner;
+        if (!stats.settings.empty())
+          j["settings"] = stats.settings;
+        j["preconditioner_setups"] = stats.n_preconditioner_setups;
+        j["preconditioner_setup_time"] =
+          number(stats.preconditioner_setup_time);
+        j["preconditioner_applications"] = stats.n_preconditioner_applications;
+        j["preconditioner_apply_time"] =
+          number(stats.preconditioner_apply_time);
+        if (built.amg)
+        {
+          // of the last run: full ML setups and in-place recomputes
+          j["amg_full_setups"] =
+            built.amg->n_full_setups() - result.amg_full_setups;
+          j["amg_recomputes"] =
+            built.amg->n_recomputes() - result.amg_recomputes;
+          j["amg_kept"] = built.amg->n_kept() - result.amg_kept;
+        }
+        j["kkt"] = j["statistics"]["kkt"];
+        if (result.equality_residual >= 0.)
+        {
+          j["equality_residual"] = number(result.equality_residual);
+          j["outer_iterations"]  = stats.n_outer;
+        }
+        {
+          const auto     active = built.set->n_active_blocks(result.x);
+          nlohmann::json a;
+          for (unsigned int t = 0; t < n_block_types; ++t)
+            a[block_type_name(static_cast<BlockType>(t))] = active[t];
+          j["active_blocks"] = a;
+        }
+        add_matvec_time(d, result.x, j);
+        return j;
+      }
+
+
+      /// --x-out and --json-out.
+      void
+      write_outputs(const Options     &options,
+                    const std::string &text,
+                    const Vec         &x)
       {
         if (!options.x_out.empty())
           write_vector_file(options.x_out, x);
@@ -675,16 +736,84 @@ namespace dualcontact
           file << text << '\n';
         }
       }
-      catch (const std::exception &e)
+    } // namespace
+
+
+    int
+    QPSolveDriver::run(const std::vector<std::string> &arguments,
+                       std::ostream                   &out,
+                       std::ostream                   &err) const
+    {
+      if (!arguments.empty() && arguments[0] == "--make-membrane")
+        return make_membrane(arguments, out, err);
+      Options options;
+      try
+      {
+        options = parse(arguments);
+        if (base_parameters && !options.solver_given)
+          options.solver = base_parameters->solver;
+      }
+      catch (const UsageError &e)
+      {
+        if (std::string(e.what()).size() > 0)
+          err << "qpsolve: " << e.what() << '\n';
+        err << usage() << std::endl;
+        return 1;
+      }
+
+      // every failure below is bad input (exit 1) or a solver that broke
+      // down (exit 1); not converged is exit 2
+      const auto fail = [&err](const std::exception &e)
       {
         err << "qpsolve: " << plain_message(e) << std::endl;
         return 1;
+      };
+      dealii::Timer                read_timer;
+      std::unique_ptr<ProblemData> data;
+      SolverParameters             prm;
+      BuiltProblem                 built;
+      try
+      {
+        data = read_problem(options.problem_file);
+        prm  = solver_parameters(options, base_parameters);
+        build_problem(*data, options, prm, built);
+        if (options.solver == "cgc")
+          check_cgc_input(*data, options, prm);
       }
+      catch (const std::exception &e)
+      {
+        return fail(e);
+      }
+      const double read_time = read_timer.wall_time();
+
+      SolveResult result;
+      try
+      {
+        result = solve_repeatedly(*data, options, prm, built);
+      }
+      catch (const std::exception &e)
+      {
+        return fail(e);
+      }
+
+      const std::string text =
+        report(*data, options, read_time, result, built).dump(2);
+      out << text << std::endl;
+      try
+      {
+        write_outputs(options, text, result.x);
+      }
+      catch (const std::exception &e)
+      {
+        return fail(e);
+      }
+      const SolverStatistics &stats = result.stats;
       if (!stats.converged())
         err << "qpsolve: not converged: " << to_string(stats.reason)
             << (stats.message.empty() ? "" : " (" + stats.message + ")")
             << std::endl;
       return stats.converged() ? 0 : 2;
     }
+
   } // namespace tools
 } // namespace dualcontact
