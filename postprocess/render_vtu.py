@@ -60,7 +60,7 @@ from vtkmodules.vtkCommonDataModel import (  # noqa: E402
     vtkImageData, vtkPolyData, vtkStaticPointLocator)
 from vtkmodules.vtkFiltersGeneral import vtkVertexGlyphFilter  # noqa: E402
 from vtkmodules.vtkRenderingAnnotation import vtkLegendBoxActor  # noqa: E402
-from vtkmodules.util.numpy_support import numpy_to_vtk  # noqa: E402
+from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy  # noqa: E402
 
 # colour maps: (position in [0, 1], r, g, b)
 TURBO = [(0.0, 0.19, 0.07, 0.23), (0.25, 0.16, 0.67, 0.93),
@@ -371,6 +371,36 @@ def bodies_panel(a, bodies, contacts, size):
     return left, scale, dim
 
 
+def merged_surfaces(contacts, field):
+    """Pairs that share one slave surface (the same points: a disc against
+    two walls) drawn once, with FIELD at each point taken from the pair
+    where it is largest in magnitude (e.g. the pressure of the wall the
+    node presses on); otherwise the later pair would hide the earlier."""
+    kept = []
+    for grid in contacts:
+        twin = None
+        for k, other in enumerate(kept):
+            if (other.GetNumberOfPoints() == grid.GetNumberOfPoints() > 0
+                    and numpy.allclose(contact_vtu.points_of(other),
+                                       contact_vtu.points_of(grid))):
+                twin = k
+        if twin is None:
+            kept.append(grid)
+            continue
+        merged = kept[twin].NewInstance()
+        merged.DeepCopy(kept[twin])
+        mine = merged.GetPointData().GetArray(field)
+        theirs = grid.GetPointData().GetArray(field)
+        a, b = vtk_to_numpy(mine), vtk_to_numpy(theirs)
+        size = (lambda v: numpy.abs(v) if v.ndim == 1
+                else numpy.linalg.norm(v, axis=1))
+        pick = size(b) > size(a)
+        a[pick] = b[pick]
+        mine.Modified()
+        kept[twin] = merged
+    return kept
+
+
 def contact_colours(contacts, field):
     ranges = [field_range(c, field) for c in contacts]
     value_range = (min(0.0, min(r[0] for r in ranges)),
@@ -384,6 +414,8 @@ def contact_panel(a, contacts, dim, x0):
     """The contact surfaces by --contact-field (pressure), seen from the
     master side (or --contact-view)."""
     field = a.contact_field
+    points, status = contact_states(contacts)   # every pair's states
+    contacts = merged_surfaces(contacts, field)
     field_range_, field_lut = contact_colours(contacts, field)
     right = vtkRenderer()
     right.SetBackground(0.96, 0.96, 0.96)
@@ -403,7 +435,6 @@ def contact_panel(a, contacts, dim, x0):
     right.AddActor2D(scalar_bar(field_lut, field,
                                 0.07 if legend_here else 0.5))
     if a.status:
-        points, status = contact_states(contacts)
         lut = status_lookup(set(status.tolist()))
         right.AddActor(status_dots(points, status, lut, 14))
         if legend_here:
