@@ -3,7 +3,7 @@
 scripts/bench_brick.
 
 Usage: brick_tables.py BENCH_DIR [--laws ...] [--levels ...] [--phis ...]
-                       [--solvers ...] [--tolerances ...]
+                       [--solvers ...] [--tolerances ...] [--thesis]
 
 BENCH_DIR holds one folder per run, <law>_L<level>_phi<phi>_<solver>_tol<tol>,
 with the run's out/statistics.json and run.json (postprocess/run_case.py).
@@ -17,6 +17,13 @@ projection = expansion steps including those after half-steps, BB steps,
 fall-backs), the QP's wall time and the process' peak memory, and the
 reason the solver stopped.  A run that did not converge shows its reason
 and the relative criterion it reached, never "converged".
+
+--thesis: table 12's figures beside ours in every cell, "ours [thesis]"
+(its MPGP, MPGP-BB and SPG-QP; TFETI at 40 x 80 x 40, 1e-2 ||b||; its
+inner iterations and products are summed over its SMALBE-M outer
+iterations, ours are of the one undecomposed QP), percentages with one
+decimal, and a row with the whole run's wall time, the process' peak
+memory and the 1-minute load average when it started.
 """
 import argparse
 import json
@@ -30,6 +37,28 @@ import contact_vtu  # noqa: E402
 
 NAMES = {"mpgp": "MPGP", "mpgp-bb": "MPGP-BB", "mwpgp": "MwPGP", "spg-qp": "SPG-QP",
          "pbbf": "PBBf", "apgd": "APGD", "mprgp": "MPRGP"}
+
+
+# table 12 of the thesis (phi = 10, 30, 100, 500); SPG-QP: 50000 = not
+# converged in 50000 iterations
+THESIS_ACTIVE = {"10": (98, 97), "30": (98, 89), "100": (98, 59), "500": (99, 48)}
+THESIS = {
+    "mpgp": {"outer": (3, 3, 4, 4), "inner": (15087, 32877, 35384, 6148),
+             "products": (26575, 34674, 35999, 7157), "cg": (11245, 11830, 8005, 5145),
+             "half_step": (2818, 1793, 610, 1003), "expansion": (9690, 19254, 26769, 1)},
+    "mpgp-bb": {"outer": (4, 3, 4, 4), "inner": (15389, 17417, 12747, 6148),
+                "products": (18747, 20207, 14322, 7157), "cg": (11489, 13258, 9401, 5145),
+                "half_step": (3353, 2786, 1570, 1003), "bb": (547, 1373, 1776, 1)},
+    "spg-qp": {"outer": (3, 3, 4, 2), "inner": ("50000*",) * 4},
+}
+THESIS_PHIS = ["10", "30", "100", "500"]
+
+
+def thesis_value(solver, key, phi):
+    """Table 12's figure, or "" where it has none."""
+    if phi not in THESIS_PHIS or key not in THESIS.get(solver, {}):
+        return ""
+    return str(THESIS[solver][key][THESIS_PHIS.index(phi)])
 
 
 def load(case_dir):
@@ -106,6 +135,8 @@ def main():
     parser.add_argument("--solvers", nargs="+",
                         default=["mpgp", "mpgp-bb", "mwpgp", "spg-qp", "pbbf", "apgd"])
     parser.add_argument("--tolerances", nargs="+", default=["1e-2", "1e-4", "1e-6"])
+    parser.add_argument("--thesis", action="store_true",
+                        help="table 12's figures beside ours, and the run's time, memory and load")
     a = parser.parse_args()
 
     for law in a.laws:
@@ -126,18 +157,21 @@ def main():
                 print("| solver | row | " + " | ".join("phi = %s" % p for p in a.phis) + " |")
                 print("|---|---|" + "---|" * len(a.phis))
                 for s in a.solvers:
-                    rows = [("active bound / quadratic %", lambda q, c, r:
-                             "%.0f / %.0f" % c["active_percent"]),
-                            ("inner iterations", lambda q, c, r: "%d" % q["iterations"]),
-                            ("Hessian products", lambda q, c, r: "%d" % q["hessian_products"]),
-                            ("CG / half-step / projection", lambda q, c, r: "%d / %d / %d" % (
-                                q["iterations_by_kind"]["cg"], q["iterations_by_kind"]["half_step"],
-                                q["iterations_by_kind"]["expansion"])),
-                            ("BB / fall-back", lambda q, c, r: "%d / %d" % (
-                                q["iterations_by_kind"]["bb"], q["iterations_by_kind"]["fall_back"])),
-                            ("QP time s / peak MB", lambda q, c, r: "%.1f / %.0f" % (
-                                q["wall_time"], r["peak_memory_MB"] if r else float("nan"))),
-                            ("outcome", None)]
+                    if a.thesis:
+                        rows = thesis_rows(s)
+                    else:
+                        rows = [("active bound / quadratic %", lambda q, c, r, phi:
+                                 "%.0f / %.0f" % c["active_percent"]),
+                                ("inner iterations", lambda q, c, r, phi: "%d" % q["iterations"]),
+                                ("Hessian products", lambda q, c, r, phi: "%d" % q["hessian_products"]),
+                                ("CG / half-step / projection", lambda q, c, r, phi: "%d / %d / %d" % (
+                                    q["iterations_by_kind"]["cg"], q["iterations_by_kind"]["half_step"],
+                                    q["iterations_by_kind"]["expansion"])),
+                                ("BB / fall-back", lambda q, c, r, phi: "%d / %d" % (
+                                    q["iterations_by_kind"]["bb"], q["iterations_by_kind"]["fall_back"])),
+                                ("QP time s / peak MB", lambda q, c, r, phi: "%.1f / %.0f" % (
+                                    q["wall_time"], r["peak_memory_MB"] if r else float("nan"))),
+                                ("outcome", None)]
                     for k, (label, cell) in enumerate(rows):
                         values = []
                         for phi in a.phis:
@@ -147,9 +181,48 @@ def main():
                             elif q is None:
                                 values.append("-")
                             else:
-                                values.append(cell(q, c, r))
+                                values.append(cell(q, c, r, phi))
                         print("| %s | %s | %s |" % (NAMES.get(s, s) if k == 0 else "", label,
                                                    " | ".join(values)))
+
+
+def beside(ours, thesis):
+    return "%s [%s]" % (ours, thesis) if thesis != "" else ours
+
+
+def thesis_rows(s):
+    """The rows of --thesis: ours [table 12's] in every cell."""
+    def kind(q, key):
+        return q["iterations_by_kind"][key]
+
+    def active(q, c, r, phi):
+        t = THESIS_ACTIVE.get(phi)
+        return beside("%.1f / %.1f" % c["active_percent"],
+                      "%d / %d" % t if t and s in THESIS else "")
+
+    def by_kind(q, c, r, phi):
+        ours = "%d / %d / %d" % (kind(q, "cg"), kind(q, "half_step"), kind(q, "expansion"))
+        t = [thesis_value(s, key, phi) for key in ("cg", "half_step", "expansion")]
+        return beside(ours, " / ".join(v or "-" for v in t) if any(t) else "")
+
+    def bb(q, c, r, phi):
+        return beside("%d / %d" % (kind(q, "bb"), kind(q, "fall_back")),
+                      thesis_value(s, "bb", phi) + " / -" if thesis_value(s, "bb", phi) else "")
+
+    def run_row(q, c, r, phi):
+        if r is None:
+            return "-"
+        return "%.0f / %.1f / %.0f / %s" % (r["wall_time_s"], q["wall_time"], r["peak_memory_MB"],
+                                             r["load_average"][0])
+    return [("active bound / quadratic % [thesis]", active),
+            ("inner iterations [thesis: summed over its outer]", lambda q, c, r, phi: beside(
+                "%d" % q["iterations"], thesis_value(s, "inner", phi))),
+            ("Hessian products [thesis]", lambda q, c, r, phi: beside(
+                "%d" % q["hessian_products"], thesis_value(s, "products", phi))),
+            ("CG / half-step / projection [thesis]", by_kind),
+            ("BB / fall-back [thesis: PBB]", bb),
+            ("wall s / QP s / peak MB / load", run_row),
+            ("outcome", None)]
 
 
 if __name__ == "__main__":

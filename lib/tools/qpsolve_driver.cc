@@ -293,8 +293,10 @@ namespace dualcontact
           else if (a == "--p")
           {
             prm.p = parse_number(a, v);
-            if (!(prm.p > 0. && prm.p < 1.))
-              throw UsageError("--p must lie in (0, 1) (got " + v + ")");
+            // p = 0 and p = 1 are the thesis' end points of the sweep
+            // (the obstacle entirely low / high; scripts/bench_membrane)
+            if (!(prm.p >= 0. && prm.p <= 1.))
+              throw UsageError("--p must lie in [0, 1] (got " + v + ")");
           }
           else if (a == "--load-scale")
           {
