@@ -336,33 +336,64 @@ namespace dualcontact
       const double alpha_f =
         direction_valid ? direction.max_step : set->max_feasible_step(x, p);
       direction_valid = false;
-      if (!std::isfinite(pAp + pp + gp))
-      {
-        stats.reason  = ConvergenceReason::non_finite;
-        stats.message = "non-finite p'Ap, p'p or g'p in a CG step";
+      double alpha_cg;
+      if (!step_along(pAp,
+                      pp,
+                      gp,
+                      alpha_f,
+                      "non-finite p'Ap, p'p or g'p in a CG step",
+                      "p'Ap",
+                      "a feasible descent ray",
+                      alpha_cg))
         return false;
-      }
-      if (pAp < -curvature_threshold * lambda_max * pp)
-      {
-        stats.reason  = ConvergenceReason::breakdown;
-        stats.message = "negative curvature p'Ap = " + std::to_string(pAp) +
-                        ": the Hessian is not positive "
-                        "semidefinite";
-        return false;
-      }
-      const double alpha_cg =
-        pAp > curvature_threshold * lambda_max * pp ? gp / pAp : infinity;
-      if (alpha_cg == infinity && alpha_f == infinity && gp > 0.)
-      {
-        stats.reason  = ConvergenceReason::unbounded;
-        stats.message = "zero curvature along a feasible descent "
-                        "ray (MPRGPS test): the cost is unbounded "
-                        "below";
-        return false;
-      }
       if (alpha_cg <= alpha_f)
         return conjugate_gradient_step(alpha_cg, pAp, gp);
       half_step_and_expansion(alpha_f, alpha_cg, pAp, gp);
+      return true;
+    }
+
+
+    // The minimizing step along a direction d from d'Ad, d'd and g'd:
+    // alpha = g'd / d'Ad where the curvature is positive, infinity where it
+    // is zero (up to curvature_threshold).  Returns false with stats'
+    // reason and message on a non-finite value, on negative curvature
+    // (A not positive semidefinite) and on zero curvature along a descent
+    // direction no bound cuts (alpha_f infinite: MPRGPS' unboundedness
+    // test); @p where, @p curvature and @p ray name the step, d'Ad and d
+    // in those messages.
+    template <typename VectorType>
+    bool
+    ActiveSetIteration<VectorType>::step_along(const double       dAd,
+                                               const double       dd,
+                                               const double       gd,
+                                               const double       alpha_f,
+                                               const std::string &where,
+                                               const std::string &curvature,
+                                               const std::string &ray,
+                                               double            &alpha)
+    {
+      if (!std::isfinite(dAd + dd + gd))
+      {
+        stats.reason  = ConvergenceReason::non_finite;
+        stats.message = where;
+        return false;
+      }
+      if (dAd < -curvature_threshold * lambda_max * dd)
+      {
+        stats.reason  = ConvergenceReason::breakdown;
+        stats.message = "negative curvature " + curvature + " = " +
+                        std::to_string(dAd) +
+                        ": the Hessian is not positive semidefinite";
+        return false;
+      }
+      alpha = dAd > curvature_threshold * lambda_max * dd ? gd / dAd : infinity;
+      if (alpha == infinity && alpha_f == infinity && gd > 0.)
+      {
+        stats.reason  = ConvergenceReason::unbounded;
+        stats.message = "zero curvature along " + ray +
+                        " (MPRGPS test): the cost is unbounded below";
+        return false;
+      }
       return true;
     }
 
@@ -604,33 +635,17 @@ namespace dualcontact
       solver.apply_hessian(problem, Ap, p, stats);
       const std::array<double, 3> d   = internal::dots(p, Ap, g);
       const double                bAb = d[0], bb = d[1], gb = d[2];
-      if (!std::isfinite(bAb + bb + gb))
-      {
-        stats.reason  = ConvergenceReason::non_finite;
-        stats.message = "non-finite value in a proportioning step";
+      const double                alpha_f = set->max_feasible_step(x, p);
+      double                      alpha_sd;
+      if (!step_along(bAb,
+                      bb,
+                      gb,
+                      alpha_f,
+                      "non-finite value in a proportioning step",
+                      "beta'A beta",
+                      "the chopped gradient, which leaves every bound",
+                      alpha_sd))
         return false;
-      }
-      if (bAb < -curvature_threshold * lambda_max * bb)
-      {
-        stats.reason = ConvergenceReason::breakdown;
-        stats.message =
-          "negative curvature beta'A beta = " + std::to_string(bAb) +
-          ": the Hessian is not positive "
-          "semidefinite";
-        return false;
-      }
-      const double alpha_sd =
-        bAb > curvature_threshold * lambda_max * bb ? gb / bAb : infinity;
-      const double alpha_f = set->max_feasible_step(x, p);
-      if (alpha_sd == infinity && alpha_f == infinity && gb > 0.)
-      {
-        stats.reason  = ConvergenceReason::unbounded;
-        stats.message = "zero curvature along the chopped "
-                        "gradient, which leaves every bound "
-                        "(MPRGPS test): the cost is unbounded "
-                        "below";
-        return false;
-      }
       const double alpha = std::min(alpha_sd, alpha_f);
       const bool   released =
         release_preconditioned && preconditioned_release(alpha, gb, bAb);

@@ -71,6 +71,15 @@ namespace dualcontact
       conjugate_gradient_or_half_step();
       bool
       conjugate_gradient_step(double alpha_cg, double pAp, double gp);
+      bool
+      step_along(double             dAd,
+                 double             dd,
+                 double             gd,
+                 double             alpha_f,
+                 const std::string &where,
+                 const std::string &curvature,
+                 const std::string &ray,
+                 double            &alpha);
       void
       half_step_and_expansion(double alpha_f,
                               double alpha_cg,
