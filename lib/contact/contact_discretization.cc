@@ -120,6 +120,322 @@ namespace dualcontact
         }
         return (closest - x).norm_square();
       }
+
+      /** A slave node before it is placed: its dofs, its weight int phi
+       * ds and its weighted normal int phi n ds. */
+      template <int dim>
+      struct SlaveNode
+      {
+        std::array<types::global_dof_index, dim> dofs;
+        double                                   weight = 0;
+        Tensor<1, dim>                           normal;
+      };
+
+
+      /** The slave side of a pair: its nodes by key (the node's
+       * first-component dof) and, per slave face, the weights int_f phi ds
+       * of the face's nodes. */
+      template <int dim>
+      struct SlaveSide
+      {
+        std::map<types::global_dof_index, SlaveNode<dim>>      nodes;
+        std::vector<std::map<types::global_dof_index, double>> face_weights;
+      };
+
+
+      /** A face of the master body's contact boundary. */
+      template <int dim>
+      struct MasterFace
+      {
+        typename DoFHandler<dim>::active_cell_iterator cell;
+        unsigned int                                   face;
+        std::vector<Point<dim>>                        vertices;
+        Point<dim>                                     cell_center;
+      };
+
+
+      /** The master body's shape functions at a master point: the row
+       * entries (body, dof, phi) and each one's vector component. */
+      struct MasterEntries
+      {
+        std::vector<RowEntry>     entries;
+        std::vector<unsigned int> components;
+      };
+
+
+      /** Throws unless the pair names two different existing bodies (or a
+       * body and an obstacle). */
+      template <int dim>
+      void
+      check_pair(const ContactPair<dim> &pair, const unsigned int n_bodies)
+      {
+        AssertThrow(pair.slave_body < n_bodies &&
+                      (pair.obstacle || pair.master_body < n_bodies),
+                    ExcMessage("Contact pair `" + pair.name +
+                               "' names a body that does not exist."));
+        AssertThrow(pair.obstacle || pair.master_body != pair.slave_body,
+                    ExcMessage("Contact pair `" + pair.name +
+                               "': self-contact is not supported."));
+      }
+
+
+      /** The nodes of the slave boundary with their weights and weighted
+       * normals, integrated face by face. */
+      template <int dim>
+      SlaveSide<dim>
+      integrate_slave_side(const ContactPair<dim>      &pair,
+                           const fem::ElasticBody<dim> &slave)
+      {
+        const FiniteElement<dim>            &fe = slave.fe();
+        SlaveSide<dim>                       side;
+        const QGauss<dim - 1>                quadrature(fe.degree + 1);
+        FEFaceValues<dim>                    fe_face(slave.mapping(),
+                                  fe,
+                                  quadrature,
+                                  update_values | update_normal_vectors |
+                                    update_JxW_values);
+        std::vector<types::global_dof_index> cell_dofs(fe.n_dofs_per_cell());
+        for (const auto &cell : slave.dof_handler().active_cell_iterators())
+          for (const unsigned int f : cell->face_indices())
+            if (cell->face(f)->at_boundary() &&
+                cell->face(f)->boundary_id() == pair.slave_boundary)
+            {
+              fe_face.reinit(cell, f);
+              cell->get_dof_indices(cell_dofs);
+              side.face_weights.emplace_back();
+              for (unsigned int k = 0; k < fe.n_dofs_per_cell(); ++k)
+                if (fe.system_to_component_index(k).first == 0 &&
+                    fe.has_support_on_face(k, f))
+                {
+                  const unsigned int node =
+                    fe.system_to_component_index(k).second;
+                  SlaveNode<dim> &a = side.nodes[cell_dofs[k]];
+                  for (unsigned int c = 0; c < dim; ++c)
+                    a.dofs[c] =
+                      cell_dofs[fe.component_to_system_index(c, node)];
+                  for (unsigned int q = 0; q < quadrature.size(); ++q)
+                  {
+                    const double w = fe_face.shape_value(k, q) * fe_face.JxW(q);
+                    a.weight += w;
+                    side.face_weights.back()[cell_dofs[k]] += w;
+                    a.normal += w * fe_face.normal_vector(q);
+                  }
+                }
+            }
+        AssertThrow(!side.face_weights.empty(),
+                    ExcMessage("Contact pair `" + pair.name +
+                               "': the slave body `" + slave.name() +
+                               "' has no boundary with id " +
+                               std::to_string(pair.slave_boundary) + "."));
+        return side;
+      }
+
+
+      /**
+       * Hanging slave nodes (3D: the midpoint of a coarse face's edge next
+       * to refined faces) are no contact nodes.  Their displacement is the
+       * constraint's combination of the parent nodes', so their
+       * non-penetration rows would (nearly) repeat the parents' and make F
+       * singular, with the multipliers split arbitrarily between them.  The
+       * fine shape function phi_h of such a node is part of the parents'
+       * basis functions (phi_j + c_j phi_h on the refined side), so its
+       * weight and weighted normal go to the parents with the constraint's
+       * coefficients: w_j = int (phi_j + c_j phi_h) ds.
+       */
+      template <int dim>
+      void
+      move_hanging_nodes_to_parents(const fem::ElasticBody<dim> &slave,
+                                    SlaveSide<dim>              &side)
+      {
+        AffineConstraints<double> hanging;
+        DoFTools::make_hanging_node_constraints(slave.dof_handler(), hanging);
+        hanging.close();
+        for (auto it = side.nodes.begin(); it != side.nodes.end();)
+        {
+          if (!hanging.is_constrained(it->first))
+          {
+            ++it;
+            continue;
+          }
+          const auto *line = hanging.get_constraint_entries(it->first);
+          Assert(line != nullptr, ExcInternalError());
+          for (auto &face : side.face_weights)
+          {
+            const auto h = face.find(it->first);
+            if (h == face.end())
+              continue;
+            const double w = h->second;
+            face.erase(h);
+            for (const auto &[parent, coefficient] : *line)
+              face[parent] += coefficient * w;
+          }
+          for (const auto &[parent, coefficient] : *line)
+          {
+            const auto to = side.nodes.find(parent);
+            // the parents are the vertices of the coarse face's edge:
+            // slave boundary nodes themselves, never hanging (closed)
+            Assert(to != side.nodes.end(), ExcInternalError());
+            to->second.weight += coefficient * it->second.weight;
+            to->second.normal += coefficient * it->second.normal;
+          }
+          it = side.nodes.erase(it);
+        }
+      }
+
+
+      /** The faces of the master body's contact boundary. */
+      template <int dim>
+      std::vector<MasterFace<dim>>
+      master_faces_of(const ContactPair<dim>      &pair,
+                      const fem::ElasticBody<dim> &master)
+      {
+        std::vector<MasterFace<dim>> master_faces;
+        for (const auto &cell : master.dof_handler().active_cell_iterators())
+          for (const unsigned int f : cell->face_indices())
+            if (cell->face(f)->at_boundary() &&
+                cell->face(f)->boundary_id() == pair.master_boundary)
+            {
+              MasterFace<dim> face{cell, f, {}, cell->center()};
+              for (const unsigned int v : cell->face(f)->vertex_indices())
+                face.vertices.push_back(cell->face(f)->vertex(v));
+              master_faces.push_back(face);
+            }
+        AssertThrow(!master_faces.empty(),
+                    ExcMessage("Contact pair `" + pair.name +
+                               "': the master body `" + master.name() +
+                               "' has no boundary with id " +
+                               std::to_string(pair.master_boundary) + "."));
+        return master_faces;
+      }
+
+
+      /**
+       * Places @p node on the master body: the closest point over the
+       * master faces, the node's normal (minus the master cell's outward
+       * normal there) and the master's shape functions at that point.
+       * False when the master is farther than the search distance.
+       */
+      template <int dim>
+      bool
+      place_on_master_body(const ContactPair<dim>             &pair,
+                           const fem::ElasticBody<dim>        &master,
+                           const std::vector<MasterFace<dim>> &master_faces,
+                           ContactNode<dim>                   &node,
+                           MasterEntries                      &master_entries)
+      {
+        double         best      = std::numeric_limits<double>::max();
+        unsigned int   best_face = 0;
+        Tensor<1, dim> best_normal;
+        for (unsigned int mf = 0; mf < master_faces.size(); ++mf)
+        {
+          Point<dim>     closest;
+          Tensor<1, dim> normal;
+          const double   d2 = project_on_face(master_faces[mf].vertices,
+                                            node.position,
+                                            closest,
+                                            normal);
+          if (d2 < best)
+          {
+            best              = d2;
+            best_face         = mf;
+            node.master_point = closest;
+            // outward normal of the master cell
+            if (normal * (closest - master_faces[mf].cell_center) < 0)
+              normal *= -1;
+            best_normal = normal;
+          }
+        }
+        if (std::sqrt(best) > pair.search_distance)
+          return false;
+        node.normal = -best_normal;
+
+        const MasterFace<dim> &face = master_faces[best_face];
+        const Point<dim>       unit =
+          master.mapping().transform_real_to_unit_cell(face.cell,
+                                                       node.master_point);
+        std::vector<types::global_dof_index> master_dofs(
+          master.fe().n_dofs_per_cell());
+        face.cell->get_dof_indices(master_dofs);
+        for (unsigned int k = 0; k < master.fe().n_dofs_per_cell(); ++k)
+        {
+          const double phi = master.fe().shape_value(k, unit);
+          if (std::abs(phi) > 1e-14)
+          {
+            master_entries.entries.push_back(
+              {pair.master_body, master_dofs[k], phi});
+            master_entries.components.push_back(
+              master.fe().system_to_component_index(k).first);
+          }
+        }
+        return true;
+      }
+
+
+      /** The row of B for the relative displacement of @p node along
+       * @p direction: slave minus master. */
+      template <int dim>
+      std::vector<RowEntry>
+      make_row(const ContactNode<dim> &node,
+               const MasterEntries    &master,
+               const Tensor<1, dim>   &direction)
+      {
+        std::vector<RowEntry> row;
+        for (unsigned int c = 0; c < dim; ++c)
+          if (direction[c] != 0.)
+            row.push_back({node.body, node.dofs[c], direction[c]});
+        for (unsigned int e = 0; e < master.entries.size(); ++e)
+          if (direction[master.components[e]] != 0.)
+            row.push_back(
+              {master.entries[e].body,
+               master.entries[e].dof,
+               -master.entries[e].value * direction[master.components[e]]});
+        return row;
+      }
+
+
+      /** Condenses @p rows through the bodies' constraints into @p matrix
+       * (columns: the bodies' dofs one after the other, from @p offsets)
+       * and the rows' inhomogeneities into @p offset. */
+      template <int dim>
+      void
+      condense_rows(const std::vector<std::vector<RowEntry>>         &rows,
+                    const std::vector<const fem::ElasticBody<dim> *> &bodies,
+                    const std::vector<types::global_dof_index>       &offsets,
+                    SparsityPattern                                  &pattern,
+                    SparseMatrix<double>                             &matrix,
+                    Vector<double>                                   &offset)
+      {
+        std::vector<std::map<types::global_dof_index, double>> condensed(
+          rows.size());
+        offset.reinit(rows.size());
+        for (unsigned int r = 0; r < rows.size(); ++r)
+          for (const RowEntry &entry : rows[r])
+          {
+            const AffineConstraints<double> &constraints =
+              bodies[entry.body]->constraints();
+            const types::global_dof_index offset_b = offsets[entry.body];
+            if (constraints.is_constrained(entry.dof))
+            {
+              offset(r) +=
+                entry.value * constraints.get_inhomogeneity(entry.dof);
+              if (const auto *line =
+                    constraints.get_constraint_entries(entry.dof))
+                for (const auto &[dof, weight] : *line)
+                  condensed[r][offset_b + dof] += entry.value * weight;
+            }
+            else
+              condensed[r][offset_b + entry.dof] += entry.value;
+          }
+        DynamicSparsityPattern dsp(rows.size(), offsets.back());
+        for (unsigned int r = 0; r < rows.size(); ++r)
+          for (const auto &[column, value] : condensed[r])
+            dsp.add(r, column);
+        pattern.copy_from(dsp);
+        matrix.reinit(pattern);
+        for (unsigned int r = 0; r < rows.size(); ++r)
+          for (const auto &[column, value] : condensed[r])
+            matrix.set(r, column, value);
+      }
     } // namespace
 
 
@@ -134,158 +450,28 @@ namespace dualcontact
         offsets_[b + 1] = offsets_[b] + bodies[b]->n_dofs();
 
       std::vector<std::vector<RowEntry>> rows_n, rows_t;
-
       for (unsigned int p = 0; p < pairs_.size(); ++p)
       {
         const ContactPair<dim> &pair = pairs_[p];
-        AssertThrow(pair.slave_body < bodies.size() &&
-                      (pair.obstacle || pair.master_body < bodies.size()),
-                    ExcMessage("Contact pair `" + pair.name +
-                               "' names a body that does not exist."));
-        AssertThrow(pair.obstacle || pair.master_body != pair.slave_body,
-                    ExcMessage("Contact pair `" + pair.name +
-                               "': self-contact is not supported."));
+        check_pair(pair, bodies.size());
         const fem::ElasticBody<dim> &slave = *bodies[pair.slave_body];
-        const FiniteElement<dim>    &fe    = slave.fe();
-
-        // 1. Slave nodes with weights and weighted normals.
-        struct Accumulated
-        {
-          std::array<types::global_dof_index, dim> dofs;
-          double                                   weight = 0;
-          Tensor<1, dim>                           normal;
-        };
-        std::map<types::global_dof_index, Accumulated> accumulated;
-        // per slave face: node key (first-component dof) -> int_f phi ds
-        std::vector<std::map<types::global_dof_index, double>> face_weights;
-        const QGauss<dim - 1>                quadrature(fe.degree + 1);
-        FEFaceValues<dim>                    fe_face(slave.mapping(),
-                                  fe,
-                                  quadrature,
-                                  update_values | update_normal_vectors |
-                                    update_JxW_values);
-        std::vector<types::global_dof_index> cell_dofs(fe.n_dofs_per_cell());
-        bool                                 found_boundary = false;
-        for (const auto &cell : slave.dof_handler().active_cell_iterators())
-          for (const unsigned int f : cell->face_indices())
-            if (cell->face(f)->at_boundary() &&
-                cell->face(f)->boundary_id() == pair.slave_boundary)
-            {
-              found_boundary = true;
-              fe_face.reinit(cell, f);
-              cell->get_dof_indices(cell_dofs);
-              face_weights.emplace_back();
-              for (unsigned int k = 0; k < fe.n_dofs_per_cell(); ++k)
-                if (fe.system_to_component_index(k).first == 0 &&
-                    fe.has_support_on_face(k, f))
-                {
-                  const unsigned int node =
-                    fe.system_to_component_index(k).second;
-                  Accumulated &a = accumulated[cell_dofs[k]];
-                  for (unsigned int c = 0; c < dim; ++c)
-                    a.dofs[c] =
-                      cell_dofs[fe.component_to_system_index(c, node)];
-                  for (unsigned int q = 0; q < quadrature.size(); ++q)
-                  {
-                    const double w = fe_face.shape_value(k, q) * fe_face.JxW(q);
-                    a.weight += w;
-                    face_weights.back()[cell_dofs[k]] += w;
-                    a.normal += w * fe_face.normal_vector(q);
-                  }
-                }
-            }
-        AssertThrow(found_boundary,
-                    ExcMessage("Contact pair `" + pair.name +
-                               "': the slave body `" + slave.name() +
-                               "' has no boundary with id " +
-                               std::to_string(pair.slave_boundary) + "."));
-
-        // Hanging slave nodes (3D: the midpoint of a coarse face's edge
-        // next to refined faces) are no contact nodes.  Their displacement
-        // is the constraint's combination of the parent nodes', so their
-        // non-penetration rows would (nearly) repeat the parents' and make F
-        // singular, with the multipliers split arbitrarily between them.
-        // The fine shape function phi_h of such a node is part of the
-        // parents' basis functions (phi_j + c_j phi_h on the refined side),
-        // so its weight and weighted normal go to the parents with the
-        // constraint's coefficients: w_j = int (phi_j + c_j phi_h) ds.
-        {
-          AffineConstraints<double> hanging;
-          DoFTools::make_hanging_node_constraints(slave.dof_handler(), hanging);
-          hanging.close();
-          for (auto it = accumulated.begin(); it != accumulated.end();)
-          {
-            if (!hanging.is_constrained(it->first))
-            {
-              ++it;
-              continue;
-            }
-            const auto *line = hanging.get_constraint_entries(it->first);
-            Assert(line != nullptr, ExcInternalError());
-            for (auto &face : face_weights)
-            {
-              const auto h = face.find(it->first);
-              if (h == face.end())
-                continue;
-              const double w = h->second;
-              face.erase(h);
-              for (const auto &[parent, coefficient] : *line)
-                face[parent] += coefficient * w;
-            }
-            for (const auto &[parent, coefficient] : *line)
-            {
-              const auto to = accumulated.find(parent);
-              // the parents are the vertices of the coarse face's edge:
-              // slave boundary nodes themselves, never hanging (closed)
-              Assert(to != accumulated.end(), ExcInternalError());
-              to->second.weight += coefficient * it->second.weight;
-              to->second.normal += coefficient * it->second.normal;
-            }
-            it = accumulated.erase(it);
-          }
-        }
-
+        SlaveSide<dim>               side  = integrate_slave_side(pair, slave);
+        move_hanging_nodes_to_parents(slave, side);
         std::vector<Point<dim>> support_points(slave.n_dofs());
         DoFTools::map_dofs_to_support_points(slave.mapping(),
                                              slave.dof_handler(),
                                              support_points);
+        const std::vector<MasterFace<dim>> master_faces =
+          pair.obstacle ? std::vector<MasterFace<dim>>() :
+                          master_faces_of(pair, *bodies[pair.master_body]);
 
-        // Master faces (body-body pairs): cell, face, vertices.
-        struct MasterFace
-        {
-          typename DoFHandler<dim>::active_cell_iterator cell;
-          unsigned int                                   face;
-          std::vector<Point<dim>>                        vertices;
-          Point<dim>                                     cell_center;
-        };
-        std::vector<MasterFace> master_faces;
-        if (!pair.obstacle)
-        {
-          const fem::ElasticBody<dim> &master = *bodies[pair.master_body];
-          for (const auto &cell : master.dof_handler().active_cell_iterators())
-            for (const unsigned int f : cell->face_indices())
-              if (cell->face(f)->at_boundary() &&
-                  cell->face(f)->boundary_id() == pair.master_boundary)
-              {
-                MasterFace face{cell, f, {}, cell->center()};
-                for (const unsigned int v : cell->face(f)->vertex_indices())
-                  face.vertices.push_back(cell->face(f)->vertex(v));
-                master_faces.push_back(face);
-              }
-          AssertThrow(!master_faces.empty(),
-                      ExcMessage("Contact pair `" + pair.name +
-                                 "': the master body `" + master.name() +
-                                 "' has no boundary with id " +
-                                 std::to_string(pair.master_boundary) + "."));
-        }
-
-        // 2. Per node: master point, frame, gap, rows.
+        // per node: master point, frame, gap, rows
         PairSummary summary;
         summary.name    = pair.name;
         summary.min_gap = std::numeric_limits<double>::max();
         summary.max_gap = -std::numeric_limits<double>::max();
         std::map<types::global_dof_index, unsigned int> node_of_key;
-        for (const auto &[key, a] : accumulated)
+        for (const auto &[key, a] : side.nodes)
         {
           ContactNode<dim> node;
           node.pair     = p;
@@ -293,8 +479,7 @@ namespace dualcontact
           node.dofs     = a.dofs;
           node.position = support_points[key];
           node.weight   = a.weight;
-          std::vector<RowEntry>     master_entries; // per component: dof, phi
-          std::vector<unsigned int> master_component;
+          MasterEntries master;
           if (pair.obstacle)
           {
             Tensor<1, dim> outward;
@@ -304,75 +489,18 @@ namespace dualcontact
                 pair.search_distance)
               continue;
           }
-          else
-          {
-            double         best      = std::numeric_limits<double>::max();
-            unsigned int   best_face = 0;
-            Tensor<1, dim> best_normal;
-            for (unsigned int mf = 0; mf < master_faces.size(); ++mf)
-            {
-              Point<dim>     closest;
-              Tensor<1, dim> normal;
-              const double   d2 = project_on_face(master_faces[mf].vertices,
-                                                node.position,
-                                                closest,
-                                                normal);
-              if (d2 < best)
-              {
-                best              = d2;
-                best_face         = mf;
-                node.master_point = closest;
-                // outward normal of the master cell
-                if (normal * (closest - master_faces[mf].cell_center) < 0)
-                  normal *= -1;
-                best_normal = normal;
-              }
-            }
-            if (std::sqrt(best) > pair.search_distance)
-              continue;
-            node.normal = -best_normal;
-
-            const fem::ElasticBody<dim> &master = *bodies[pair.master_body];
-            const MasterFace            &face   = master_faces[best_face];
-            const Point<dim>             unit =
-              master.mapping().transform_real_to_unit_cell(face.cell,
-                                                           node.master_point);
-            std::vector<types::global_dof_index> master_dofs(
-              master.fe().n_dofs_per_cell());
-            face.cell->get_dof_indices(master_dofs);
-            for (unsigned int k = 0; k < master.fe().n_dofs_per_cell(); ++k)
-            {
-              const double phi = master.fe().shape_value(k, unit);
-              if (std::abs(phi) > 1e-14)
-              {
-                master_entries.push_back(
-                  {pair.master_body, master_dofs[k], phi});
-                master_component.push_back(
-                  master.fe().system_to_component_index(k).first);
-              }
-            }
-          }
+          else if (!place_on_master_body(pair,
+                                         *bodies[pair.master_body],
+                                         master_faces,
+                                         node,
+                                         master))
+            continue;
           node.tangents =
             make_tangents<dim>(node.normal, pair.first_tangent_direction);
           node.gap = (node.master_point - node.position) * node.normal;
-
-          const auto make_row = [&](const Tensor<1, dim> &direction)
-          {
-            std::vector<RowEntry> row;
-            for (unsigned int c = 0; c < dim; ++c)
-              if (direction[c] != 0.)
-                row.push_back({node.body, node.dofs[c], direction[c]});
-            for (unsigned int e = 0; e < master_entries.size(); ++e)
-              if (direction[master_component[e]] != 0.)
-                row.push_back(
-                  {master_entries[e].body,
-                   master_entries[e].dof,
-                   -master_entries[e].value * direction[master_component[e]]});
-            return row;
-          };
-          rows_n.push_back(make_row(node.normal));
+          rows_n.push_back(make_row(node, master, node.normal));
           for (unsigned int k = 0; k + 1 < dim; ++k)
-            rows_t.push_back(make_row(node.tangents[k]));
+            rows_t.push_back(make_row(node, master, node.tangents[k]));
 
           ++summary.n_nodes;
           summary.min_gap = std::min(summary.min_gap, node.gap);
@@ -381,19 +509,7 @@ namespace dualcontact
           node_of_key[key] = nodes_.size();
           nodes_.push_back(node);
         }
-        for (const auto &face : face_weights)
-        {
-          ContactFace contact_face;
-          contact_face.pair = p;
-          for (const auto &[key, w] : face)
-          {
-            const auto n = node_of_key.find(key);
-            if (n != node_of_key.end())
-              contact_face.nodes.emplace_back(n->second, w);
-          }
-          if (!contact_face.nodes.empty())
-            faces_.push_back(contact_face);
-        }
+        add_faces(p, side.face_weights, node_of_key);
         AssertThrow(summary.n_nodes > 0,
                     ExcMessage("Contact pair `" + pair.name +
                                "': no slave node found the master within "
@@ -402,51 +518,45 @@ namespace dualcontact
         summaries_.push_back(summary);
       }
 
-      // 3. Condense through the bodies' constraints and build the matrices.
-      const auto build = [&](const std::vector<std::vector<RowEntry>> &rows,
-                             SparsityPattern                          &pattern,
-                             SparseMatrix<double>                     &matrix,
-                             Vector<double>                           &offset)
-      {
-        std::vector<std::map<types::global_dof_index, double>> condensed(
-          rows.size());
-        offset.reinit(rows.size());
-        for (unsigned int r = 0; r < rows.size(); ++r)
-          for (const RowEntry &entry : rows[r])
-          {
-            const AffineConstraints<double> &constraints =
-              bodies[entry.body]->constraints();
-            const types::global_dof_index offset_b = offsets_[entry.body];
-            if (constraints.is_constrained(entry.dof))
-            {
-              offset(r) +=
-                entry.value * constraints.get_inhomogeneity(entry.dof);
-              if (const auto *line =
-                    constraints.get_constraint_entries(entry.dof))
-                for (const auto &[dof, weight] : *line)
-                  condensed[r][offset_b + dof] += entry.value * weight;
-            }
-            else
-              condensed[r][offset_b + entry.dof] += entry.value;
-          }
-        DynamicSparsityPattern dsp(rows.size(), offsets_.back());
-        for (unsigned int r = 0; r < rows.size(); ++r)
-          for (const auto &[column, value] : condensed[r])
-            dsp.add(r, column);
-        pattern.copy_from(dsp);
-        matrix.reinit(pattern);
-        for (unsigned int r = 0; r < rows.size(); ++r)
-          for (const auto &[column, value] : condensed[r])
-            matrix.set(r, column, value);
-      };
-      build(rows_n, normal_pattern_, normal_matrix_, normal_offset_);
-      build(rows_t,
-            tangential_pattern_,
-            tangential_matrix_,
-            tangential_offset_);
+      condense_rows(rows_n,
+                    bodies,
+                    offsets_,
+                    normal_pattern_,
+                    normal_matrix_,
+                    normal_offset_);
+      condense_rows(rows_t,
+                    bodies,
+                    offsets_,
+                    tangential_pattern_,
+                    tangential_matrix_,
+                    tangential_offset_);
       gaps_.reinit(nodes_.size());
       for (unsigned int i = 0; i < nodes_.size(); ++i)
         gaps_(i) = nodes_[i].gap;
+    }
+
+
+    template <int dim>
+    void
+    ContactDiscretization<dim>::add_faces(
+      const unsigned int pair,
+      const std::vector<std::map<types::global_dof_index, double>>
+                                                            &face_weights,
+      const std::map<types::global_dof_index, unsigned int> &node_of_key)
+    {
+      for (const auto &face : face_weights)
+      {
+        ContactFace contact_face;
+        contact_face.pair = pair;
+        for (const auto &[key, w] : face)
+        {
+          const auto n = node_of_key.find(key);
+          if (n != node_of_key.end())
+            contact_face.nodes.emplace_back(n->second, w);
+        }
+        if (!contact_face.nodes.empty())
+          faces_.push_back(contact_face);
+      }
     }
 
 

@@ -10,6 +10,7 @@
 #include <fem/elastic_body.h>
 
 #include <array>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -137,6 +138,17 @@ namespace dualcontact
       normal_bound() const;
 
     private:
+      /// Adds the faces of pair @p pair: per slave face, the weights of
+      /// its nodes that became contact nodes (@p node_of_key: a slave
+      /// node's key, its first-component dof, to its index in nodes_).
+      void
+      add_faces(
+        const unsigned int pair,
+        const std::vector<std::map<dealii::types::global_dof_index, double>>
+          &face_weights,
+        const std::map<dealii::types::global_dof_index, unsigned int>
+          &node_of_key);
+
       std::vector<ContactPair<dim>>                pairs_;
       std::vector<dealii::types::global_dof_index> offsets_;
       std::vector<ContactNode<dim>>                nodes_;

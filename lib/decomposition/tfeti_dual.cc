@@ -5,6 +5,7 @@
 #include <deal.II/lac/dynamic_sparsity_pattern.h>
 
 #include <decomposition/cell_partition.h>
+#include <decomposition/multiplier_scaling.h>
 #include <decomposition/tfeti_dual.h>
 #include <fem/cholmod_solver.h>
 #include <qp/power_iteration.h>
@@ -699,50 +700,7 @@ namespace dualcontact
       }
       if (n_processes_ > 1)
         triples = all_gather(triples, communicator_);
-      DynamicSparsityPattern pattern(n_multipliers());
-      for (unsigned int r = 0; r < n_multipliers(); ++r)
-        pattern.add(r, r);
-      for (std::size_t k = 0; k < triples.size(); k += 3)
-        pattern.add(static_cast<unsigned int>(triples[k]),
-                    static_cast<unsigned int>(triples[k + 1]));
-      bbt_sparsity_.copy_from(pattern);
-      bbt_.reinit(bbt_sparsity_);
-      for (std::size_t k = 0; k < triples.size(); k += 3)
-        bbt_.add(static_cast<unsigned int>(triples[k]),
-                 static_cast<unsigned int>(triples[k + 1]),
-                 triples[k + 2]);
-      // a zero row of B (a contact node whose dofs are all under Dirichlet
-      // conditions, condensed out of the contact rows) couples to nothing:
-      // Q is the identity there
-      for (unsigned int r = 0; r < n_multipliers(); ++r)
-        if (bbt_.diag_element(r) == 0.)
-          bbt_.diag_element(r) = 1.;
-      bbt_solver_ = std::make_unique<fem::CholmodSolver>();
-      try
-      {
-        bbt_solver_->initialize(bbt_);
-      }
-      catch (const std::exception &error)
-      {
-        AssertThrow(false,
-                    ExcMessage("TFETI: B B', the scaling of the lumped and "
-                               "the Dirichlet preconditioner, is singular "
-                               "(the rows of B are linearly dependent: "
-                               "contact rows of two pairs on the same "
-                               "dofs?); use `QP solver/Preconditioner = "
-                               "none'. " +
-                               std::string(error.what())));
-      }
-    }
-
-
-    template <int dim>
-    void
-    TFETIDual<dim>::apply_preconditioner_scaling(VectorType &v) const
-    {
-      scaled_.reinit(v.size(), true);
-      bbt_solver_->solve(scaled_, v);
-      v.swap(scaled_);
+      scaling_ = std::make_unique<MultiplierScaling>(n_multipliers(), triples);
     }
 
 
@@ -752,14 +710,14 @@ namespace dualcontact
                                                 const VectorType &src,
                                                 const bool dirichlet) const
     {
-      Assert(bbt_solver_, ExcInternalError());
+      Assert(scaling_, ExcInternalError());
       VectorType y = src;
-      apply_preconditioner_scaling(y);
+      scaling_->apply(y);
       if (dirichlet)
         apply_dirichlet(dst, y);
       else
         apply_lumped(dst, y);
-      apply_preconditioner_scaling(dst);
+      scaling_->apply(dst);
     }
 
 
@@ -796,7 +754,7 @@ namespace dualcontact
       // the lumped (Dirichlet) preconditioner of F / s is s Q B K B' Q
       // (s Q B S B' Q): one operator for every free set, the solver zeroes
       // the active entries
-      if (bbt_solver_)
+      if (scaling_)
         problem.free_set_preconditioner = [this](const VectorType &)
         {
           return [this](VectorType &dst, const VectorType &src)

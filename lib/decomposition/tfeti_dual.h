@@ -10,6 +10,7 @@
 #include <deal.II/lac/sparsity_pattern.h>
 #include <decomposition/decomposition_parameters.h>
 #include <decomposition/interface_schur_complement.h>
+#include <decomposition/multiplier_scaling.h>
 #include <decomposition/subdomain.h>
 
 #include <fem/elastic_body.h>
@@ -279,9 +280,6 @@ namespace dualcontact
        */
       void
       build_preconditioner_scaling();
-      /** v := (B B')^{-1} v. */
-      void
-      apply_preconditioner_scaling(VectorType &v) const;
       /** dst = (B B')^{-1} B_s A_s B_s' (B B')^{-1} src summed over the
        *  subdomains, A_s = K_s (lumped) or S_s (Dirichlet). */
       void
@@ -361,12 +359,9 @@ namespace dualcontact
       /** Per subdomain (owned ones only; empty without the Dirichlet
        *  preconditioner). */
       std::vector<std::unique_ptr<InterfaceSchurComplement>> schur_;
-      /** B B' and its factor (built with either preconditioner). */
-      dealii::SparsityPattern                       bbt_sparsity_;
-      dealii::SparseMatrix<double>                  bbt_;
-      mutable std::unique_ptr<fem::StiffnessSolver> bbt_solver_;
-      mutable VectorType                            scaled_;
-      double preconditioner_setup_time_ = 0;
+      /** (B B')^{-1} (built with either preconditioner). */
+      std::unique_ptr<MultiplierScaling> scaling_;
+      double                             preconditioner_setup_time_ = 0;
     };
   } // namespace decomposition
 } // namespace dualcontact

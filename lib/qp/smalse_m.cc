@@ -1,3 +1,4 @@
+#include <qp/augmented_lagrangian.h>
 #include <qp/kkt_residuals.h>
 #include <qp/power_iteration.h>
 #include <qp/smalse_m.h>
@@ -143,6 +144,23 @@ namespace dualcontact
     }
 
 
+    namespace
+    {
+      /// ||g^P(x)|| for the problem's separable set, ||g|| without one
+      template <typename VectorType>
+      double
+      projected_norm(const Problem<VectorType> &problem,
+                     const VectorType          &x,
+                     const VectorType          &g)
+      {
+        if (!problem.constraints)
+          return g.l2_norm();
+        const GradientNorms n = problem.constraints->gradient_norms(x, g);
+        return std::sqrt(n.free_sq + n.chopped_sq);
+      }
+    } // namespace
+
+
     template <typename VectorType>
     SolverStatistics
     SMALSEM<VectorType>::solve(const Problem<VectorType> &problem,
@@ -158,268 +176,37 @@ namespace dualcontact
       AssertThrow(eq.vmult && eq.Tvmult,
                   dealii::ExcMessage("SMALSE-M: B and B' products needed"));
 
-      // lambda_max(A) sets rho; lambda_max(A + rho B'B) is given to the
-      // inner solver once, so it does not run a power iteration per outer
-      // iteration
+      // lambda_max(A) sets rho
       const double lmax_A  = this->lambda_max(problem, stats);
       const bool   project = eq.orthonormal_rows && smalse_prm.coarse_projector;
       const double rho     = (project ? smalse_prm.projector_penalty_factor :
                                         smalse_prm.rho_factor) *
                          lmax_A;
+      AugmentedLagrangian<VectorType> lagrangian(
+        problem, project, rho, x, stats);
+      Problem<VectorType> inner = lagrangian.inner_problem(lmax_A, prm);
 
-      VectorType Bx(eq.c), residual(eq.c), mu(eq.c);
-      VectorType Ax(x), BtBx(x), work(x), g(x);
-      lambda = eq.c;
-      lambda = 0.;
-
-      // The problem the outer loop works on: A and b, or with the coarse
-      // projector P A P and P(b - A x0), x0 = B'c (see the class
-      // documentation)
-      VectorType Pv(x), BPv(eq.c), projected_src(x);
-      const auto apply_P = [&](VectorType &v)
-      {
-        eq.vmult(BPv, v);
-        eq.Tvmult(Pv, BPv);
-        v -= Pv;
-      };
-      std::function<void(VectorType &, const VectorType &)> hessian =
-        problem.hessian;
-      VectorType b = problem.b;
-      if (project)
-      {
-        hessian = [&](VectorType &dst, const VectorType &src)
-        {
-          projected_src = src;
-          apply_P(projected_src);
-          problem.hessian(dst, projected_src);
-          apply_P(dst);
-        };
-        VectorType x0(x);
-        eq.Tvmult(x0, eq.c);
-        problem.hessian(Ax, x0);
-        ++stats.n_hessian_products;
-        b -= Ax;
-        apply_P(b);
-      }
-
-      Problem<VectorType> inner;
-      inner.constraints  = problem.constraints;
-      inner.diagonal     = nullptr;
-      inner.semidefinite = problem.semidefinite;
-      inner.hessian      = [&](VectorType &dst, const VectorType &src)
-      {
-        hessian(dst, src);
-        ++stats.n_hessian_products;
-        eq.vmult(Bx, src);
-        eq.Tvmult(BtBx, Bx);
-        dst.add(rho, BtBx);
-      };
-      // the problem's free-set preconditioner M ~ A^-1 (TFETI: lumped);
-      // with the projector, the inverse of P A P + rho B'B is approximated
-      // by P M P + B'B / rho (the two parts act on orthogonal complements)
-      if (problem.free_set_preconditioner && project)
-        inner.free_set_preconditioner =
-          [&, factory = problem.free_set_preconditioner](
-            const VectorType &active_mask)
-        {
-          const auto M = factory(active_mask);
-          return [&, M, projected = VectorType(x), Qv = VectorType(x)](
-                   VectorType &dst, const VectorType &src) mutable
-          {
-            projected = src;
-            apply_P(projected);
-            M(dst, projected);
-            apply_P(dst);
-            Qv = src;
-            Qv -= projected; // B'B src = src - P src
-            dst.add(1. / rho, Qv);
-          };
-        };
-      else
-        inner.free_set_preconditioner = problem.free_set_preconditioner;
-      if (project)
-        // P A P and rho B'B act on orthogonal complements
-        inner.lambda_max = std::max(lmax_A, rho);
-      else if (eq.norm_sq > 0.)
-        // lambda_max(A + rho B'B) <= lambda_max(A) + rho ||B||^2: an upper
-        // bound is a safe step length and costs no products
-        inner.lambda_max = lmax_A + rho * eq.norm_sq;
-      else
-      {
-        const PowerIterationResult r =
-          power_iteration<VectorType>(inner.hessian,
-                                      problem.b,
-                                      prm.power_max_iterations,
-                                      prm.power_tolerance,
-                                      prm.power_safety_factor);
-        inner.lambda_max = r.lambda_max;
-      }
-
-      // the Lagrangian L(x, lambda, rho) = f(x) + lambda'(Bx - c)
-      // + rho/2 ||Bx - c||^2, and the equality residual Bx - c
-      const auto equality_residual = [&](const VectorType &point)
-      {
-        eq.vmult(residual, point);
-        residual -= eq.c;
-        return residual.l2_norm();
-      };
-      const auto lagrangian =
-        [&](const VectorType &point, const VectorType &multiplier)
-      {
-        hessian(Ax, point);
-        ++stats.n_hessian_products;
-        const double f    = 0.5 * (Ax * point) - b * point;
-        const double norm = equality_residual(point);
-        return f + (multiplier * residual) + 0.5 * rho * norm * norm;
-      };
-      // gradient of L(., lambda, rho) at x: Ax - b + B'(lambda + rho(Bx-c))
-      const auto lagrangian_gradient = [&](const VectorType &point)
-      {
-        hessian(g, point);
-        ++stats.n_hessian_products;
-        g -= b;
-        equality_residual(point);
-        mu = lambda;
-        mu.add(rho, residual);
-        eq.Tvmult(work, mu);
-        g += work;
-      };
-
-      const double eta       = smalse_prm.eta_factor * stats.norm_b;
-      const double tolerance = prm.tolerance * stats.norm_b;
-      // The equality residual is measured against the size of the
-      // equality itself, never more loosely than against ||b|| (thesis):
-      // tol * min(||b||, max(||c||, ||B|| ||x||)).  Against ||b|| alone a
-      // dual contact problem whose ||b|| is dominated by the initial gaps
-      // of far-away nodes (a stiff floating body: ||b|| = 1e11 N/m against
-      // a weight ||c|| = 1e6 N/m) accepted x = 0, i.e. no contact force
-      // holding the body, as converged.  The ||B|| ||x|| term keeps the
-      // test relative when c = 0 (a floating body with balanced loads).
-      const double norm_c                = eq.c.l2_norm();
-      const double norm_B                = std::sqrt(std::max(eq.norm_sq, 0.));
-      const auto   equality_tolerance_at = [&](const VectorType &point)
-      {
-        const double size = std::max(norm_c, norm_B * point.l2_norm());
-        return smalse_prm.equality_tolerance_factor * prm.tolerance *
-               (size > 0. ? std::min(stats.norm_b, size) : stats.norm_b);
-      };
-      double equality_tolerance = equality_tolerance_at(x);
-      double M                  = smalse_prm.m0;
-      double previous_L         = 0.;
-      double norm_residual      = equality_residual(x);
-      bool   have_previous      = false;
-      stats.reason              = ConvergenceReason::max_iterations;
-
-      SolverParameters inner_prm = prm;
+      const double eta           = smalse_prm.eta_factor * stats.norm_b;
+      const double tolerance     = prm.tolerance * stats.norm_b;
+      double       M             = smalse_prm.m0;
+      double       previous_L    = 0.;
+      double       norm_residual = lagrangian.equality_residual(x);
+      bool         have_previous = false;
+      stats.reason               = ConvergenceReason::max_iterations;
       for (unsigned int outer = 0;; ++outer)
       {
-        // inner right-hand side b - B'lambda + rho B'c
-        inner.b = b;
-        eq.Tvmult(work, lambda);
-        inner.b -= work;
-        eq.Tvmult(work, eq.c);
-        inner.b.add(rho, work);
-        const double norm_inner_b = std::max(inner.b.l2_norm(), 1e-300);
-
-        // Step 1: inner solve with adaptive precision
+        lagrangian.inner_right_hand_side(inner.b);
         const unsigned int iterations_before = stats.iterations;
-        double             inner_tolerance   = std::min(M * norm_residual, eta);
-        inner_tolerance = std::max(inner_tolerance, 0.1 * tolerance);
-        double g_norm   = 0.;
-        for (unsigned int attempt = 0; attempt < 3; ++attempt)
-        {
-          inner_prm.tolerance = std::min(0.5, inner_tolerance / norm_inner_b);
-          inner_prm.max_iterations = prm.max_iterations > stats.iterations ?
-                                       prm.max_iterations - stats.iterations :
-                                       1;
-          auto inner_solver        = create<VectorType>(prm.solver, inner_prm);
-          const SolverStatistics s = inner_solver->solve(inner, x);
-          stats.iterations += s.iterations;
-          stats.n_cg += s.n_cg;
-          stats.n_half_steps += s.n_half_steps;
-          stats.n_expansions += s.n_expansions;
-          stats.n_proportioning += s.n_proportioning;
-          stats.n_bb += s.n_bb;
-          stats.n_fall_back += s.n_fall_back;
-          stats.n_preconditioned_releases += s.n_preconditioned_releases;
-          stats.n_projections += s.n_projections;
-          stats.n_preconditioner_setups += s.n_preconditioner_setups;
-          stats.preconditioner_setup_time += s.preconditioner_setup_time;
-          stats.n_preconditioner_applications +=
-            s.n_preconditioner_applications;
-          stats.preconditioner_apply_time += s.preconditioner_apply_time;
-          if (s.reason == ConvergenceReason::non_finite ||
-              s.reason == ConvergenceReason::unbounded ||
-              s.reason == ConvergenceReason::breakdown)
-          {
-            stats.reason  = s.reason;
-            stats.message = "inner solver (" + prm.solver +
-                            "): " + to_string(s.reason) + " " + s.message;
-            break;
-          }
-          norm_residual = equality_residual(x);
-          g_norm        = s.final_criterion * s.norm_b;
-          // condition (2.36) at the new iterate
-          const double wanted = std::min(M * norm_residual, eta);
-          if (g_norm <= std::max(wanted, 0.1 * tolerance) ||
-              stats.iterations >= prm.max_iterations ||
-              s.reason != ConvergenceReason::converged)
-            break;
-          inner_tolerance = std::max(wanted, 0.1 * tolerance);
-        }
-        if (stats.reason != ConvergenceReason::max_iterations)
+        if (!solve_inner(
+              inner, lagrangian, M, eta, tolerance, x, norm_residual, stats))
           break;
         ++stats.n_outer;
-
-        // outer stopping test: projected gradient of the Lagrangian at
-        // (x, lambda + rho (Bx - c)) and the equality residual
-        lagrangian_gradient(x);
-        equality_tolerance = equality_tolerance_at(x);
-        const double criterion =
-          problem.constraints ? std::sqrt(
-                                  [&]
-                                  {
-                                    const GradientNorms n =
-                                      problem.constraints->gradient_norms(x, g);
-                                    return n.free_sq + n.chopped_sq;
-                                  }()) :
-                                g.l2_norm();
-        stats.record_criterion(criterion / stats.norm_b, this->elapsed());
-        stats.final_criterion =
-          std::max(criterion,
-                   norm_residual * tolerance /
-                     std::max(equality_tolerance, 1e-300)) /
-          stats.norm_b;
-        if (!std::isfinite(criterion) || !std::isfinite(norm_residual))
-        {
-          stats.reason  = ConvergenceReason::non_finite;
-          stats.message = "non-finite gradient or equality residual";
+        if (outer_loop_stops(
+              problem, lagrangian, outer, x, norm_residual, tolerance, stats))
           break;
-        }
-        if (criterion <= tolerance && norm_residual <= equality_tolerance)
-        {
-          stats.reason = ConvergenceReason::converged;
-          break;
-        }
-        if (stats.iterations >= prm.max_iterations)
-        {
-          stats.reason  = ConvergenceReason::max_iterations;
-          stats.message = "iteration limit " +
-                          std::to_string(prm.max_iterations) +
-                          " reached (inner iterations)";
-          break;
-        }
-        if (outer + 1 >= smalse_prm.max_outer_iterations)
-        {
-          stats.reason  = ConvergenceReason::max_iterations;
-          stats.message = "outer iteration limit " +
-                          std::to_string(smalse_prm.max_outer_iterations) +
-                          " reached";
-          break;
-        }
 
         // Step 3 (before step 2, it needs lambda^k): M update
-        const double L = lagrangian(x, lambda);
+        const double L = lagrangian.value(x);
         if (have_previous &&
             L < previous_L + 0.5 * rho * norm_residual * norm_residual)
           M *= smalse_prm.beta;
@@ -433,13 +220,13 @@ namespace dualcontact
         else if (project && stats.iterations == iterations_before)
           M *= smalse_prm.beta;
         // Step 2: multipliers
-        equality_residual(x);
-        lambda.add(rho, residual);
+        lagrangian.update_multipliers(x);
         previous_L    = L;
         have_previous = true;
       }
 
-      last_equality_residual = equality_residual(x);
+      last_equality_residual = lagrangian.equality_residual(x);
+      lambda                 = lagrangian.multipliers();
       stats.message += (stats.message.empty() ? "" : "; ") +
                        std::string("equality residual ||Bx - c|| = ") +
                        std::to_string(last_equality_residual) +
@@ -447,28 +234,158 @@ namespace dualcontact
                        ", rho = " + std::to_string(rho) +
                        (project ? ", coarse projector" : "");
       this->finish(problem, x, stats);
-      // stationarity of the Lagrangian, not of the plain gradient
-      lagrangian_gradient(x);
+      report_lagrangian_kkt(problem, lagrangian, x, stats);
+      return stats;
+    }
+
+
+    template <typename VectorType>
+    bool
+    SMALSEM<VectorType>::solve_inner(
+      const Problem<VectorType>       &inner,
+      AugmentedLagrangian<VectorType> &lagrangian,
+      const double                     M,
+      const double                     eta,
+      const double                     tolerance,
+      VectorType                      &x,
+      double                          &norm_residual,
+      SolverStatistics                &stats) const
+    {
+      const SolverParameters &prm  = this->prm;
+      const double norm_inner_b    = std::max(inner.b.l2_norm(), 1e-300);
+      double       inner_tolerance = std::min(M * norm_residual, eta);
+      inner_tolerance              = std::max(inner_tolerance, 0.1 * tolerance);
+      SolverParameters inner_prm   = prm;
+      for (unsigned int attempt = 0; attempt < 3; ++attempt)
+      {
+        inner_prm.tolerance = std::min(0.5, inner_tolerance / norm_inner_b);
+        inner_prm.max_iterations = prm.max_iterations > stats.iterations ?
+                                     prm.max_iterations - stats.iterations :
+                                     1;
+        auto inner_solver        = create<VectorType>(prm.solver, inner_prm);
+        const SolverStatistics s = inner_solver->solve(inner, x);
+        stats.add_step_counts(s);
+        if (s.reason == ConvergenceReason::non_finite ||
+            s.reason == ConvergenceReason::unbounded ||
+            s.reason == ConvergenceReason::breakdown)
+        {
+          stats.reason  = s.reason;
+          stats.message = "inner solver (" + prm.solver +
+                          "): " + to_string(s.reason) + " " + s.message;
+          return false;
+        }
+        norm_residual       = lagrangian.equality_residual(x);
+        const double g_norm = s.final_criterion * s.norm_b;
+        // condition (2.36) at the new iterate
+        const double wanted = std::min(M * norm_residual, eta);
+        if (g_norm <= std::max(wanted, 0.1 * tolerance) ||
+            stats.iterations >= prm.max_iterations ||
+            s.reason != ConvergenceReason::converged)
+          break;
+        inner_tolerance = std::max(wanted, 0.1 * tolerance);
+      }
+      return true;
+    }
+
+
+    template <typename VectorType>
+    double
+    SMALSEM<VectorType>::equality_tolerance(const Problem<VectorType> &problem,
+                                            const VectorType          &x,
+                                            const double norm_b) const
+    {
+      // The equality residual is measured against the size of the
+      // equality itself, never more loosely than against ||b|| (thesis):
+      // tol * min(||b||, max(||c||, ||B|| ||x||)).  Against ||b|| alone a
+      // dual contact problem whose ||b|| is dominated by the initial gaps
+      // of far-away nodes (a stiff floating body: ||b|| = 1e11 N/m against
+      // a weight ||c|| = 1e6 N/m) accepted x = 0, i.e. no contact force
+      // holding the body, as converged.  The ||B|| ||x|| term keeps the
+      // test relative when c = 0 (a floating body with balanced loads).
+      const EqualityConstraints<VectorType> &eq     = *problem.equality;
+      const double                           norm_c = eq.c.l2_norm();
+      const double norm_B = std::sqrt(std::max(eq.norm_sq, 0.));
+      const double size   = std::max(norm_c, norm_B * x.l2_norm());
+      return smalse_prm.equality_tolerance_factor * this->prm.tolerance *
+             (size > 0. ? std::min(norm_b, size) : norm_b);
+    }
+
+
+    template <typename VectorType>
+    bool
+    SMALSEM<VectorType>::outer_loop_stops(
+      const Problem<VectorType>       &problem,
+      AugmentedLagrangian<VectorType> &lagrangian,
+      const unsigned int               outer,
+      const VectorType                &x,
+      const double                     norm_residual,
+      const double                     tolerance,
+      SolverStatistics                &stats) const
+    {
+      const SolverParameters &prm = this->prm;
+      // the projected gradient of the Lagrangian at (x, lambda + rho (Bx -
+      // c)) and the equality residual
+      const VectorType &g = lagrangian.gradient(x);
+      const double      wanted_residual =
+        equality_tolerance(problem, x, stats.norm_b);
+      const double criterion = projected_norm(problem, x, g);
+      stats.record_criterion(criterion / stats.norm_b, this->elapsed());
+      stats.final_criterion = std::max(criterion,
+                                       norm_residual * tolerance /
+                                         std::max(wanted_residual, 1e-300)) /
+                              stats.norm_b;
+      if (!std::isfinite(criterion) || !std::isfinite(norm_residual))
+      {
+        stats.reason  = ConvergenceReason::non_finite;
+        stats.message = "non-finite gradient or equality residual";
+        return true;
+      }
+      if (criterion <= tolerance && norm_residual <= wanted_residual)
+      {
+        stats.reason = ConvergenceReason::converged;
+        return true;
+      }
+      if (stats.iterations >= prm.max_iterations)
+      {
+        stats.reason  = ConvergenceReason::max_iterations;
+        stats.message = "iteration limit " +
+                        std::to_string(prm.max_iterations) +
+                        " reached (inner iterations)";
+        return true;
+      }
+      if (outer + 1 >= smalse_prm.max_outer_iterations)
+      {
+        stats.reason  = ConvergenceReason::max_iterations;
+        stats.message = "outer iteration limit " +
+                        std::to_string(smalse_prm.max_outer_iterations) +
+                        " reached";
+        return true;
+      }
+      return false;
+    }
+
+
+    template <typename VectorType>
+    void
+    SMALSEM<VectorType>::report_lagrangian_kkt(
+      const Problem<VectorType>       &problem,
+      AugmentedLagrangian<VectorType> &lagrangian,
+      const VectorType                &x,
+      SolverStatistics                &stats) const
+    {
+      // stationarity of the Lagrangian, not of the plain gradient; its
+      // gradient uses lambda + rho(Bx - c) = the updated multiplier
+      const VectorType &g = lagrangian.gradient(x);
       --stats.n_hessian_products; // the report's product is not work
-      // g here uses lambda + rho(Bx - c) = the updated multiplier
-      stats.kkt.stationarity =
-        problem.constraints ?
-          std::sqrt(
-            [&]
-            {
-              const GradientNorms n = problem.constraints->gradient_norms(x, g);
-              return n.free_sq + n.chopped_sq;
-            }()) :
-          g.l2_norm();
+      stats.kkt.stationarity = projected_norm(problem, x, g);
       // likewise complementarity: with the plain gradient Ax - b the bound
       // multiplier estimates -g_j miss B'lambda and are wrong wherever a
       // bound is inactive (a floating body's contact nodes in contact)
       if (problem.constraints)
         stats.kkt.complementarity = problem.constraints->complementarity(x, g);
       if (stats.reason == ConvergenceReason::converged &&
-          !(stats.final_criterion <= prm.tolerance))
+          !(stats.final_criterion <= this->prm.tolerance))
         stats.reason = ConvergenceReason::stagnation;
-      return stats;
     }
 
 

@@ -111,6 +111,10 @@ namespace dualcontact
      * there with the tighter tolerance.
      */
     template <typename VectorType>
+    class AugmentedLagrangian;
+
+
+    template <typename VectorType>
     class SMALSEM : public SolverBase<VectorType>
     {
     public:
@@ -128,6 +132,47 @@ namespace dualcontact
       multipliers() const;
 
     private:
+      /// Step 1 of algorithm 8: the inner solve to min(M ||Bx - c||, eta)
+      /// (at least 0.1 tolerance), continued from the new iterate with the
+      /// tighter tolerance while condition (2.36) fails there (three
+      /// attempts at most); updates @p norm_residual.  False when the inner
+      /// solver broke down (stats.reason and message set).
+      bool
+      solve_inner(const Problem<VectorType>       &inner,
+                  AugmentedLagrangian<VectorType> &lagrangian,
+                  const double                     M,
+                  const double                     eta,
+                  const double                     tolerance,
+                  VectorType                      &x,
+                  double                          &norm_residual,
+                  SolverStatistics                &stats) const;
+
+      /// The bound on ||Bx - c|| at @p x (see the class documentation).
+      double
+      equality_tolerance(const Problem<VectorType> &problem,
+                         const VectorType          &x,
+                         const double               norm_b) const;
+
+      /// The outer stopping test after outer iteration @p outer: records
+      /// the criterion; true, with stats.reason set, when the loop ends
+      /// (converged, non-finite, an iteration limit).
+      bool
+      outer_loop_stops(const Problem<VectorType>       &problem,
+                       AugmentedLagrangian<VectorType> &lagrangian,
+                       const unsigned int               outer,
+                       const VectorType                &x,
+                       const double                     norm_residual,
+                       const double                     tolerance,
+                       SolverStatistics                &stats) const;
+
+      /// The KKT residuals of the Lagrangian at the returned x (after
+      /// finish(), which computed those of the plain gradient).
+      void
+      report_lagrangian_kkt(const Problem<VectorType>       &problem,
+                            AugmentedLagrangian<VectorType> &lagrangian,
+                            const VectorType                &x,
+                            SolverStatistics                &stats) const;
+
       SMALSEMParameters smalse_prm;
       double            last_equality_residual = 0.;
       VectorType        lambda;

@@ -223,21 +223,9 @@ namespace dualcontact
             stats.n_hessian_products + (stamped ? a.history_products[i] : 0ul));
         }
         time_offset += a.wall_time;
-        stats.iterations += a.iterations;
-        stats.n_cg += a.n_cg;
-        stats.n_half_steps += a.n_half_steps;
-        stats.n_expansions += a.n_expansions;
-        stats.n_proportioning += a.n_proportioning;
-        stats.n_bb += a.n_bb;
-        stats.n_fall_back += a.n_fall_back;
-        stats.n_preconditioned_releases += a.n_preconditioned_releases;
+        stats.add_step_counts(a);
         stats.n_outer += a.n_outer;
         stats.n_hessian_products += a.n_hessian_products;
-        stats.n_projections += a.n_projections;
-        stats.n_preconditioner_setups += a.n_preconditioner_setups;
-        stats.preconditioner_setup_time += a.preconditioner_setup_time;
-        stats.n_preconditioner_applications += a.n_preconditioner_applications;
-        stats.preconditioner_apply_time += a.preconditioner_apply_time;
         summary += (summary.empty() ? "" : ", then ") + a.solver + " " +
                    to_string(a.reason);
       }

@@ -34,6 +34,25 @@ namespace dualcontact
     }
 
 
+    void
+    SolverStatistics::add_step_counts(const SolverStatistics &inner)
+    {
+      iterations += inner.iterations;
+      n_cg += inner.n_cg;
+      n_half_steps += inner.n_half_steps;
+      n_expansions += inner.n_expansions;
+      n_proportioning += inner.n_proportioning;
+      n_bb += inner.n_bb;
+      n_fall_back += inner.n_fall_back;
+      n_preconditioned_releases += inner.n_preconditioned_releases;
+      n_projections += inner.n_projections;
+      n_preconditioner_setups += inner.n_preconditioner_setups;
+      preconditioner_setup_time += inner.preconditioner_setup_time;
+      n_preconditioner_applications += inner.n_preconditioner_applications;
+      preconditioner_apply_time += inner.preconditioner_apply_time;
+    }
+
+
     bool
     SolverStatistics::converged() const
     {

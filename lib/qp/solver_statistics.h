@@ -153,6 +153,14 @@ namespace dualcontact
       void
       drop_last_criterion();
 
+      /// Add the step counts of @p inner, a solve run inside this one
+      /// (SMALSE-M's inner solves, the attempts of `auto`): iterations and
+      /// their kinds, projections, the free-set preconditioner's setups,
+      /// applications and times.  Not the outer iterations and Hessian
+      /// products, which SMALSE-M counts itself.
+      void
+      add_step_counts(const SolverStatistics &inner);
+
       /// True only if the reason is `converged` AND the final criterion is
       /// at most the tolerance: a record cannot claim success otherwise.
       bool

@@ -71,6 +71,346 @@ namespace dualcontact
         prm.leave_subsection();
         contact::CoulombParameters::declare_parameters(prm);
       }
+
+      /** The command line, checked: every option given is set. */
+      struct Options
+      {
+        bool        help = false;
+        std::string file, prm_file, json_file, write_file, model_name, solver,
+          first_name, storage_name, prox;
+        bool fixed_rho = false, exact_qps = false, info_only = false;
+        // unset unless given: every given value is checked (no sentinel
+        // that a user could write, such as -1, is taken for "the default")
+        std::optional<double>    tol, coulomb_tol;
+        std::optional<long>      max_iter, coulomb_max_iter;
+        std::vector<std::string> settings;
+      };
+
+
+      /** The options of @p args; throws UsageError naming a bad one. */
+      Options
+      parse_options(const std::vector<std::string> &args)
+      {
+        Options o;
+        for (std::size_t i = 0; i < args.size(); ++i)
+        {
+          const std::string &a     = args[i];
+          auto               value = [&]() -> std::string
+          {
+            if (i + 1 >= args.size())
+              throw UsageError("option " + a + " needs a value");
+            return args[++i];
+          };
+          if (a == "--help" || a == "-h")
+          {
+            o.help = true;
+            return o;
+          }
+          else if (a == "--prm")
+            o.prm_file = value();
+          else if (a == "--set")
+            o.settings.push_back(value());
+          else if (a == "--model")
+            o.model_name = value();
+          else if (a == "--prox")
+            o.prox = value();
+          else if (a == "--fixed-rho")
+            o.fixed_rho = true;
+          else if (a == "--exact-qps")
+            o.exact_qps = true;
+          else if (a == "--first")
+            o.first_name = value();
+          else if (a == "--storage")
+            o.storage_name = value();
+          else if (a == "--solver")
+            o.solver = value();
+          else if (a == "--tol")
+            o.tol = to_positive_number(a, value());
+          else if (a == "--coulomb-tol")
+            o.coulomb_tol = to_positive_number(a, value());
+          else if (a == "--max-iter")
+            o.max_iter = to_iteration_limit(a, value());
+          else if (a == "--coulomb-max-iter")
+            o.coulomb_max_iter = to_iteration_limit(a, value());
+          else if (a == "--json")
+            o.json_file = value();
+          else if (a == "--write")
+            o.write_file = value();
+          else if (a == "--info")
+            o.info_only = true;
+          else if (!a.empty() && a[0] == '-')
+            throw UsageError("unknown option " + a);
+          else if (o.file.empty())
+            o.file = a;
+          else
+            throw UsageError("more than one problem file given (" + o.file +
+                             ", " + a + ")");
+        }
+        if (o.file.empty())
+          throw UsageError("no FCLIB file given");
+        return o;
+      }
+
+
+      /** What the solve runs with: the .prm, then --set, then the options. */
+      struct Settings
+      {
+        qp::SolverParameters       qp;
+        contact::CoulombParameters coulomb;
+        LocalSolver::Parameters    loop;
+        Storage                    storage = Storage::automatic;
+      };
+
+
+      /** The settings of @p o, checked (throws naming the parameter). */
+      Settings
+      read_settings(const Options &o)
+      {
+        dealii::ParameterHandler prm;
+        declare(prm);
+        if (!o.prm_file.empty())
+          io::parse_parameter_file(prm, o.prm_file, false);
+        std::vector<io::ParameterOverride> overrides;
+        for (const auto &setting : o.settings)
+          overrides.push_back(io::parse_parameter_override(setting));
+        io::apply_parameter_overrides(prm, overrides, false);
+        Settings settings;
+        settings.qp.parse_parameters(prm);
+        settings.coulomb.parse_parameters(prm);
+        LocalSolver::Parameters &loop = settings.loop;
+        loop.parse_parameters(prm);
+        if (!o.model_name.empty())
+          loop.model = parse_model(o.model_name);
+        if (!o.first_name.empty())
+          loop.first = parse_first_iterate(o.first_name);
+        if (!o.prox.empty())
+          loop.parse_proximal(o.prox);
+        if (o.fixed_rho)
+          loop.adaptive_rho = false;
+        if (o.exact_qps)
+          loop.inexact = false;
+        loop.check();
+        if (!o.solver.empty())
+        {
+          qp::create<dealii::Vector<double>>(o.solver, settings.qp); // checks
+          settings.qp.solver = o.solver;
+        }
+        if (o.tol)
+          settings.qp.tolerance = *o.tol;
+        if (o.max_iter)
+          settings.qp.max_iterations = *o.max_iter;
+        if (o.coulomb_tol)
+          settings.coulomb.tolerance = *o.coulomb_tol;
+        else if (o.tol && settings.coulomb.tolerance ==
+                            contact::CoulombParameters().tolerance)
+          // --tol alone asks for that accuracy: the Coulomb loop follows
+          // (its change of psi cannot be measured below the QPs' noise: with
+          // QP tolerance 1e-4 and the Coulomb default 1e-6, Capsules ran
+          // 1000 proximal iterations without converging; doc/fclib.md)
+          settings.coulomb.tolerance = *o.tol;
+        if (o.coulomb_max_iter)
+          settings.coulomb.max_iterations = *o.coulomb_max_iter;
+        settings.qp.check();
+        settings.storage = parse_storage(prm.get("Storage of W"));
+        if (!o.storage_name.empty())
+          settings.storage = parse_storage(o.storage_name);
+        return settings;
+      }
+
+
+      /** The local problem of @p file (a global one reduced to local form),
+       *  with its sizes printed and put in @p summary. */
+      LocalProblem
+      read_problem(const std::string &file,
+                   const Storage      storage,
+                   std::ostream      &out,
+                   nlohmann::json    &summary)
+      {
+        dealii::Timer reading;
+        const Form    form = form_of(file);
+        summary["file"]    = file;
+        summary["form"]    = to_string(form);
+        LocalProblem problem;
+        if (form == Form::local)
+          problem = read_local(file, storage);
+        else
+        {
+          const GlobalProblem global = read_global(file);
+          out << "global problem: " << global.n_dofs() << " dofs, "
+              << global.n_contacts() << " contacts"
+              << (global.M_was_upper_triangle() ?
+                    " (M stored as its upper triangle)" :
+                    "")
+              << "\n";
+          summary["n_dofs"] = global.n_dofs();
+          problem           = global.reduce_to_local(storage);
+          out << "reduced to local form with " << global.factorization_name()
+              << "\n";
+          summary["factorization"] = global.factorization_name();
+        }
+        const auto [mu_min, mu_max] =
+          std::minmax_element(problem.mu().begin(), problem.mu().end());
+        out << "local problem: " << problem.n_contacts() << " contacts, "
+            << problem.size() << " unknowns, dimension " << problem.spacedim()
+            << ", mu in [" << (problem.n_contacts() ? *mu_min : 0.) << ", "
+            << (problem.n_contacts() ? *mu_max : 0.)
+            << "], nnz(W) = " << problem.delassus().n_nonzero() << " ("
+            << (problem.delassus().dense() ? "dense" : "sparse") << " storage)"
+            << ", asymmetry of W " << problem.delassus().asymmetry()
+            << ", read in " << reading.wall_time() << " s\n";
+        summary["n_contacts"] = problem.n_contacts();
+        summary["spacedim"]   = problem.spacedim();
+        summary["storage"]    = problem.delassus().dense() ? "dense" : "sparse";
+        summary["asymmetry_W"] = problem.delassus().asymmetry();
+        summary["read_time_s"] = reading.wall_time();
+        return problem;
+      }
+
+
+      /** --info: the rank of W and the spread of its normal diagonal. */
+      void
+      print_info(const LocalProblem &problem,
+                 std::ostream       &out,
+                 nlohmann::json     &summary)
+      {
+        const int rank = problem.delassus().numerical_rank(1e-10);
+        out << "rank of W_s (pivots above 1e-10 max diag) " << rank
+            << ", zero rows of W " << problem.delassus().n_zero_rows() << "\n";
+        // spread of the normal diagonal entries W_nn over the contacts
+        // (how much a per-contact scaling could change the conditioning)
+        double       diag_min = 0, diag_max = 0;
+        const auto  &W = problem.delassus().matrix();
+        const double d = problem.spacedim();
+        for (unsigned int i = 0; i < problem.n_contacts(); ++i)
+        {
+          const double w = W.el(d * i, d * i);
+          diag_min       = i == 0 ? w : std::min(diag_min, w);
+          diag_max       = i == 0 ? w : std::max(diag_max, w);
+        }
+        out << "normal diagonal entries of W in [" << diag_min << ", "
+            << diag_max << "]\n";
+        summary["normal_diagonal_W"] = {diag_min, diag_max};
+        summary["rank_W"]            = rank;
+        summary["zero_rows_W"]       = problem.delassus().n_zero_rows();
+      }
+
+
+      /** The outcome of the loop, printed. */
+      void
+      print_result(const LocalSolver::Result &result,
+                   const Settings            &settings,
+                   std::ostream              &out)
+      {
+        const auto &last  = result.qp_statistics.back();
+        const Model model = settings.loop.model;
+        out << "model " << to_string(model)
+            << (model == Model::coulomb_fixed_point ?
+                  " (first iterate " + to_string(settings.loop.first) + ")" :
+                  "")
+            << ", QP solver " << settings.qp.solver << " (tolerance "
+            << settings.qp.tolerance << ")\n";
+        out << std::setprecision(6);
+        out << (result.converged ? "converged" : "NOT converged") << ": "
+            << result.reason << "\n"
+            << "  QPs " << result.qp_statistics.size() << ", QP iterations "
+            << result.iterations << ", products with W "
+            << result.hessian_products << ", time " << result.wall_time
+            << " s\n"
+            << "  last QP: criterion " << last.final_criterion
+            << " (relative), KKT stationarity " << last.kkt.stationarity
+            << "\n";
+        out << "  proximal point " << result.proximal_reason;
+        if (!result.rhos.empty())
+          out << ", rho / lambda_max first " << settings.loop.rho << ", last "
+              << result.rhos.back() << ", range ["
+              << *std::min_element(result.rhos.begin(), result.rhos.end())
+              << ", "
+              << *std::max_element(result.rhos.begin(), result.rhos.end())
+              << "]";
+        out << "\n";
+        if (!result.perturbations.empty())
+          out << "  last perturbation of q ||rho dr + W_a dr|| / ||q|| "
+              << result.perturbations.back() << "\n";
+        if (!result.coulomb_changes.empty())
+          out << "  Coulomb iterations " << result.coulomb_changes.size()
+              << ", last relative change of psi "
+              << result.coulomb_changes.back() << "\n";
+        out << "  FCLIB error " << std::scientific << result.fclib_error
+            << std::defaultfloat << "\n";
+      }
+
+
+      /** A file written with its solution (e.g. by a dualcontact scene): how
+       *  far is the stored r, and how far is ours from it. */
+      void
+      compare_with_stored_solution(const std::string            &file,
+                                   const LocalProblem           &problem,
+                                   const dealii::Vector<double> &r,
+                                   std::ostream                 &out,
+                                   nlohmann::json               &summary)
+      {
+        const dealii::Vector<double> stored = read_solution_r(file);
+        if (stored.size() != r.size() || !(stored.l2_norm() > 0))
+          return;
+        dealii::Vector<double> difference(r);
+        difference -= stored;
+        const double error_stored = fclib_error(problem, stored);
+        const double relative     = difference.l2_norm() / stored.l2_norm();
+        out << "  stored solution: FCLIB error " << std::scientific
+            << error_stored << ", ||r - r_stored|| / ||r_stored|| " << relative
+            << std::defaultfloat << "\n";
+        summary["stored_solution_fclib_error"] = error_stored;
+        summary["difference_to_stored"]        = relative;
+      }
+
+
+      /** The outcome of the loop in the JSON summary. */
+      void
+      add_result(const LocalSolver::Result &result,
+                 const Settings            &settings,
+                 nlohmann::json            &summary)
+      {
+        summary["model"]            = to_string(settings.loop.model);
+        summary["first_iterate"]    = to_string(settings.loop.first);
+        summary["proximal"]         = result.proximal;
+        summary["proximal_reason"]  = result.proximal_reason;
+        summary["rhos"]             = result.rhos;
+        summary["perturbations"]    = result.perturbations;
+        summary["inexact"]          = settings.loop.inexact;
+        summary["solver"]           = settings.qp.solver;
+        summary["tolerance"]        = settings.qp.tolerance;
+        summary["converged"]        = result.converged;
+        summary["reason"]           = result.reason;
+        summary["n_qp"]             = result.qp_statistics.size();
+        summary["iterations"]       = result.iterations;
+        summary["hessian_products"] = result.hessian_products;
+        summary["power_products"]   = result.power_products;
+        summary["time_s"]           = result.wall_time;
+        summary["coulomb_changes"]  = result.coulomb_changes;
+        summary["fclib_error"]      = result.fclib_error;
+        summary["last_qp"] = result.qp_statistics.back().to_json(false);
+        // (--tol alone sets it too)
+        summary["coulomb_tolerance"] = settings.coulomb.tolerance;
+        // per QP of the loop: iterations, products, tolerance, criterion
+        nlohmann::json qps = nlohmann::json::array();
+        for (const auto &s : result.qp_statistics)
+          qps.push_back({s.iterations,
+                         s.n_hessian_products,
+                         s.tolerance,
+                         s.final_criterion});
+        summary["qps"] = qps;
+      }
+
+
+      /** --json FILE: the summary. */
+      void
+      write_summary(const std::string &json_file, const nlohmann::json &summary)
+      {
+        std::ofstream json(json_file);
+        AssertThrow(json.good(),
+                    dealii::ExcMessage("Cannot write `" + json_file + "'"));
+        json << summary.dump(2) << "\n";
+      }
     } // namespace
 
 
@@ -134,297 +474,54 @@ namespace dualcontact
                           std::ostream                   &out,
                           std::ostream                   &err) const
     {
-      std::string file, prm_file, json_file, write_file, model_name, solver,
-        first_name, storage_name;
-      std::string prox;
-      bool        fixed_rho = false, exact_qps = false;
-      // unset unless given: every given value is checked (no sentinel that
-      // a user could write, such as -1, is taken for "the default")
-      std::optional<double>    tol, coulomb_tol;
-      std::optional<long>      max_iter, coulomb_max_iter;
-      bool                     info_only = false;
-      std::vector<std::string> settings;
+      Options options;
       try
       {
-        for (std::size_t i = 0; i < args.size(); ++i)
-        {
-          const std::string &a     = args[i];
-          auto               value = [&]() -> std::string
-          {
-            if (i + 1 >= args.size())
-              throw UsageError("option " + a + " needs a value");
-            return args[++i];
-          };
-          if (a == "--help" || a == "-h")
-          {
-            out << usage();
-            return 0;
-          }
-          else if (a == "--prm")
-            prm_file = value();
-          else if (a == "--set")
-            settings.push_back(value());
-          else if (a == "--model")
-            model_name = value();
-          else if (a == "--prox")
-            prox = value();
-          else if (a == "--fixed-rho")
-            fixed_rho = true;
-          else if (a == "--exact-qps")
-            exact_qps = true;
-          else if (a == "--first")
-            first_name = value();
-          else if (a == "--storage")
-            storage_name = value();
-          else if (a == "--solver")
-            solver = value();
-          else if (a == "--tol")
-            tol = to_positive_number(a, value());
-          else if (a == "--coulomb-tol")
-            coulomb_tol = to_positive_number(a, value());
-          else if (a == "--max-iter")
-            max_iter = to_iteration_limit(a, value());
-          else if (a == "--coulomb-max-iter")
-            coulomb_max_iter = to_iteration_limit(a, value());
-          else if (a == "--json")
-            json_file = value();
-          else if (a == "--write")
-            write_file = value();
-          else if (a == "--info")
-            info_only = true;
-          else if (!a.empty() && a[0] == '-')
-            throw UsageError("unknown option " + a);
-          else if (file.empty())
-            file = a;
-          else
-            throw UsageError("more than one problem file given (" + file +
-                             ", " + a + ")");
-        }
-        if (file.empty())
-          throw UsageError("no FCLIB file given");
+        options = parse_options(args);
       }
       catch (const UsageError &e)
       {
         err << "fclibsolve: " << e.what() << "\n" << usage();
         return 1;
       }
+      if (options.help)
+      {
+        out << usage();
+        return 0;
+      }
 
       try
       {
-        dealii::ParameterHandler prm;
-        declare(prm);
-        if (!prm_file.empty())
-          io::parse_parameter_file(prm, prm_file, false);
-        std::vector<io::ParameterOverride> overrides;
-        for (const auto &setting : settings)
-          overrides.push_back(io::parse_parameter_override(setting));
-        io::apply_parameter_overrides(prm, overrides, false);
-        qp::SolverParameters qp_parameters;
-        qp_parameters.parse_parameters(prm);
-        contact::CoulombParameters coulomb;
-        coulomb.parse_parameters(prm);
-        LocalSolver::Parameters loop;
-        loop.parse_parameters(prm);
-        if (!model_name.empty())
-          loop.model = parse_model(model_name);
-        if (!first_name.empty())
-          loop.first = parse_first_iterate(first_name);
-        if (!prox.empty())
-          loop.parse_proximal(prox);
-        if (fixed_rho)
-          loop.adaptive_rho = false;
-        if (exact_qps)
-          loop.inexact = false;
-        loop.check();
-        const Model        model = loop.model;
-        const FirstIterate first = loop.first;
-        if (!solver.empty())
-        {
-          qp::create<dealii::Vector<double>>(solver, qp_parameters); // checks
-          qp_parameters.solver = solver;
-        }
-        if (tol)
-          qp_parameters.tolerance = *tol;
-        if (max_iter)
-          qp_parameters.max_iterations = *max_iter;
-        if (coulomb_tol)
-          coulomb.tolerance = *coulomb_tol;
-        else if (tol &&
-                 coulomb.tolerance == contact::CoulombParameters().tolerance)
-          // --tol alone asks for that accuracy: the Coulomb loop follows
-          // (its change of psi cannot be measured below the QPs' noise: with
-          // QP tolerance 1e-4 and the Coulomb default 1e-6, Capsules ran
-          // 1000 proximal iterations without converging; doc/fclib.md)
-          coulomb.tolerance = *tol;
-        if (coulomb_max_iter)
-          coulomb.max_iterations = *coulomb_max_iter;
-        qp_parameters.check();
-
-        Storage storage = parse_storage(prm.get("Storage of W"));
-        if (!storage_name.empty())
-          storage = parse_storage(storage_name);
-
-        dealii::Timer  reading;
-        const Form     form = form_of(file);
+        const Settings settings = read_settings(options);
         nlohmann::json summary;
-        summary["file"] = file;
-        summary["form"] = to_string(form);
-        LocalProblem problem;
-        if (form == Form::local)
-          problem = read_local(file, storage);
-        else
+        LocalProblem   problem =
+          read_problem(options.file, settings.storage, out, summary);
+        if (options.info_only)
         {
-          const GlobalProblem global = read_global(file);
-          out << "global problem: " << global.n_dofs() << " dofs, "
-              << global.n_contacts() << " contacts"
-              << (global.M_was_upper_triangle() ?
-                    " (M stored as its upper triangle)" :
-                    "")
-              << "\n";
-          summary["n_dofs"] = global.n_dofs();
-          problem           = global.reduce_to_local(storage);
-          out << "reduced to local form with " << global.factorization_name()
-              << "\n";
-          summary["factorization"] = global.factorization_name();
-        }
-        const auto [mu_min, mu_max] =
-          std::minmax_element(problem.mu().begin(), problem.mu().end());
-        out << "local problem: " << problem.n_contacts() << " contacts, "
-            << problem.size() << " unknowns, dimension " << problem.spacedim()
-            << ", mu in [" << (problem.n_contacts() ? *mu_min : 0.) << ", "
-            << (problem.n_contacts() ? *mu_max : 0.)
-            << "], nnz(W) = " << problem.delassus().n_nonzero() << " ("
-            << (problem.delassus().dense() ? "dense" : "sparse") << " storage)"
-            << ", asymmetry of W " << problem.delassus().asymmetry()
-            << ", read in " << reading.wall_time() << " s\n";
-        summary["n_contacts"] = problem.n_contacts();
-        summary["spacedim"]   = problem.spacedim();
-        summary["storage"]    = problem.delassus().dense() ? "dense" : "sparse";
-        summary["asymmetry_W"] = problem.delassus().asymmetry();
-        summary["read_time_s"] = reading.wall_time();
-        if (info_only)
-        {
-          const int rank = problem.delassus().numerical_rank(1e-10);
-          out << "rank of W_s (pivots above 1e-10 max diag) " << rank
-              << ", zero rows of W " << problem.delassus().n_zero_rows()
-              << "\n";
-          // spread of the normal diagonal entries W_nn over the contacts
-          // (how much a per-contact scaling could change the conditioning)
-          double       diag_min = 0, diag_max = 0;
-          const auto  &W = problem.delassus().matrix();
-          const double d = problem.spacedim();
-          for (unsigned int i = 0; i < problem.n_contacts(); ++i)
-          {
-            const double w = W.el(d * i, d * i);
-            diag_min       = i == 0 ? w : std::min(diag_min, w);
-            diag_max       = i == 0 ? w : std::max(diag_max, w);
-          }
-          out << "normal diagonal entries of W in [" << diag_min << ", "
-              << diag_max << "]\n";
-          summary["normal_diagonal_W"] = {diag_min, diag_max};
-          summary["rank_W"]            = rank;
-          summary["zero_rows_W"]       = problem.delassus().n_zero_rows();
-          if (!json_file.empty())
-            std::ofstream(json_file) << summary.dump(2) << "\n";
+          print_info(problem, out, summary);
+          if (!options.json_file.empty())
+            std::ofstream(options.json_file) << summary.dump(2) << "\n";
           return 0;
         }
 
-        LocalSolver local_solver(problem, qp_parameters, coulomb, loop);
+        LocalSolver            local_solver(problem,
+                                 settings.qp,
+                                 settings.coulomb,
+                                 settings.loop);
         dealii::Vector<double> r(problem.size());
         const auto             result = local_solver.solve(r);
-        const auto            &last   = result.qp_statistics.back();
-        out << "model " << to_string(model)
-            << (model == Model::coulomb_fixed_point ?
-                  " (first iterate " + to_string(first) + ")" :
-                  "")
-            << ", QP solver " << qp_parameters.solver << " (tolerance "
-            << qp_parameters.tolerance << ")\n";
-        out << std::setprecision(6);
-        out << (result.converged ? "converged" : "NOT converged") << ": "
-            << result.reason << "\n"
-            << "  QPs " << result.qp_statistics.size() << ", QP iterations "
-            << result.iterations << ", products with W "
-            << result.hessian_products << ", time " << result.wall_time
-            << " s\n"
-            << "  last QP: criterion " << last.final_criterion
-            << " (relative), KKT stationarity " << last.kkt.stationarity
-            << "\n";
-        out << "  proximal point " << result.proximal_reason;
-        if (!result.rhos.empty())
-          out << ", rho / lambda_max first " << loop.rho << ", last "
-              << result.rhos.back() << ", range ["
-              << *std::min_element(result.rhos.begin(), result.rhos.end())
-              << ", "
-              << *std::max_element(result.rhos.begin(), result.rhos.end())
-              << "]";
-        out << "\n";
-        if (!result.perturbations.empty())
-          out << "  last perturbation of q ||rho dr + W_a dr|| / ||q|| "
-              << result.perturbations.back() << "\n";
-        if (!result.coulomb_changes.empty())
-          out << "  Coulomb iterations " << result.coulomb_changes.size()
-              << ", last relative change of psi "
-              << result.coulomb_changes.back() << "\n";
-        out << "  FCLIB error " << std::scientific << result.fclib_error
-            << std::defaultfloat << "\n";
-
-        // a file written with its solution (e.g. by a dualcontact scene):
-        // how far is the stored r, and how far is ours from it
-        const dealii::Vector<double> stored = read_solution_r(file);
-        if (stored.size() == r.size() && stored.l2_norm() > 0)
-        {
-          dealii::Vector<double> difference(r);
-          difference -= stored;
-          const double error_stored = fclib_error(problem, stored);
-          const double relative     = difference.l2_norm() / stored.l2_norm();
-          out << "  stored solution: FCLIB error " << std::scientific
-              << error_stored << ", ||r - r_stored|| / ||r_stored|| "
-              << relative << std::defaultfloat << "\n";
-          summary["stored_solution_fclib_error"] = error_stored;
-          summary["difference_to_stored"]        = relative;
-        }
-        summary["model"]            = to_string(model);
-        summary["first_iterate"]    = to_string(first);
-        summary["proximal"]         = result.proximal;
-        summary["proximal_reason"]  = result.proximal_reason;
-        summary["rhos"]             = result.rhos;
-        summary["perturbations"]    = result.perturbations;
-        summary["inexact"]          = loop.inexact;
-        summary["solver"]           = qp_parameters.solver;
-        summary["tolerance"]        = qp_parameters.tolerance;
-        summary["converged"]        = result.converged;
-        summary["reason"]           = result.reason;
-        summary["n_qp"]             = result.qp_statistics.size();
-        summary["iterations"]       = result.iterations;
-        summary["hessian_products"] = result.hessian_products;
-        summary["power_products"]   = result.power_products;
-        summary["time_s"]           = result.wall_time;
-        summary["coulomb_changes"]  = result.coulomb_changes;
-        summary["fclib_error"]      = result.fclib_error;
-        summary["last_qp"]          = last.to_json(false);
-        // (--tol alone sets it too)
-        summary["coulomb_tolerance"] = coulomb.tolerance;
-        // per QP of the loop: iterations, products, tolerance, criterion
-        nlohmann::json qps = nlohmann::json::array();
-        for (const auto &s : result.qp_statistics)
-          qps.push_back({s.iterations,
-                         s.n_hessian_products,
-                         s.tolerance,
-                         s.final_criterion});
-        summary["qps"] = qps;
-        if (!json_file.empty())
-        {
-          std::ofstream json(json_file);
-          AssertThrow(json.good(),
-                      dealii::ExcMessage("Cannot write `" + json_file + "'"));
-          json << summary.dump(2) << "\n";
-        }
-        if (!write_file.empty())
-          write_local(write_file,
+        print_result(result, settings, out);
+        compare_with_stored_solution(options.file, problem, r, out, summary);
+        add_result(result, settings, summary);
+        if (!options.json_file.empty())
+          write_summary(options.json_file, summary);
+        if (!options.write_file.empty())
+          write_local(options.write_file,
                       problem,
                       r,
                       "solved by dualcontact fclibsolve, model " +
-                        to_string(model) + ", solver " + qp_parameters.solver);
+                        to_string(settings.loop.model) + ", solver " +
+                        settings.qp.solver);
         return result.converged ? 0 : 2;
       }
       catch (const dealii::ExceptionBase &e)
