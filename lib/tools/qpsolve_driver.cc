@@ -239,7 +239,7 @@ namespace dualcontact
              "factor 1.25, AMG in face, preconditioned release) unless one "
              "of --gamma, --expansion, --projected-cg-trials, "
              "--projected-cg-gradient-factor, --proportioning is given "
-             "(then it uses those; `QP solver/Auto settings=given' keeps "
+             "(then it uses those; `QP solver/Auto/Settings=given' keeps "
              "the thesis' table 14).\n"
              "--projected-cg-gradient-factor R (>= 1; 0 = off): keep the "
              "least-cost projected-CG trial among those whose ||g^P|| is "
@@ -455,8 +455,8 @@ namespace dualcontact
           only_bounds =
             only_bounds && (block.type == "bound" || block.type == "box");
         const bool auto_amg = prm.solver == "auto" &&
-                              prm.auto_settings == "measured" && only_bounds &&
-                              !d.has_equality();
+                              prm.auto_chain.settings == "measured" &&
+                              only_bounds && !d.has_equality();
         if (prm.preconditioner == "amg" || auto_amg)
         {
           FreeSetAMG::Parameters amg_parameters;
