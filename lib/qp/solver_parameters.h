@@ -1,11 +1,11 @@
 /**
  * @file solver_parameters.h
  * Every parameter of every QP solver, with the defaults of the thesis'
- * table 14, declared in the .prm subsection `QP solver`: those several
- * solvers share at its level, each solver's own in a subsection of it
- * (`MPGP-BB`, `MwPGP`, `PBBf`, `SPG-QP`, `APGD`, `Auto`) and a struct of
- * its own.  One SolverParameters holds them all because the factory hands
- * the same parameters to whichever solver is selected, and the chain and
+ * table 14, declared in the .prm subsection `QP solver`: the parameters
+ * several solvers share at its level, those of one solver in a subsection
+ * of it (`MPGP-BB`, `MwPGP`, `PBBf`, `SPG-QP`, `APGD`, `Auto`) and a
+ * struct of their own.  One SolverParameters holds them all because the factory
+ * hands the same parameters to whichever solver is selected, and the chain and
  * SMALSE-M pass them on to the solvers they run.
  */
 #ifndef dualcontact_qp_solver_parameters_h
