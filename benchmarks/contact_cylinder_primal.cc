@@ -19,8 +19,9 @@
 //
 // E [Pa], SOLVER one of the qp factory's names (mprgp = MPRGPS here, as the
 // Hessian is singular).  Table 14's settings (the qp defaults): x0 = 0,
-// alpha_bar = 1.95 / lambda_max, Gamma = 1, PBBf K = 10, SPG-QP m = 10,
-// gamma = 0.1, sigma2 = 0.9999, APGD L = lambda_max; the stopping test is
+// alpha_bar = 1.95 / lambda_max, Gamma = 1, PBBf/K = 10, SPG-QP/m = 10,
+// gamma = 0.1, sigma2 = 0.9999, APGD/L factor = 1 (L = lambda_max); the
+// stopping test is
 // ||g^P(x)|| <= TOLERANCE ||b||.  lambda_max is computed exactly (dense
 // symmetric eigenvalues, the mesh is small) and given to the solvers, as
 // are the regular smallest eigenvalue and condition number for the report.

@@ -224,7 +224,7 @@ namespace dualcontact
     ActiveSetIteration<VectorType>::proportional() const
     {
       if (weak)
-        return 2. * prm.mwpgp_delta *
+        return 2. * prm.mwpgp.delta *
                  (norms.free_sq + norms.reduced_chopped_sq) <=
                norms.free_sq;
       return norms.chopped_sq <= prm.gamma * prm.gamma * norms.free_sq;
@@ -580,7 +580,7 @@ namespace dualcontact
     // The expansion (after a half-step, or MPGP's non-proportional step):
     // fixed length alpha_bar, or Barzilai-Borwein with a non-monotone
     // safeguard: a BB step is accepted if the cost does not exceed the
-    // largest of the costs before the last `mpgp_bb_memory` BB attempts
+    // largest of the costs before the last `mpgp_bb.memory` BB attempts
     // (Grippo-Lampariello-Lucidi), else it is redone with alpha_bar (a
     // fall-back).  Memory 0 = monotone.
     template <typename VectorType>
@@ -600,10 +600,10 @@ namespace dualcontact
       }
       const double f_old = cost_at(x, g);
       recent_costs.push_back(f_old);
-      while (recent_costs.size() > std::max(prm.mpgp_bb_memory, 1u))
+      while (recent_costs.size() > std::max(prm.mpgp_bb.memory, 1u))
         recent_costs.pop_front();
       const double reference =
-        prm.mpgp_bb_memory == 0 ?
+        prm.mpgp_bb.memory == 0 ?
           f_old :
           *std::max_element(recent_costs.begin(), recent_costs.end());
       work.equ(1., x);

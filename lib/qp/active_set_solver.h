@@ -45,7 +45,7 @@ namespace dualcontact
       bool expand_with_free_gradient = false;
       /// Barzilai-Borwein step lengths in projections (MPGP-BB), with a
       /// fall-back to alpha_bar when the cost exceeds the largest of the
-      /// last `mpgp_bb_memory` pre-step costs (non-monotone safeguard)
+      /// last `mpgp_bb.memory` pre-step costs (non-monotone safeguard)
       bool barzilai_borwein = false;
       /// accept only bound and box blocks (MPRGP)
       bool bounds_only = false;

@@ -24,7 +24,7 @@ namespace dualcontact
     {
       const SolverParameters &prm   = this->prm;
       SolverStatistics        stats = this->start(problem, x);
-      const double L = prm.apgd_l_factor * this->lambda_max(problem, stats);
+      const double L = prm.apgd.l_factor * this->lambda_max(problem, stats);
 
       // Only A x^k is computed (one product per iteration); A y^k follows
       // by linearity from y^k = x^k + beta (x^k - x^{k-1}).

@@ -1,7 +1,8 @@
 /**
  * @file apgd.h
  * APGD, Nesterov's accelerated projected gradient descent (thesis 2.3,
- * algorithm 6).
+ * algorithm 6).  Own parameters: APGDParameters (SolverParameters::apgd,
+ * `subsection QP solver/APGD`: L factor).
  */
 #ifndef dualcontact_qp_apgd_h
 #define dualcontact_qp_apgd_h

@@ -16,8 +16,9 @@ namespace dualcontact
     /**
      * MwPGP (thesis 2.4.3): MPGP with the weak proportioning test 2 delta
      * ||g~^P_alpha||^2 <= ||phi||^2 on the reduced projected gradient, for
-     * strongly curved sets (ill-conditioned ellipses). Parameters: MwPGP
-     * delta, Alpha bar factor, and the common ones of SolverParameters.
+     * strongly curved sets (ill-conditioned ellipses). Parameters: its own
+     * MwPGPParameters (SolverParameters::mwpgp, `subsection MwPGP`: Delta),
+     * Alpha bar factor, and the common ones of SolverParameters.
      */
     template <typename VectorType>
     class MwPGP : public ActiveSetSolver<VectorType>

@@ -103,7 +103,7 @@ namespace dualcontact
           ++k_hat;
 
         // fall-back application: K steps without improvement
-        if (k_hat >= prm.pbbf_k)
+        if (k_hat >= prm.pbbf.k)
         {
           projected_step(x, g, x_min, g_min, alpha_bar);
           x_min = x;

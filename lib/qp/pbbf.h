@@ -1,6 +1,8 @@
 /**
  * @file pbbf.h
  * PBBf, projected Barzilai-Borwein with fall-back (thesis 2.2, algorithm 5).
+ * Own parameters: PBBfParameters (SolverParameters::pbbf, `subsection QP
+ * solver/PBBf`: K).
  */
 #ifndef dualcontact_qp_pbbf_h
 #define dualcontact_qp_pbbf_h

@@ -31,13 +31,7 @@ namespace dualcontact
     {
       const bool general = problem.constraints != nullptr &&
                            !problem.constraints->only_bounds_and_boxes();
-      return general ?
-               SolverParameters::parse_chain(this->prm.auto_chain_general,
-                                             true,
-                                             "Auto chain for general sets") :
-               SolverParameters::parse_chain(this->prm.auto_chain_bounds,
-                                             false,
-                                             "Auto chain for bounds");
+      return this->prm.auto_chain.chain(general);
     }
 
 
@@ -49,7 +43,7 @@ namespace dualcontact
     {
       SolverParameters parameters = this->prm;
       parameters.solver           = name;
-      if (this->prm.auto_settings != "measured")
+      if (this->prm.auto_chain.settings != "measured")
         return parameters;
       // settings the user chose win: the measured ones replace only the
       // thesis' table-14 values
@@ -63,7 +57,7 @@ namespace dualcontact
         parameters.preconditioner != thesis.preconditioner ||
         parameters.proportioning_step != thesis.proportioning_step;
       if (chosen_by_user)
-        parameters.auto_settings = "given";
+        parameters.auto_chain.settings = "given";
       if (chosen_by_user || name != "mprgp" || problem.equality != nullptr ||
           problem.hessian_storage != HessianStorage::sparse_matrix)
         return parameters;
@@ -90,7 +84,7 @@ namespace dualcontact
       const SolverParameters &parameters)
     {
       std::ostringstream s;
-      s << parameters.auto_settings << ":";
+      s << parameters.auto_chain.settings << ":";
       const std::string &name = parameters.solver;
       if (name == "mprgp" || name == "mpgp" || name == "mpgp-bb")
         s << " gamma=" << parameters.gamma;
@@ -151,7 +145,7 @@ namespace dualcontact
           // solver's projection: start there (warm) or from the caller's
           // guess (cold, or after NaN/Inf)
           const bool finite = std::isfinite(x.l2_norm());
-          if (!this->prm.auto_warm_start || !finite)
+          if (!this->prm.auto_chain.warm_start || !finite)
             x = initial_guess;
         }
         if (k == 1 && problem.start_gradient)

@@ -28,15 +28,16 @@ namespace dualcontact
      * Runs the solvers of a chain one after the other until one converges.
      *
      * Policy (lib/qp/README.md, "The solver chain auto"):
-     * - the chain is SolverParameters::auto_chain_bounds when every block
-     *   of the separable set is a bound or a box (or there is no set), and
-     *   SolverParameters::auto_chain_general otherwise (discs, ellipses,
+     * - the chain is AutoChainParameters::bounds (SolverParameters::
+     *   auto_chain, `subsection QP solver/Auto`) when every block of the
+     *   separable set is a bound or a box (or there is no set), and
+     *   AutoChainParameters::general otherwise (discs, ellipses,
      *   cones);
      * - with equality constraints every attempt is SMALSE-M around the
      *   chain's solver (with the SMALSE-M parameters given here);
      * - an attempt that ends with any reason but `converged` hands over to
      *   the next solver; each attempt gets the full iteration limit;
-     * - warm start (SolverParameters::auto_warm_start, default true): the
+     * - warm start (AutoChainParameters::warm_start, default true): the
      *   next attempt starts from the last iterate of the failed one (a
      *   feasible point nearer the solution; every solver of the chain
      *   converges from any feasible start), except after a non-finite
@@ -65,9 +66,9 @@ namespace dualcontact
 
       /**
        * The parameters the attempt with solver @p name gets on @p problem:
-       * the chain's own parameters with `solver = name`, and, with `Auto
-       * settings = measured` (the default), the settings measured best for
-       * the problem's kind (doc/benchmarks/membrane.md, "Defaults (issue
+       * the chain's own parameters with `solver = name`, and, with
+       * `Auto/Settings = measured` (the default), the settings measured best
+       * for the problem's kind (doc/benchmarks/membrane.md, "Defaults (issue
        * 20)"):
        * - MPRGP without equality constraints on an assembled sparse
        *   Hessian (Problem::hessian_storage == sparse_matrix) whose
@@ -86,7 +87,7 @@ namespace dualcontact
        * when any of Gamma, Expansion, Projected-CG trials, Projected-CG
        * gradient factor, Preconditioner and Proportioning step differs
        * from them, every attempt runs with the parameters given (and
-       * its `auto_settings` says "given").
+       * its `auto_chain.settings` says "given").
        */
       SolverParameters
       attempt_parameters(const Problem<VectorType> &problem,

@@ -1,9 +1,12 @@
 /**
  * @file solver_parameters.h
  * Every parameter of every QP solver, with the defaults of the thesis'
- * table 14, declared in the .prm subsection `QP solver`.  One flat struct
- * because the factory hands the same parameters to whichever solver is
- * selected, and SMALSE-M passes them on to its inner solver.
+ * table 14, declared in the .prm subsection `QP solver`: the parameters
+ * several solvers share at its level, those of one solver in a subsection
+ * of it (`MPGP-BB`, `MwPGP`, `PBBf`, `SPG-QP`, `APGD`, `Auto`) and a
+ * struct of their own.  One SolverParameters holds them all because the factory
+ * hands the same parameters to whichever solver is selected, and the chain and
+ * SMALSE-M pass them on to the solvers they run.
  */
 #ifndef dualcontact_qp_solver_parameters_h
 #define dualcontact_qp_solver_parameters_h
@@ -37,12 +40,164 @@ namespace dualcontact
     StoppingCriterion
     parse_stopping_criterion(const std::string &name);
 
+    /*
+     * The parameters of one solver each, in their own subsection of `QP
+     * solver`.  Declared here, not beside their solvers' classes, because
+     * SolverParameters holds them by value (the factory, the chain and
+     * SMALSE-M hand one object to whichever solver runs) and the solver
+     * headers include this one.  Each: `subsection` (its name, which the
+     * registry entry takes), declare_parameters() / parse_parameters()
+     * inside that subsection (the registry enters it), check() naming the
+     * parameter by its path.  The members' values are the .prm defaults.
+     */
+
+    /// MPGP-BB (`subsection QP solver/MPGP-BB`)
+    struct MPGPBBParameters
+    {
+      static constexpr const char *subsection = "MPGP-BB";
+      /// `Memory`: a Barzilai-Borwein projection is accepted when the cost
+      /// does not exceed the largest cost before the last this-many BB
+      /// attempts (non-monotone safeguard); 0 = monotone (every increase
+      /// falls back to alpha_bar)
+      unsigned int memory = 10;
+
+      static void
+      declare_parameters(dealii::ParameterHandler &prm);
+      void
+      parse_parameters(const dealii::ParameterHandler &prm);
+      void
+      check() const;
+    };
+
+    /// MwPGP (`subsection QP solver/MwPGP`)
+    struct MwPGPParameters
+    {
+      static constexpr const char *subsection = "MwPGP";
+      /// `Delta`: delta in (0, 1/2) of the MwPGP proportioning test
+      /// 2 delta ||g~^P||^2 <= ||phi||^2
+      double delta = 0.25;
+
+      static void
+      declare_parameters(dealii::ParameterHandler &prm);
+      void
+      parse_parameters(const dealii::ParameterHandler &prm);
+      void
+      check() const;
+    };
+
+    /// PBBf (`subsection QP solver/PBBf`)
+    struct PBBfParameters
+    {
+      static constexpr const char *subsection = "PBBf";
+      /// `K`: fall-back after K non-monotone steps (table 14: 10)
+      unsigned int k = 10;
+
+      static void
+      declare_parameters(dealii::ParameterHandler &prm);
+      void
+      parse_parameters(const dealii::ParameterHandler &prm);
+      void
+      check() const;
+    };
+
+    /// SPG-QP (`subsection QP solver/SPG-QP`)
+    struct SPGQPParameters
+    {
+      static constexpr const char *subsection = "SPG-QP";
+      /// `m`: memory of the non-monotone line search (table 14: 10)
+      unsigned int m = 10;
+      /// `gamma`: sufficient decrease (table 14: 0.1)
+      double gamma = 0.1;
+      /// `sigma2`: safeguard sigma_2 (table 14: 0.9999)
+      double sigma2 = 0.9999;
+      /// `alpha0 factor`: alpha_0 = alpha0_factor / lambda_max (table 14:
+      /// alpha_0 = alpha_bar, i.e. 1.95)
+      double alpha0_factor = 1.95;
+
+      static void
+      declare_parameters(dealii::ParameterHandler &prm);
+      void
+      parse_parameters(const dealii::ParameterHandler &prm);
+      void
+      check() const;
+    };
+
+    /// APGD (`subsection QP solver/APGD`)
+    struct APGDParameters
+    {
+      static constexpr const char *subsection = "APGD";
+      /// `L factor`: L = l_factor * lambda_max (table 14: 1)
+      double l_factor = 1.;
+
+      static void
+      declare_parameters(dealii::ParameterHandler &prm);
+      void
+      parse_parameters(const dealii::ParameterHandler &prm);
+      void
+      check() const;
+    };
+
+    /// The fall-back chain `auto` (`subsection QP solver/Auto`,
+    /// solver_chain.h)
+    struct AutoChainParameters
+    {
+      static constexpr const char *subsection = "Auto";
+      /// `Chain for bounds`: the solvers tried in turn when every
+      /// separable block is a bound or a box (comma-separated names,
+      /// first = primary)
+      std::string bounds = "mprgp, mpgp-bb, spg-qp";
+      /// `Chain for general sets`: the solvers tried in turn when some
+      /// block is a disc, ellipse or cone (mprgp not allowed: it takes
+      /// bounds only)
+      std::string general = "mpgp-bb, mpgp, spg-qp";
+      /// `Warm start`: a fall-back starts from the previous attempt's last
+      /// iterate (true) or from the initial guess (false); a non-finite
+      /// iterate always restarts from the initial guess
+      bool warm_start = true;
+      /// `Settings`: "measured" (default): SolverChain::attempt_parameters
+      /// gives each attempt the settings measured best for the problem's
+      /// kind (Problem::hessian_storage): MPRGP on bounds with an
+      /// assembled sparse Hessian and a free-set preconditioner factory
+      /// runs with Gamma 2, projected-CG expansion with 8 trials and
+      /// gradient factor 1.25, the AMG in face and the preconditioned
+      /// release (benchmark B4, doc/benchmarks/membrane.md "Defaults
+      /// (issue 20)"); every other case keeps the parameters given.
+      /// "given": every attempt runs with the parameters given (the
+      /// thesis' table 14 unless set).
+      std::string settings = "measured";
+
+      /// The checked names of `Chain for general sets` (@p general) or
+      /// `Chain for bounds`.
+      std::vector<std::string>
+      chain(const bool general) const;
+
+      /// The names of @p chain ("a, b, c"), checked: known, not `auto`,
+      /// and no mprgp when @p general.  Throws naming @p parameter (a
+      /// path such as "QP solver/Auto/Chain for bounds").
+      static std::vector<std::string>
+      parse_chain(const std::string &chain,
+                  const bool         general,
+                  const std::string &parameter);
+
+      static void
+      declare_parameters(dealii::ParameterHandler &prm);
+      void
+      parse_parameters(const dealii::ParameterHandler &prm);
+      void
+      check() const;
+    };
+
+
     struct SolverParameters
     {
-      /// mprgp | mpgp | mpgp-bb | mwpgp | spg-qp | pbbf | apgd | auto
-      /// (auto: the fall-back chain of solver_chain.h).  The .prm default
-      /// (declare_parameters) is auto; the struct's stays mprgp so that
-      /// code building it directly gets one plain solver.
+      /// The default of `Solver` in the .prm: the fall-back chain.  The one
+      /// parameter whose .prm default differs from the struct's (`solver`
+      /// below, mprgp): a program that builds SolverParameters itself
+      /// gets one plain solver, a .prm user the chain.
+      static constexpr const char *prm_default_solver = "auto";
+      /// mprgp | mpgp | mpgp-bb | mwpgp | spg-qp | pbbf | apgd | auto (the
+      /// registry's names; auto: the fall-back chain of solver_chain.h).
+      /// The .prm's default is prm_default_solver (auto).
       std::string solver = "mprgp";
       /// relative tolerance: stop when criterion <= tolerance * ||b||
       double            tolerance          = 1e-8;
@@ -111,31 +266,10 @@ namespace dualcontact
       /// chopped-gradient step, which is taken otherwise (so MPRGP's
       /// convergence argument holds).  It does the first PCG step on the
       /// enlarged face at once (benchmark B4: 86 -> 49 iterations at n =
-      /// 10^6, doc/benchmarks/membrane.md).
+      /// 10^6, doc/benchmarks/membrane.md).  MPRGP's alone, but kept at
+      /// `QP solver` level with Preconditioner and Projected-CG trials,
+      /// which it needs (lib/qp/README.md, "Parameters").
       std::string proportioning_step = "chopped-gradient";
-      /// MPGP-BB: a Barzilai-Borwein projection is accepted when the cost
-      /// does not exceed the largest cost before the last this-many BB
-      /// attempts (non-monotone safeguard); 0 = monotone (every increase
-      /// falls back to alpha_bar)
-      unsigned int mpgp_bb_memory = 10;
-      /// delta in (0, 1/2) of the MwPGP proportioning test
-      /// 2 delta ||g~^P||^2 <= ||phi||^2
-      double mwpgp_delta = 0.25;
-
-      /// PBBf: fall-back after K non-monotone steps (table 14: 10)
-      unsigned int pbbf_k = 10;
-      /// SPG-QP: memory m of the non-monotone line search (table 14: 10)
-      unsigned int spg_m = 10;
-      /// SPG-QP: sufficient-decrease gamma (table 14: 0.1)
-      double spg_gamma = 0.1;
-      /// SPG-QP: safeguard sigma_2 (table 14: 0.9999)
-      double spg_sigma2 = 0.9999;
-      /// SPG-QP: alpha_0 = spg_alpha0_factor / lambda_max (table 14:
-      /// alpha_0 = alpha_bar, i.e. 1.95)
-      double spg_alpha0_factor = 1.95;
-      /// APGD: L = apgd_l_factor * lambda_max (table 14: 1)
-      double apgd_l_factor = 1.;
-
       /// power iteration: returned estimate is safety_factor * estimate,
       /// so that alpha_bar stays below 2/lambda_max when it converged
       /// slowly from below
@@ -146,26 +280,16 @@ namespace dualcontact
       /// is below this
       double power_tolerance = 1e-4;
 
-      /// auto: the solvers tried in turn when every separable block is a
-      /// bound or a box (comma-separated names, first = primary)
-      std::string auto_chain_bounds = "mprgp, mpgp-bb, spg-qp";
-      /// auto: the solvers tried in turn when some block is a disc,
-      /// ellipse or cone (mprgp not allowed: it takes bounds only)
-      std::string auto_chain_general = "mpgp-bb, mpgp, spg-qp";
-      /// auto: a fall-back starts from the previous attempt's last iterate
-      /// (true) or from the initial guess (false); a non-finite iterate
-      /// always restarts from the initial guess
-      bool auto_warm_start = true;
-      /// auto: "measured" (default): SolverChain::attempt_parameters gives
-      /// each attempt the settings measured best for the problem's kind
-      /// (Problem::hessian_storage): MPRGP on bounds with an assembled
-      /// sparse Hessian and a free-set preconditioner factory runs with
-      /// Gamma 2, projected-CG expansion with 8 trials and gradient factor
-      /// 1.25, the AMG in face and the preconditioned release (benchmark
-      /// B4, doc/benchmarks/membrane.md "Defaults (issue 20)"); every
-      /// other case keeps the parameters given.  "given": every attempt
-      /// runs with the parameters given (the thesis' table 14 unless set).
-      std::string auto_settings = "measured";
+      /// The parameters of the solvers that have their own, each in its
+      /// subsection of `QP solver` (declared and read through the
+      /// solver's registry entry, solver_registry.h).  Every solver gets
+      /// all of them: the chain and SMALSE-M hand one SolverParameters on.
+      MPGPBBParameters    mpgp_bb;
+      MwPGPParameters     mwpgp;
+      PBBfParameters      pbbf;
+      SPGQPParameters     spg;
+      APGDParameters      apgd;
+      AutoChainParameters auto_chain;
 
       /// Not a parameter of the .prm: what a program that wants to show
       /// progress during a long solve sets (see solver_progress.h).  Every
@@ -175,21 +299,18 @@ namespace dualcontact
       /// report is built.
       ProgressMonitor progress;
 
-      /// The names of @p chain ("a, b, c"), checked: known, not `auto`,
-      /// and no mprgp when @p general.  Throws naming @p parameter.
-      static std::vector<std::string>
-      parse_chain(const std::string &chain,
-                  const bool         general,
-                  const std::string &parameter);
-
-      /// Declare all of the above in subsection `QP solver` of @p prm.
+      /// Declare the shared parameters above in subsection `QP solver` of
+      /// @p prm and, in a subsection of it each, the own parameters of
+      /// every registered solver that has some (the registry's hooks).
       static void
       declare_parameters(dealii::ParameterHandler &prm);
-      /// Read them back (enters and leaves the subsection itself);
+      /// Read them back (enters and leaves the subsections itself);
       /// checks ranges and throws naming the parameter.
       void
       parse_parameters(dealii::ParameterHandler &prm);
-      /// Throws (ExcMessage naming the parameter) on out-of-range values.
+      /// Throws (ExcMessage naming the parameter by its path, e.g.
+      /// `QP solver/SPG-QP/m') on out-of-range values, the own parameters
+      /// of every registered solver included.
       void
       check() const;
     };

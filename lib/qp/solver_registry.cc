@@ -35,7 +35,9 @@ namespace dualcontact
       /**
        * The solvers of the library, in the order of the thesis' chapter 2
        * (active-set, then spectral gradient), and the fall-back chain.
-       * Adding a solver: its class, one line here.
+       * Adding a solver: its class, one line here (with its own
+       * parameters: their struct, a member of SolverParameters, and
+       * DUALCONTACT_QP_REGISTER_SOLVER_WITH_PARAMETERS).
        */
       void
       register_builtin_solvers(SolverRegistry &registry)
@@ -55,40 +57,45 @@ namespace dualcontact
           "mpgp",
           any,
           "MPGP (thesis 2.4.1, algorithm 7), any separable set");
-        DUALCONTACT_QP_REGISTER_SOLVER(
+        DUALCONTACT_QP_REGISTER_SOLVER_WITH_PARAMETERS(
           registry,
           MPGPBB,
           "mpgp-bb",
           any,
           "MPGP with Barzilai-Borwein projection steps under a non-monotone "
-          "safeguard (thesis 2.4.2), any separable set");
-        DUALCONTACT_QP_REGISTER_SOLVER(
+          "safeguard (thesis 2.4.2), any separable set",
+          mpgp_bb);
+        DUALCONTACT_QP_REGISTER_SOLVER_WITH_PARAMETERS(
           registry,
           MwPGP,
           "mwpgp",
           any,
           "MPGP with the weak proportioning test (thesis 2.4.3), any "
-          "separable set");
-        DUALCONTACT_QP_REGISTER_SOLVER(
+          "separable set",
+          mwpgp);
+        DUALCONTACT_QP_REGISTER_SOLVER_WITH_PARAMETERS(
           registry,
           SPGQP,
           "spg-qp",
           any,
-          "spectral projected gradient (thesis 2.1.4, algorithm 4)");
-        DUALCONTACT_QP_REGISTER_SOLVER(
+          "spectral projected gradient (thesis 2.1.4, algorithm 4)",
+          spg);
+        DUALCONTACT_QP_REGISTER_SOLVER_WITH_PARAMETERS(
           registry,
           PBBf,
           "pbbf",
           any,
           "projected Barzilai-Borwein with fall-back (thesis 2.2, "
-          "algorithm 5)");
-        DUALCONTACT_QP_REGISTER_SOLVER(
+          "algorithm 5)",
+          pbbf);
+        DUALCONTACT_QP_REGISTER_SOLVER_WITH_PARAMETERS(
           registry,
           APGD,
           "apgd",
           any,
           "Nesterov's accelerated projected gradient descent (thesis 2.3, "
-          "algorithm 6)");
+          "algorithm 6)",
+          apgd);
         // SolverChain's second constructor argument (the SMALSE-M settings)
         // keeps its default here; make_solver() passes the caller's.  Not
         // chainable: the chain creates the solvers of a chain.
@@ -96,9 +103,10 @@ namespace dualcontact
           "auto",
           any,
           "chosen by the constraint types, with fall-back to the next "
-          "solver of `Auto chain for bounds' / `Auto chain for general "
+          "solver of `Auto/Chain for bounds' / `Auto/Chain for general "
           "sets' when one does not converge (SMALSE-M around each with "
           "equality constraints)",
+          &SolverParameters::auto_chain,
           false));
       }
     } // namespace
@@ -130,14 +138,25 @@ namespace dualcontact
                                      "' is registered twice."));
       Assert(entry.create_serial && entry.create_distributed,
              dealii::ExcInternalError());
-      entries.push_back(std::move(entry));
+      for (const SolverEntry &other : entries_)
+        AssertThrow(entry.parameter_subsection.empty() ||
+                      entry.parameter_subsection != other.parameter_subsection,
+                    dealii::ExcMessage("QP solver '" + entry.name +
+                                       "': its parameter subsection `" +
+                                       entry.parameter_subsection +
+                                       "' is solver '" + other.name + "''s."));
+      Assert(entry.parameter_subsection.empty() ==
+               !(entry.declare_parameters && entry.parse_parameters &&
+                 entry.check_parameters),
+             dealii::ExcInternalError());
+      entries_.push_back(std::move(entry));
     }
 
 
     const SolverEntry *
     SolverRegistry::find(const std::string &name) const
     {
-      for (const SolverEntry &entry : entries)
+      for (const SolverEntry &entry : entries_)
         if (entry.name == name)
           return &entry;
       return nullptr;
@@ -148,9 +167,16 @@ namespace dualcontact
     SolverRegistry::names() const
     {
       std::vector<std::string> result;
-      for (const SolverEntry &entry : entries)
+      for (const SolverEntry &entry : entries_)
         result.push_back(entry.name);
       return result;
+    }
+
+
+    const std::vector<SolverEntry> &
+    SolverRegistry::entries() const
+    {
+      return entries_;
     }
 
 
@@ -158,7 +184,7 @@ namespace dualcontact
     SolverRegistry::chainable_names(const bool general) const
     {
       std::vector<std::string> result;
-      for (const SolverEntry &entry : entries)
+      for (const SolverEntry &entry : entries_)
         if (entry.chainable &&
             (!general || entry.accepted_sets == AcceptedSets::any_separable))
           result.push_back(entry.name);
@@ -180,7 +206,7 @@ namespace dualcontact
     SolverRegistry::descriptions() const
     {
       std::string text;
-      for (const SolverEntry &entry : entries)
+      for (const SolverEntry &entry : entries_)
         text +=
           (text.empty() ? "" : "; ") + entry.name + ": " + entry.description;
       return text;

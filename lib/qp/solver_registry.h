@@ -1,11 +1,13 @@
 /**
  * @file solver_registry.h
  * The table of QP solvers: name, one-line description, the constraint sets a
- * solver accepts, and how to create it for either vector type.  Everything
+ * solver accepts, how to create it for either vector type, and its own
+ * parameters (their subsection of `QP solver` and the hooks that declare,
+ * read and check them).  Everything
  * that lists solvers reads this table: the pattern and documentation of
- * `Solver` in `subsection QP solver`, the checks of the `Auto chain ...`
- * parameters, qpsolve's `--solver` choices, fclibsolve's `--solver` list
- * and create().
+ * `Solver` in `subsection QP solver`, the solvers' own subsections, the
+ * checks of `Auto/Chain for ...`, qpsolve's `--solver` choices, fclibsolve's
+ * `--solver` list and create().
  */
 #ifndef dualcontact_qp_solver_registry_h
 #define dualcontact_qp_solver_registry_h
@@ -50,12 +52,25 @@ namespace dualcontact
       /// one phrase for the parameter documentation and --help
       std::string  description;
       AcceptedSets accepted_sets = AcceptedSets::any_separable;
-      /// whether an `Auto chain ...` parameter may name it (false for the
+      /// whether an `Auto/Chain for ...` parameter may name it (false for the
       /// chain itself, which creates the solvers of a chain)
       bool chainable = true;
 
       Creator<dealii::Vector<double>>                create_serial;
       Creator<dealii::TrilinosWrappers::MPI::Vector> create_distributed;
+
+      /// The solver's own parameters (empty / unset: it has none, it uses
+      /// only the shared ones of `subsection QP solver`): the subsection
+      /// of `QP solver` they live in, and the hooks that declare them
+      /// there, read them into their member of SolverParameters and check
+      /// them.  SolverParameters enters and leaves the subsection around
+      /// the first two.  Set by solver_entry() from a member of
+      /// SolverParameters.
+      std::string                                     parameter_subsection;
+      std::function<void(dealii::ParameterHandler &)> declare_parameters;
+      std::function<void(const dealii::ParameterHandler &, SolverParameters &)>
+                                                    parse_parameters;
+      std::function<void(const SolverParameters &)> check_parameters;
 
       /// the creator for @p VectorType
       template <typename VectorType>
@@ -93,7 +108,8 @@ namespace dualcontact
       instance();
 
       /// Add @p entry; throws if its name is taken or contains '|', ',' or
-      /// a space.
+      /// a space, or its parameter subsection is another entry's.  Add a
+      /// solver with own parameters before SolverParameters declares them.
       void
       add(SolverEntry entry);
 
@@ -105,7 +121,12 @@ namespace dualcontact
       std::vector<std::string>
       names() const;
 
-      /// The names the `Auto chain ...` parameters may hold, for @p general
+      /// The entries, in registration order (SolverParameters declares,
+      /// reads and checks the solvers' own parameters through them).
+      const std::vector<SolverEntry> &
+      entries() const;
+
+      /// The names the `Auto/Chain for ...` parameters may hold, for @p general
       /// (some block a disc, ellipse or cone) or bounds-only problems.
       std::vector<std::string>
       chainable_names(bool general) const;
@@ -117,15 +138,15 @@ namespace dualcontact
 
     private:
       SolverRegistry() = default;
-      std::vector<SolverEntry> entries;
+      std::vector<SolverEntry> entries_;
     };
 
 
     /**
      * The entry of solver class @p Solver (a class template on the vector
      * type whose constructor takes SolverParameters) as @p name, accepting
-     * @p sets, described by @p description; @p chainable: whether an `Auto
-     * chain ...` parameter may name it.
+     * @p sets, described by @p description; @p chainable: whether an
+     * `Auto/Chain for ...` parameter may name it.  No own parameters.
      */
     template <template <typename> class Solver>
     SolverEntry
@@ -151,6 +172,34 @@ namespace dualcontact
     }
 
 
+    /**
+     * The entry of solver class @p Solver as solver_entry() above, with own
+     * parameters: the member @p own of SolverParameters, a struct with a
+     * `subsection` name, `declare_parameters(prm)`, `parse_parameters(prm)`
+     * and `check()` (e.g. SPGQPParameters, solver_parameters.h).
+     */
+    template <template <typename> class Solver, typename Own>
+    SolverEntry
+    solver_entry(const std::string &name,
+                 const AcceptedSets sets,
+                 const std::string &description,
+                 Own SolverParameters::*own,
+                 const bool             chainable = true)
+    {
+      SolverEntry entry =
+        solver_entry<Solver>(name, sets, description, chainable);
+      entry.parameter_subsection = Own::subsection;
+      entry.declare_parameters   = [](dealii::ParameterHandler &prm)
+      { Own::declare_parameters(prm); };
+      entry.parse_parameters =
+        [own](const dealii::ParameterHandler &prm, SolverParameters &p)
+      { (p.*own).parse_parameters(prm); };
+      entry.check_parameters = [own](const SolverParameters &p)
+      { (p.*own).check(); };
+      return entry;
+    }
+
+
     /// @p names separated by '|' (a Patterns::Selection, a --solver list).
     std::string
     join_names(const std::vector<std::string> &names);
@@ -163,6 +212,16 @@ namespace dualcontact
      */
 #define DUALCONTACT_QP_REGISTER_SOLVER(registry, Class, key, sets, text) \
   (registry).add(::dualcontact::qp::solver_entry<Class>(key, sets, text))
+
+    /**
+     * Registers solver class @p Class as @p key with its own parameters,
+     * the member @p own of SolverParameters (declared in their subsection
+     * of `QP solver`, read and checked through the entry).
+     */
+#define DUALCONTACT_QP_REGISTER_SOLVER_WITH_PARAMETERS(  \
+  registry, Class, key, sets, text, own)                 \
+  (registry).add(::dualcontact::qp::solver_entry<Class>( \
+    key, sets, text, &::dualcontact::qp::SolverParameters::own))
   } // namespace qp
 } // namespace dualcontact
 

@@ -37,10 +37,10 @@ namespace dualcontact
       const auto cost = [&]() { return internal::cost(x, g, problem.b); };
       double     f    = cost();
       std::deque<double> recent(1, f); // the last m cost values (GLL)
-      double             alpha = prm.spg_alpha0_factor / lmax;
+      double             alpha = prm.spg.alpha0_factor / lmax;
       // the sufficient-decrease parameter of the Armijo condition (2.8);
       // algorithm 4 uses its complement (it relabels gamma := 1 - gamma)
-      const double gamma = 1. - prm.spg_gamma;
+      const double gamma = 1. - prm.spg.gamma;
 
       bool stop =
         this->check_stop(stats, this->criterion(problem, x, g, stats));
@@ -80,7 +80,7 @@ namespace dualcontact
         // the closed-form step interval of 2.1.4: any beta in
         // [sigma_1, min(sigma_2, beta_hat)] satisfies the generalized
         // Armijo condition; take the largest
-        double beta = prm.spg_sigma2;
+        double beta = prm.spg.sigma2;
         if (dAd > 0.)
         {
           const double f_max = *std::max_element(recent.begin(), recent.end());
@@ -89,7 +89,7 @@ namespace dualcontact
           const double beta_hat =
             gamma * beta_bar +
             std::sqrt(gamma * gamma * beta_bar * beta_bar + 2. * xi);
-          beta = std::min(prm.spg_sigma2, beta_hat);
+          beta = std::min(prm.spg.sigma2, beta_hat);
         }
         else if (gd >= 0.)
         {
@@ -111,11 +111,11 @@ namespace dualcontact
                             g.begin());
         f = cost();
         recent.push_back(f);
-        while (recent.size() > std::max(1u, prm.spg_m))
+        while (recent.size() > std::max(1u, prm.spg.m))
           recent.pop_front();
         // BB step length for the next iteration: (d,d)/(d,Ad), the
         // inverse Rayleigh quotient, within [1/lambda_max, 1/lambda_min]
-        alpha = dAd > 0. ? dd / dAd : prm.spg_alpha0_factor / lmax;
+        alpha = dAd > 0. ? dd / dAd : prm.spg.alpha0_factor / lmax;
 
         // with the cost: a new least cost is progress (stagnation test)
         stop =

@@ -1,7 +1,8 @@
 /**
  * @file spg_qp.h
  * SPG-QP, the spectral projected gradient method for QP (thesis 2.1.4,
- * algorithm 4).
+ * algorithm 4).  Own parameters: SPGQPParameters (SolverParameters::spg,
+ * `subsection QP solver/SPG-QP`: m, gamma, sigma2, alpha0 factor).
  */
 #ifndef dualcontact_qp_spg_qp_h
 #define dualcontact_qp_spg_qp_h

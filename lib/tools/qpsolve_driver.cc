@@ -222,8 +222,9 @@ namespace dualcontact
              "[--set \"QP solver/Entry=value\"]...\n"
              "--prm, --set: the QP solver's parameters by the names of "
              "dualcontact's .prm (subsection `QP solver', see `dualcontact "
-             "--print-parameters'; default solver auto); the options above "
-             "override them.\n"
+             "--print-parameters'; default solver auto; a solver's own "
+             "parameters in its subsection, e.g. `QP solver/SPG-QP/m=5'); "
+             "the options above override them.\n"
              "--preconditioner: MPRGP with preconditioning in face (jacobi: "
              "diag(A) on the free set; amg: Trilinos ML on A with the active "
              "rows and columns replaced by identity rows, rebuilt whenever "
@@ -239,7 +240,7 @@ namespace dualcontact
              "factor 1.25, AMG in face, preconditioned release) unless one "
              "of --gamma, --expansion, --projected-cg-trials, "
              "--projected-cg-gradient-factor, --proportioning is given "
-             "(then it uses those; `QP solver/Auto settings=given' keeps "
+             "(then it uses those; `QP solver/Auto/Settings=given' keeps "
              "the thesis' table 14).\n"
              "--projected-cg-gradient-factor R (>= 1; 0 = off): keep the "
              "least-cost projected-CG trial among those whose ||g^P|| is "
@@ -455,8 +456,8 @@ namespace dualcontact
           only_bounds =
             only_bounds && (block.type == "bound" || block.type == "box");
         const bool auto_amg = prm.solver == "auto" &&
-                              prm.auto_settings == "measured" && only_bounds &&
-                              !d.has_equality();
+                              prm.auto_chain.settings == "measured" &&
+                              only_bounds && !d.has_equality();
         if (prm.preconditioner == "amg" || auto_amg)
         {
           FreeSetAMG::Parameters amg_parameters;

@@ -1,17 +1,17 @@
 // The settings `Solver = auto' gives its solvers (SolverChain::
-// attempt_parameters, `Auto settings', issue 20):
+// attempt_parameters, `Auto/Settings', issue 20):
 //  1. the choice per problem kind, on one bound problem: an assembled
 //     sparse Hessian with an AMG factory -> MPRGP with Gamma 2, projected-CG
 //     expansion (8 trials, gradient factor 1.25), AMG in face and the
 //     preconditioned release; sparse without a factory -> Gamma 2 and
 //     projected-CG only; dense (the contact dual, FCLIB) and operator-only
-//     Hessians, equality constraints, the fall-back solvers, `Auto settings
+//     Hessians, equality constraints, the fall-back solvers, `Auto/Settings
 //     = given' and a Gamma the user set -> the parameters given, unchanged;
 //  2. the membrane of benchmark B4 (PERMON's variant, h = 100, n = 10,100,
 //     ||g^P|| <= 1e-6 ||b||) with the default parameters: the chain runs
 //     one attempt, mprgp with those settings, converged in at most 20
 //     iterations (measured 13), and its record says so ("measured: ...
-//     preconditioner=amg"); with `Auto settings = given' (the thesis'
+//     preconditioner=amg"); with `Auto/Settings = given' (the thesis'
 //     table 14) the same chain needs more than ten times as many (measured
 //     932): bounds that fail if the measured settings are not applied.
 #include "planted_problems.h"
@@ -92,7 +92,7 @@ main(int argc, char **argv)
                   p.projected_cg_gradient_factor == 1.25 &&
                   p.preconditioner == "amg" &&
                   p.proportioning_step == "preconditioned" &&
-                  p.auto_settings == "measured",
+                  p.auto_chain.settings == "measured",
                 "sparse Hessian with an AMG factory: mprgp with Gamma 2, "
                 "projected-CG T8 R1.25, amg, preconditioned release (" +
                   SolverChain<Vec>::describe_settings(p) + ")");
@@ -125,16 +125,17 @@ main(int argc, char **argv)
                   chain.attempt_parameters(with_equality, "mprgp")),
                 "equality constraints (SMALSE-M): the parameters given");
 
-    SolverParameters given = prm;
-    given.auto_settings    = "given";
+    SolverParameters given    = prm;
+    given.auto_chain.settings = "given";
     check.check(thesis_settings(
                   SolverChain<Vec>(given).attempt_parameters(sparse, "mprgp")),
-                "Auto settings = given: the parameters given");
+                "Auto/Settings = given: the parameters given");
     SolverParameters user = prm;
     user.gamma            = 3.;
     const auto u = SolverChain<Vec>(user).attempt_parameters(sparse, "mprgp");
     check.check(u.gamma == 3. && u.expansion == "alpha-bar" &&
-                  u.preconditioner == "none" && u.auto_settings == "given",
+                  u.preconditioner == "none" &&
+                  u.auto_chain.settings == "given",
                 "Gamma = 3 set by the user: kept, nothing measured added (" +
                   SolverChain<Vec>::describe_settings(u) + ")");
   }
@@ -170,18 +171,18 @@ main(int argc, char **argv)
   }
   {
     SolverParameters prm;
-    prm.tolerance      = 1e-6;
-    prm.max_iterations = 100000;
-    prm.auto_settings  = "given";
+    prm.tolerance           = 1e-6;
+    prm.max_iterations      = 100000;
+    prm.auto_chain.settings = "given";
     SolverChain<Vec> chain(prm);
     Vec              x(n);
     const auto s = chain.solve(make(HessianStorage::sparse_matrix, true), x);
-    std::cout << "membrane (permon) h = 100, Auto settings = given: "
+    std::cout << "membrane (permon) h = 100, Auto/Settings = given: "
               << s.iterations << " iterations; " << s.settings << std::endl;
     check.check(s.converged() && s.n_preconditioner_setups == 0 &&
                   contains(s.settings, "given: gamma=1") &&
                   s.iterations > 10 * measured_iterations,
-                "membrane h = 100, Auto settings = given: thesis MPRGP, " +
+                "membrane h = 100, Auto/Settings = given: thesis MPRGP, " +
                   std::to_string(s.iterations) + " iterations > 10 x " +
                   std::to_string(measured_iterations));
   }

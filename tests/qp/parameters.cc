@@ -1,6 +1,8 @@
-// SolverParameters in `subsection QP solver`: defaults are table 14's
-// (alpha_bar factor 1.95, Gamma 1, PBBf K 10, SPG-QP m 10, gamma 0.1,
-// sigma2 0.9999, alpha0 factor 1.95, APGD L factor 1, 1e4 iterations);
+// SolverParameters in `subsection QP solver`, each solver's own in its
+// subsection (MPGP-BB, MwPGP, PBBf, SPG-QP, APGD, Auto; the flat names of
+// before are unknown entries): defaults are table 14's
+// (alpha_bar factor 1.95, Gamma 1, PBBf/K 10, SPG-QP/m 10, gamma 0.1,
+// sigma2 0.9999, alpha0 factor 1.95, APGD/L factor 1, 1e4 iterations);
 // values read back from a .prm; out-of-range values rejected naming the
 // parameter; every declared solver name either creates a solver or throws
 // "unavailable"; power iteration on diag(1..n) finds n within its
@@ -16,6 +18,7 @@
 
 #include <qp/mpgp.h>
 #include <qp/power_iteration.h>
+#include <qp/problem_io.h>
 #include <qp/solver_factory.h>
 #include <qp/solver_registry.h>
 
@@ -38,18 +41,26 @@ main()
     // the one intended difference: the application's default solver is
     // the fall-back chain, the struct's a plain solver
     check.check(p.solver == "auto" && d.solver == "mprgp" &&
-                  p.auto_chain_bounds == d.auto_chain_bounds &&
-                  p.auto_chain_general == d.auto_chain_general &&
-                  p.auto_warm_start == d.auto_warm_start,
+                  p.solver == SolverParameters::prm_default_solver &&
+                  p.auto_chain.bounds == d.auto_chain.bounds &&
+                  p.auto_chain.general == d.auto_chain.general &&
+                  p.auto_chain.warm_start == d.auto_chain.warm_start &&
+                  p.auto_chain.settings == d.auto_chain.settings,
                 "the .prm default Solver is auto (the struct's mprgp), "
                 "chains as the struct's");
     check.check(p.tolerance == 1e-8 && p.alpha_bar_factor == 1.95 &&
-                  p.gamma == 1. && p.pbbf_k == 10 && p.spg_m == 10 &&
-                  p.spg_gamma == 0.1 && p.spg_sigma2 == 0.9999 &&
-                  p.spg_alpha0_factor == 1.95 && p.apgd_l_factor == 1. &&
+                  p.gamma == 1. && p.pbbf.k == 10 && p.spg.m == 10 &&
+                  p.spg.gamma == 0.1 && p.spg.sigma2 == 0.9999 &&
+                  p.spg.alpha0_factor == 1.95 && p.apgd.l_factor == 1. &&
+                  p.mpgp_bb.memory == d.mpgp_bb.memory &&
+                  p.power_tolerance == d.power_tolerance &&
+                  p.power_max_iterations == d.power_max_iterations &&
+                  p.stagnation_window == d.stagnation_window &&
+                  p.projected_cg_gradient_factor ==
+                    d.projected_cg_gradient_factor &&
                   p.max_iterations == 10000 &&
                   p.stopping_criterion == StoppingCriterion::projected &&
-                  p.mwpgp_delta == d.mwpgp_delta &&
+                  p.mwpgp.delta == d.mwpgp.delta &&
                   p.power_safety_factor == d.power_safety_factor,
                 "defaults of the .prm equal the struct's (table 14)");
     prm.parse_input_from_string("subsection QP solver\n"
@@ -57,26 +68,90 @@ main()
                                 "  set Tolerance = 1e-6\n"
                                 "  set Stopping criterion = reduced-projected\n"
                                 "  set Maximum iterations = 77\n"
-                                "  set MwPGP delta = 0.4\n"
+                                "  subsection MwPGP\n"
+                                "    set Delta = 0.4\n"
+                                "  end\n"
+                                "  subsection SPG-QP\n"
+                                "    set m = 7\n"
+                                "  end\n"
+                                "  subsection Auto\n"
+                                "    set Warm start = false\n"
+                                "  end\n"
                                 "end\n");
     p.parse_parameters(prm);
     check.check(p.solver == "mwpgp" && p.tolerance == 1e-6 &&
                   p.stopping_criterion ==
                     StoppingCriterion::reduced_projected &&
-                  p.max_iterations == 77 && p.mwpgp_delta == 0.4,
-                "values read back from a .prm");
+                  p.max_iterations == 77 && p.mwpgp.delta == 0.4 &&
+                  p.spg.m == 7 && !p.auto_chain.warm_start,
+                "values read back from a .prm, own parameters from their "
+                "subsections");
     bool rejected = false;
     try
     {
       prm.parse_input_from_string("subsection QP solver\n"
-                                  "  set MwPGP delta = 0.7\n"
+                                  "  subsection MwPGP\n"
+                                  "    set Delta = 0.7\n"
+                                  "  end\n"
                                   "end\n");
     }
     catch (const std::exception &)
     {
       rejected = true;
     }
-    check.check(rejected, "MwPGP delta = 0.7 rejected by the pattern");
+    check.check(rejected, "MwPGP/Delta = 0.7 rejected by the pattern");
+    // the flat names of before issue 16 are unknown entries now
+    for (const std::string old : {"SPG-QP m",
+                                  "MPGP-BB memory",
+                                  "MwPGP delta",
+                                  "PBBf K",
+                                  "APGD L factor",
+                                  "Auto chain for bounds",
+                                  "Auto warm start",
+                                  "Auto settings"})
+    {
+      std::string message;
+      try
+      {
+        prm.parse_input_from_string("subsection QP solver\n  set " + old +
+                                    " = 1\nend\n");
+      }
+      catch (const std::exception &e)
+      {
+        message = plain_message(e);
+      }
+      check.check(message.find(old) != std::string::npos,
+                  "the flat name `" + old + "' is an unknown entry");
+    }
+    {
+      std::string what_m;
+      try
+      {
+        SolverParameters q;
+        q.spg.m = 0;
+        q.check();
+      }
+      catch (const std::exception &e)
+      {
+        what_m = plain_message(e);
+      }
+      check.check(what_m.find("QP solver/SPG-QP/m") != std::string::npos,
+                  "check() names an own parameter by its path "
+                  "(QP solver/SPG-QP/m)");
+    }
+    {
+      // every own subsection is declared, through the registry
+      std::ostringstream listing;
+      prm.print_parameters(listing, dealii::ParameterHandler::PRM);
+      bool all = true;
+      for (const char *name :
+           {"MPGP-BB", "MwPGP", "PBBf", "SPG-QP", "APGD", "Auto"})
+        all = all && listing.str().find(std::string("subsection ") + name) !=
+                       std::string::npos;
+      check.check(all,
+                  "subsections MPGP-BB, MwPGP, PBBf, SPG-QP, APGD, "
+                  "Auto declared in QP solver");
+    }
     std::string what;
     try
     {
@@ -168,22 +243,21 @@ main()
                   y.linfty_norm() == 0.,
                 "registered test-mpgp solves like mpgp: " +
                   std::to_string(a.iterations) + " iterations, same x");
-    check.check(SolverParameters::parse_chain("test-mpgp, mprgp",
-                                              false,
-                                              "Auto chain for bounds")
+    check.check(AutoChainParameters::parse_chain(
+                  "test-mpgp, mprgp", false, "QP solver/Auto/Chain for bounds")
                     .size() == 2,
                 "a chain may name the registered solver");
     std::string general_error;
     try
     {
-      SolverParameters::parse_chain("mprgp",
-                                    true,
-                                    "Auto chain for general "
-                                    "sets");
+      AutoChainParameters::parse_chain("mprgp",
+                                       true,
+                                       "QP solver/Auto/Chain for general "
+                                       "sets");
     }
     catch (const std::exception &e)
     {
-      general_error = e.what();
+      general_error = plain_message(e);
     }
     check.check(general_error.find("mprgp takes bound and box constraints "
                                    "only") != std::string::npos &&

@@ -12,7 +12,7 @@
 //    exit 0, preconditioner setups reported;
 //  - the defaults (no --solver: auto) on the B4 membrane at h = 100: mprgp
 //    with the AMG in face and the measured settings, <= 20 iterations; with
-//    `Auto settings = given' or --gamma the settings given;
+//    `Auto/Settings = given' or --gamma the settings given;
 //  - --max-iter 2: exit 2, reason max_iterations;
 //  - bad inputs (missing file, bad field, unknown solver, cgc with a disc
 //    block, bad --tol): exit 1 with a message naming the file/field/option.
@@ -220,7 +220,7 @@ main()
   // membrane of benchmark B4 (PERMON's variant, h = 100, a sparse Hessian
   // on bounds) runs MPRGP with the AMG in face and the other measured
   // settings: converged in at most 20 iterations (measured 13; the
-  // thesis' settings need 932); `Auto settings = given' keeps the thesis'
+  // thesis' settings need 932); `Auto/Settings = given' keeps the thesis'
   {
     const Result m = run("--make-membrane --dir " + dir +
                          "/membrane --variant permon --h 100");
@@ -246,12 +246,12 @@ main()
     if (!(r.code == 0 && iterations >= 1 && iterations <= 20))
       std::cout << r.out << r.err;
     const Result g = run(dir + "/membrane/membrane.json --tol 1e-6 "
-                               "--set 'QP solver/Auto settings=given'");
+                               "--set 'QP solver/Auto/Settings=given'");
     check(g.code == 0 && contains(g.out, "\"preconditioner\": \"none\"") &&
             contains(g.out,
                      "\"settings\": \"given: gamma=1, "
                      "expansion=alpha-bar"),
-          "qpsolve --set 'QP solver/Auto settings=given': the thesis' "
+          "qpsolve --set 'QP solver/Auto/Settings=given': the thesis' "
           "MPRGP");
     const Result u = run(dir + "/membrane/membrane.json --tol 1e-6 "
                                "--gamma 2 --expansion projected-cg");

@@ -7,7 +7,7 @@
 //    (solver, reason, iterations), sums the work, is converged, and the
 //    returned x has KKT residuals (recomputed here) below tol ||b|| and
 //    equals the planted x*;
-//  - cold start (Auto warm start = false) with the same limit: the
+//  - cold start (Auto/Warm start = false) with the same limit: the
 //    fall-back starts from x0 and needs more iterations than warm;
 //  - every solver fails (limit 2): three attempts, all max_iterations,
 //    reported not converged, chosen = the last, message says so;
@@ -16,6 +16,7 @@
 #include "planted_problems.h"
 
 #include <qp/kkt_residuals.h>
+#include <qp/problem_io.h>
 #include <qp/smalse_m.h>
 #include <qp/solver_chain.h>
 #include <qp/solver_factory.h>
@@ -140,9 +141,9 @@ main()
   // cold start: the fall-back begins at x0 again
   {
     SolverParameters prm;
-    prm.tolerance       = tol;
-    prm.max_iterations  = limit;
-    prm.auto_warm_start = false;
+    prm.tolerance             = tol;
+    prm.max_iterations        = limit;
+    prm.auto_chain.warm_start = false;
     Vec        x(n);
     const auto s = SolverChain<Vec>(prm).solve(problem, x);
     check.check(s.attempts.size() >= 2 &&
@@ -238,7 +239,7 @@ main()
          {" , ", false, "empty"}})
   {
     SolverParameters prm;
-    (general ? prm.auto_chain_general : prm.auto_chain_bounds) = chain;
+    (general ? prm.auto_chain.general : prm.auto_chain.bounds) = chain;
     std::string what;
     try
     {
@@ -246,12 +247,12 @@ main()
     }
     catch (const std::exception &e)
     {
-      what = e.what();
+      what = plain_message(e);
     }
     check.check(what.find(piece) != std::string::npos &&
-                  what.find(general ?
-                              "Auto chain for general sets" :
-                              "Auto chain for bounds") != std::string::npos,
+                  what.find(general ? "QP solver/Auto/Chain for general sets" :
+                                      "QP solver/Auto/Chain for bounds") !=
+                    std::string::npos,
                 "chain '" + chain + "' rejected naming the parameter");
   }
   return check.finish("solver_chain");
