@@ -15,7 +15,7 @@ namespace dualcontact
      * The Hessian F = B K^# B' of the undecomposed dual, applied to the
      * multipliers.  Two forms (DualProblemParameters::Operator):
      *  - AssembledDualOperator: the dense m x m matrix from the bodies'
-     *    Schur factors, one dgemv a product;
+     *    Schur factors, one dsymv a product;
      *  - ImplicitDualOperator: B', one K^# solve per body, B.
      * Each on replicated vectors (every multiplier on every process) and
      * on distributed ones (each process the rows MultiplierDistribution

@@ -293,7 +293,21 @@ namespace dualcontact
 
       // The configured fill-reducing ordering of the whole matrix, then the
       // dofs of the Schur complement moved to the end in the given order.
-      factorize(matrix, nullptr, /*numeric=*/false);
+      // Only the ordering of this first analysis is used: its supernodal
+      // symbolic factorization is skipped (0.25 of 2.7 s at 138,927 dofs).
+      cholmod_common &c          = data_->common;
+      const int       supernodal = c.supernodal;
+      c.supernodal               = CHOLMOD_SIMPLICIAL;
+      try
+      {
+        factorize(matrix, nullptr, /*numeric=*/false);
+      }
+      catch (...)
+      {
+        c.supernodal = supernodal;
+        throw;
+      }
+      c.supernodal = supernodal;
       std::vector<long> permutation;
       permutation.reserve(n);
       const auto *order =
