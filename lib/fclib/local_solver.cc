@@ -643,10 +643,97 @@ namespace dualcontact
     }
 
 
+    /**
+     * The state of one run_loop(): the loop's kind, its limits, the current
+     * slip bounds (or De Saxce's shift) psi, the QP tolerance of the inexact
+     * fixed point, rho, and the proximal extrapolation's iterates.
+     */
+    struct LocalSolver::Loop
+    {
+      bool         proximal;
+      double       lambda_max;
+      double       rho;
+      unsigned int max_iterations;
+      /// auto: a plain QP that stalls is cut short (the proximal loop
+      /// takes over)
+      unsigned int qp_iteration_limit;
+      bool         desaxce;
+      bool         coulomb_loop;
+      /// a proximal term or a non-symmetric W: r solves a perturbed problem
+      bool stepping;
+      /// Nesterov extrapolation of the proximal centers
+      bool                extrapolate;
+      std::vector<double> psi;
+      /// the first Coulomb iterate is the bonded one (no slip bounds)
+      bool   bonded       = false;
+      bool   first_change = false;
+      double final_tolerance;
+      double tolerance;
+      double q_norm;
+      /// consecutive iterations in which the change grew
+      unsigned int           growing = 0;
+      dealii::Vector<double> previous, step;
+      /// per iterate: the change of psi (Coulomb) or the perturbation
+      std::vector<double> measure;
+      /// the last iterate r^k, the one before, Nesterov's t_k (1: no
+      /// momentum; a restart sets it back)
+      dealii::Vector<double> iterate, before;
+      double                 t = 1.;
+    };
+
+
     void
     LocalSolver::run_loop(dealii::Vector<double> &r,
                           const bool              proximal,
                           Result                 &result) const
+    {
+      Loop loop = start_loop(r, proximal, result);
+      for (unsigned int it = 0;; ++it)
+      {
+        if (loop.extrapolate)
+          extrapolate_center(loop, r);
+        loop.previous = r;
+        if (!record(solve_qp(r,
+                             loop.bonded ? nullptr : &loop.psi,
+                             loop.rho * loop.lambda_max,
+                             loop.tolerance,
+                             loop.qp_iteration_limit),
+                    result))
+        {
+          if (retry_with_stronger_rho(loop, it, r, result))
+            continue;
+          report_qp_failure(loop, it, result);
+          break;
+        }
+        const unsigned int qp_iterations =
+          result.qp_statistics.back().iterations;
+        result.last_good = r;
+        if (!loop.coulomb_loop && !loop.stepping)
+        {
+          result.converged = true;
+          result.reason    = "converged";
+          break;
+        }
+        const double perturbation =
+          loop.stepping ? proximal_perturbation(loop, r, result) : 0.;
+        const double change =
+          loop.coulomb_loop ? update_slip_bounds(loop, r, result) : 0.;
+        if (converged_or_non_finite(loop, change, perturbation, result))
+          break;
+        adapt_tolerance_and_rho(loop,
+                                std::max(change, perturbation),
+                                qp_iterations,
+                                result);
+        if (diverged_or_exhausted(loop, it, change, perturbation, result))
+          break;
+      }
+    }
+
+
+    LocalSolver::Loop
+    LocalSolver::start_loop(const dealii::Vector<double> &r,
+                            const bool                    proximal,
+                            Result                       &result) const
     {
       // rho is relative to lambda_max(W_s); with the contact scaling only
       // lambda_max(S W_s S) is known so far
@@ -657,272 +744,315 @@ namespace dualcontact
           { problem_.delassus().symmetric_vmult(dst, src); },
           result);
       }
-      const unsigned int dim        = problem_.spacedim();
-      const double       lambda_max = lambda_max_;
-      result.proximal               = proximal;
-      result.converged              = false;
+      Loop loop;
+      loop.proximal    = proximal;
+      loop.lambda_max  = lambda_max_;
+      result.proximal  = proximal;
+      result.converged = false;
       result.reason.clear();
-      double             rho = proximal ? parameters_.rho : 0.;
-      const unsigned int max_iterations =
-        proximal ? std::max(coulomb_parameters_.max_iterations,
-                            parameters_.proximal_max_iterations) :
-                   coulomb_parameters_.max_iterations;
-      // auto: a plain QP that stalls is cut short (the proximal loop takes
-      // over)
-      const unsigned int qp_iteration_limit =
+      loop.rho            = proximal ? parameters_.rho : 0.;
+      loop.max_iterations = proximal ?
+                              std::max(coulomb_parameters_.max_iterations,
+                                       parameters_.proximal_max_iterations) :
+                              coulomb_parameters_.max_iterations;
+      loop.qp_iteration_limit =
         (!proximal && parameters_.proximal == Proximal::automatic) ?
           parameters_.auto_plain_qp_max_iterations :
           qp_parameters_.max_iterations;
 
-      auto record = [&](const qp::SolverStatistics &s)
-      {
-        result.qp_statistics.push_back(s);
-        result.iterations += s.iterations;
-        result.hessian_products += s.n_hessian_products;
-        return s.converged();
-      };
-      auto qp_failure = [&](const std::string &where)
-      {
-        const qp::SolverStatistics &s = result.qp_statistics.back();
-        std::ostringstream          message;
-        message << "QP solver " << s.solver << " did not converge" << where
-                << ": " << qp::to_string(s.reason) << " after " << s.iterations
-                << " iterations, criterion " << s.final_criterion
-                << " (tolerance " << s.tolerance << ")";
-        if (proximal)
-          message << ", proximal rho " << rho << " lambda_max";
-        result.reason = message.str();
-      };
-
       bool has_friction = false;
       for (const double mu : problem_.mu())
         has_friction = has_friction || mu > 0;
-      const bool desaxce = parameters_.model == Model::desaxce_fixed_point;
-      const bool coulomb_loop =
-        (parameters_.model == Model::coulomb_fixed_point || desaxce) &&
+      loop.desaxce = parameters_.model == Model::desaxce_fixed_point;
+      loop.coulomb_loop =
+        (parameters_.model == Model::coulomb_fixed_point || loop.desaxce) &&
         has_friction;
-      // De Saxce's shift s_i = mu_i ||u_t,i|| at r (u = W r + q), in psi's
-      // place: one value per contact
-      auto desaxce_shift = [&](const dealii::Vector<double> &x)
-      {
-        dealii::Vector<double> u;
-        problem_.velocity(u, x);
-        std::vector<double> s(problem_.n_contacts());
-        for (unsigned int i = 0; i < s.size(); ++i)
-        {
-          double t = 0;
-          for (unsigned int k = 1; k < dim; ++k)
-            t += u(dim * i + k) * u(dim * i + k);
-          s[i] = problem_.mu()[i] * std::sqrt(t);
-        }
-        return s;
-      };
-      auto set_shift = [&](const std::vector<double> &s)
-      {
-        shift_.reinit(problem_.size());
-        for (unsigned int i = 0; i < s.size(); ++i)
-          shift_(dim * i) = s[i];
-      };
-      const bool stepping = proximal || asymmetric_;
+      loop.stepping    = proximal || asymmetric_;
+      loop.extrapolate = proximal && parameters_.extrapolation;
 
-      auto slip_bounds = [&](const dealii::Vector<double> &x)
-      {
-        std::vector<double> psi(problem_.n_contacts());
-        for (unsigned int i = 0; i < psi.size(); ++i)
-          psi[i] = problem_.mu()[i] * std::max(x(dim * i), 0.);
-        return psi;
-      };
       // cold start: bonded or frictionless first iterate (bonded as in
       // contact::ContactSolver); warm start: bounds from the given r
-      std::vector<double> psi;
-      bool                bonded = false;
-      if (desaxce)
+      if (loop.desaxce)
       {
         // the shift of the start (0 from a cold start: the cone relaxation)
-        psi = r.linfty_norm() > 0 ?
-                desaxce_shift(r) :
-                std::vector<double>(problem_.n_contacts(), 0.);
-        set_shift(psi);
+        loop.psi = r.linfty_norm() > 0 ?
+                     desaxce_shift(r) :
+                     std::vector<double>(problem_.n_contacts(), 0.);
+        set_shift(loop.psi);
       }
       else if (r.linfty_norm() > 0)
-        psi = slip_bounds(r);
+        loop.psi = slip_bounds(r);
       else if (parameters_.first == FirstIterate::bonded)
-        bonded = true;
+        loop.bonded = true;
       else
-        psi.assign(problem_.n_contacts(), 0.);
-      bool first_change = r.linfty_norm() == 0;
+        loop.psi.assign(problem_.n_contacts(), 0.);
+      loop.first_change = r.linfty_norm() == 0;
 
       // inexact fixed point: the QP tolerance follows the loop's progress
-      const double final_tolerance = qp_parameters_.tolerance;
-      double       tolerance       = final_tolerance;
-      if (parameters_.inexact && (coulomb_loop || stepping))
-        tolerance = std::max(final_tolerance, parameters_.initial_qp_tolerance);
-      double q_norm = problem_.q().l2_norm();
-      if (!(q_norm > 0))
-        q_norm = 1;
+      loop.final_tolerance = qp_parameters_.tolerance;
+      loop.tolerance       = loop.final_tolerance;
+      if (parameters_.inexact && (loop.coulomb_loop || loop.stepping))
+        loop.tolerance =
+          std::max(loop.final_tolerance, parameters_.initial_qp_tolerance);
+      loop.q_norm = problem_.q().l2_norm();
+      if (!(loop.q_norm > 0))
+        loop.q_norm = 1;
+      return loop;
+    }
 
-      unsigned int           growing = 0;
-      dealii::Vector<double> previous, step;
-      std::vector<double>    measure;
-      // extrapolated proximal point: the last iterate r^k, the one before,
-      // Nesterov's t_k (1: no momentum; restart sets it back)
-      const bool extrapolate = proximal && parameters_.extrapolation;
-      dealii::Vector<double> iterate, before;
-      double                 t = 1.;
-      for (unsigned int it = 0;; ++it)
+
+    std::vector<double>
+    LocalSolver::desaxce_shift(const dealii::Vector<double> &x) const
+    {
+      const unsigned int     dim = problem_.spacedim();
+      dealii::Vector<double> u;
+      problem_.velocity(u, x);
+      std::vector<double> s(problem_.n_contacts());
+      for (unsigned int i = 0; i < s.size(); ++i)
       {
-        if (extrapolate)
-        {
-          // the center (and start) y = r^k + beta (r^k - r^{k-1}); the QP
-          // is then solved around y, and r^{k+1} solves the problem exactly
-          // for q perturbed by (rho I + W_a)(r^{k+1} - y)
-          iterate = r;
-          if (before.size() == r.size() && t > 1.)
-          {
-            const double t_next = 0.5 * (1. + std::sqrt(1. + 4. * t * t));
-            const double beta   = (t - 1.) / t_next;
-            r.sadd(1. + beta, -beta, before);
-            t = t_next;
-          }
-          else
-            t = 0.5 * (1. + std::sqrt(5.)); // t_1 from t_0 = 1
-          before = iterate;
-        }
-        previous = r;
-        if (!record(solve_qp(r,
-                             bonded ? nullptr : &psi,
-                             rho * lambda_max,
-                             tolerance,
-                             qp_iteration_limit)))
-        {
-          // a proximal QP that does not converge: stronger proximal term,
-          // the QP again from the previous iterate
-          if (proximal && parameters_.adaptive_rho &&
-              rho < parameters_.rho_max && it + 1 < max_iterations)
-          {
-            r   = extrapolate ? iterate : previous;
-            t   = 1.; // and no momentum
-            rho = std::min(rho * parameters_.rho_factor, parameters_.rho_max);
-            result.rhos.push_back(rho);
-            continue;
-          }
-          qp_failure(it == 0 ?
-                       (coulomb_loop ? " in the first Coulomb iterate" : "") :
-                       " in iteration " + std::to_string(it + 1));
-          break;
-        }
-        const unsigned int qp_iterations =
-          result.qp_statistics.back().iterations;
-        result.last_good = r;
-        if (!coulomb_loop && !stepping)
-        {
-          result.converged = true;
-          result.reason    = "converged";
-          break;
-        }
-        double perturbation = 0;
-        if (stepping)
-        {
-          // r solves the problem exactly for q + rho (r - r^k) + W_a (r - r^k)
-          step = r;
-          step -= previous;
-          dealii::Vector<double> shift(step.size());
-          if (asymmetric_)
-            problem_.delassus().antisymmetric_vmult(shift, step);
-          shift.add(rho * lambda_max, step);
-          perturbation = shift.l2_norm() / q_norm;
-          result.perturbations.push_back(perturbation);
-          // gradient restart: the step r^{k+1} - y turns back against the
-          // last move r^{k+1} - r^k
-          if (extrapolate)
-          {
-            dealii::Vector<double> move(r);
-            move -= iterate;
-            if (step * move < 0)
-              t = 1.;
-          }
-        }
-        double change = 0;
-        if (coulomb_loop)
-        {
-          const std::vector<double> old = psi;
-          psi = desaxce ? desaxce_shift(r) : slip_bounds(r);
-          if (desaxce)
-            set_shift(psi);
-          change = 1.;
-          if ((!first_change || desaxce) && !bonded)
-          {
-            double difference = 0, norm = 0;
-            for (unsigned int i = 0; i < psi.size(); ++i)
-            {
-              difference += std::pow(psi[i] - old[i], 2);
-              norm += psi[i] * psi[i];
-            }
-            change =
-              contact::CoulombFixedPoint::relative_change(difference, norm);
-          }
-          bonded       = false;
-          first_change = false;
-          result.coulomb_changes.push_back(change);
-        }
-        if (!std::isfinite(change) || !std::isfinite(perturbation))
-        {
-          result.reason = "Coulomb/proximal loop: non-finite iterate";
-          break;
-        }
-        const double progress = std::max(change, perturbation);
-        measure.push_back(coulomb_loop ? change : perturbation);
-        if (progress <= coulomb_parameters_.tolerance &&
-            tolerance <= final_tolerance)
-        {
-          result.converged = true;
-          result.reason    = "converged";
-          break;
-        }
-        if (parameters_.inexact)
-          tolerance =
-            progress <= coulomb_parameters_.tolerance ?
-              final_tolerance :
-              std::max(final_tolerance,
-                       std::min(tolerance,
-                                parameters_.qp_tolerance_factor * progress));
-        // rho: weaker after a cheap QP (faster loop), stronger after an
-        // expensive one (better conditioned QPs)
-        if (proximal && parameters_.adaptive_rho &&
-            qp_iterations <= parameters_.rho_decrease_below)
-          rho = std::max(rho / parameters_.rho_factor, parameters_.rho_min);
-        else if (proximal && parameters_.adaptive_rho &&
-                 qp_iterations > parameters_.rho_increase_above)
-          rho = std::min(rho * parameters_.rho_factor, parameters_.rho_max);
-        if (proximal)
-          result.rhos.push_back(rho);
-        // (damped by a proximal term, the changes need not decrease
-        // monotonically: no divergence test then)
-        if (coulomb_loop && !proximal && measure.size() > 1 &&
-            measure.back() > measure[measure.size() - 2])
-          ++growing;
-        else
-          growing = 0;
-        if (growing >= coulomb_parameters_.divergence_window)
-        {
-          result.reason = std::string(coulomb_loop ? "Coulomb fixed point" :
-                                                     "lagged-asymmetry loop") +
-                          " diverged (the change grew in " +
-                          std::to_string(growing) + " consecutive iterations)";
-          break;
-        }
-        if (it + 1 >= max_iterations)
-        {
-          std::ostringstream message;
-          message << (coulomb_loop ? "Coulomb fixed point" :
-                                     "proximal / lagged-asymmetry loop")
-                  << (proximal ? " (proximal)" : "") << ": maximum iterations ("
-                  << max_iterations << ") reached, relative change of psi "
-                  << change << ", perturbation of q " << perturbation;
-          result.reason = message.str();
-          break;
-        }
+        double t = 0;
+        for (unsigned int k = 1; k < dim; ++k)
+          t += u(dim * i + k) * u(dim * i + k);
+        s[i] = problem_.mu()[i] * std::sqrt(t);
       }
+      return s;
+    }
+
+
+    void
+    LocalSolver::set_shift(const std::vector<double> &s) const
+    {
+      const unsigned int dim = problem_.spacedim();
+      shift_.reinit(problem_.size());
+      for (unsigned int i = 0; i < s.size(); ++i)
+        shift_(dim * i) = s[i];
+    }
+
+
+    std::vector<double>
+    LocalSolver::slip_bounds(const dealii::Vector<double> &x) const
+    {
+      const unsigned int  dim = problem_.spacedim();
+      std::vector<double> psi(problem_.n_contacts());
+      for (unsigned int i = 0; i < psi.size(); ++i)
+        psi[i] = problem_.mu()[i] * std::max(x(dim * i), 0.);
+      return psi;
+    }
+
+
+    bool
+    LocalSolver::record(const qp::SolverStatistics &s, Result &result)
+    {
+      result.qp_statistics.push_back(s);
+      result.iterations += s.iterations;
+      result.hessian_products += s.n_hessian_products;
+      return s.converged();
+    }
+
+
+    void
+    LocalSolver::extrapolate_center(Loop &loop, dealii::Vector<double> &r) const
+    {
+      // the center (and start) y = r^k + beta (r^k - r^{k-1}); the QP is
+      // then solved around y, and r^{k+1} solves the problem exactly for q
+      // perturbed by (rho I + W_a)(r^{k+1} - y)
+      loop.iterate = r;
+      if (loop.before.size() == r.size() && loop.t > 1.)
+      {
+        const double t_next = 0.5 * (1. + std::sqrt(1. + 4. * loop.t * loop.t));
+        const double beta   = (loop.t - 1.) / t_next;
+        r.sadd(1. + beta, -beta, loop.before);
+        loop.t = t_next;
+      }
+      else
+        loop.t = 0.5 * (1. + std::sqrt(5.)); // t_1 from t_0 = 1
+      loop.before = loop.iterate;
+    }
+
+
+    bool
+    LocalSolver::retry_with_stronger_rho(Loop                   &loop,
+                                         const unsigned int      it,
+                                         dealii::Vector<double> &r,
+                                         Result                 &result) const
+    {
+      // a proximal QP that does not converge: stronger proximal term, the
+      // QP again from the previous iterate
+      if (!(loop.proximal && parameters_.adaptive_rho &&
+            loop.rho < parameters_.rho_max && it + 1 < loop.max_iterations))
+        return false;
+      r      = loop.extrapolate ? loop.iterate : loop.previous;
+      loop.t = 1.; // and no momentum
+      loop.rho =
+        std::min(loop.rho * parameters_.rho_factor, parameters_.rho_max);
+      result.rhos.push_back(loop.rho);
+      return true;
+    }
+
+
+    void
+    LocalSolver::report_qp_failure(const Loop        &loop,
+                                   const unsigned int it,
+                                   Result            &result) const
+    {
+      const std::string where =
+        it == 0 ? (loop.coulomb_loop ? " in the first Coulomb iterate" : "") :
+                  " in iteration " + std::to_string(it + 1);
+      const qp::SolverStatistics &s = result.qp_statistics.back();
+      std::ostringstream          message;
+      message << "QP solver " << s.solver << " did not converge" << where
+              << ": " << qp::to_string(s.reason) << " after " << s.iterations
+              << " iterations, criterion " << s.final_criterion
+              << " (tolerance " << s.tolerance << ")";
+      if (loop.proximal)
+        message << ", proximal rho " << loop.rho << " lambda_max";
+      result.reason = message.str();
+    }
+
+
+    double
+    LocalSolver::proximal_perturbation(Loop                         &loop,
+                                       const dealii::Vector<double> &r,
+                                       Result &result) const
+    {
+      // r solves the problem exactly for q + rho (r - r^k) + W_a (r - r^k)
+      loop.step = r;
+      loop.step -= loop.previous;
+      dealii::Vector<double> shift(loop.step.size());
+      if (asymmetric_)
+        problem_.delassus().antisymmetric_vmult(shift, loop.step);
+      shift.add(loop.rho * loop.lambda_max, loop.step);
+      const double perturbation = shift.l2_norm() / loop.q_norm;
+      result.perturbations.push_back(perturbation);
+      // gradient restart: the step r^{k+1} - y turns back against the last
+      // move r^{k+1} - r^k
+      if (loop.extrapolate)
+      {
+        dealii::Vector<double> move(r);
+        move -= loop.iterate;
+        if (loop.step * move < 0)
+          loop.t = 1.;
+      }
+      return perturbation;
+    }
+
+
+    double
+    LocalSolver::update_slip_bounds(Loop                         &loop,
+                                    const dealii::Vector<double> &r,
+                                    Result                       &result) const
+    {
+      const std::vector<double> old = loop.psi;
+      loop.psi = loop.desaxce ? desaxce_shift(r) : slip_bounds(r);
+      if (loop.desaxce)
+        set_shift(loop.psi);
+      double change = 1.;
+      if ((!loop.first_change || loop.desaxce) && !loop.bonded)
+      {
+        double difference = 0, norm = 0;
+        for (unsigned int i = 0; i < loop.psi.size(); ++i)
+        {
+          difference += std::pow(loop.psi[i] - old[i], 2);
+          norm += loop.psi[i] * loop.psi[i];
+        }
+        change = contact::CoulombFixedPoint::relative_change(difference, norm);
+      }
+      loop.bonded       = false;
+      loop.first_change = false;
+      result.coulomb_changes.push_back(change);
+      return change;
+    }
+
+
+    bool
+    LocalSolver::converged_or_non_finite(Loop        &loop,
+                                         const double change,
+                                         const double perturbation,
+                                         Result      &result) const
+    {
+      if (!std::isfinite(change) || !std::isfinite(perturbation))
+      {
+        result.reason = "Coulomb/proximal loop: non-finite iterate";
+        return true;
+      }
+      const double progress = std::max(change, perturbation);
+      loop.measure.push_back(loop.coulomb_loop ? change : perturbation);
+      if (progress <= coulomb_parameters_.tolerance &&
+          loop.tolerance <= loop.final_tolerance)
+      {
+        result.converged = true;
+        result.reason    = "converged";
+        return true;
+      }
+      return false;
+    }
+
+
+    void
+    LocalSolver::adapt_tolerance_and_rho(Loop              &loop,
+                                         const double       progress,
+                                         const unsigned int qp_iterations,
+                                         Result            &result) const
+    {
+      if (parameters_.inexact)
+        loop.tolerance =
+          progress <= coulomb_parameters_.tolerance ?
+            loop.final_tolerance :
+            std::max(loop.final_tolerance,
+                     std::min(loop.tolerance,
+                              parameters_.qp_tolerance_factor * progress));
+      // rho: weaker after a cheap QP (faster loop), stronger after an
+      // expensive one (better conditioned QPs)
+      if (loop.proximal && parameters_.adaptive_rho &&
+          qp_iterations <= parameters_.rho_decrease_below)
+        loop.rho =
+          std::max(loop.rho / parameters_.rho_factor, parameters_.rho_min);
+      else if (loop.proximal && parameters_.adaptive_rho &&
+               qp_iterations > parameters_.rho_increase_above)
+        loop.rho =
+          std::min(loop.rho * parameters_.rho_factor, parameters_.rho_max);
+      if (loop.proximal)
+        result.rhos.push_back(loop.rho);
+    }
+
+
+    bool
+    LocalSolver::diverged_or_exhausted(Loop              &loop,
+                                       const unsigned int it,
+                                       const double       change,
+                                       const double       perturbation,
+                                       Result            &result) const
+    {
+      // (damped by a proximal term, the changes need not decrease
+      // monotonically: no divergence test then)
+      const std::vector<double> &measure = loop.measure;
+      if (loop.coulomb_loop && !loop.proximal && measure.size() > 1 &&
+          measure.back() > measure[measure.size() - 2])
+        ++loop.growing;
+      else
+        loop.growing = 0;
+      if (loop.growing >= coulomb_parameters_.divergence_window)
+      {
+        result.reason =
+          std::string(loop.coulomb_loop ? "Coulomb fixed point" :
+                                          "lagged-asymmetry loop") +
+          " diverged (the change grew in " + std::to_string(loop.growing) +
+          " consecutive iterations)";
+        return true;
+      }
+      if (it + 1 >= loop.max_iterations)
+      {
+        std::ostringstream message;
+        message << (loop.coulomb_loop ? "Coulomb fixed point" :
+                                        "proximal / lagged-asymmetry loop")
+                << (loop.proximal ? " (proximal)" : "")
+                << ": maximum iterations (" << loop.max_iterations
+                << ") reached, relative change of psi " << change
+                << ", perturbation of q " << perturbation;
+        result.reason = message.str();
+        return true;
+      }
+      return false;
     }
   } // namespace fclib
 } // namespace dualcontact

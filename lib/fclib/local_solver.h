@@ -293,6 +293,76 @@ namespace dualcontact
                const bool              proximal,
                Result                 &result) const;
 
+      /** The state of one run_loop() (local_solver.cc). */
+      struct Loop;
+
+      /** The loop's kind, limits and first iterate's bounds (psi, or
+       *  bonded) from the start @p r; lambda_max(W_s) for the proximal
+       *  term on its first use. */
+      Loop
+      start_loop(const dealii::Vector<double> &r,
+                 const bool                    proximal,
+                 Result                       &result) const;
+      /** De Saxce's shift mu_i ||u_t,i|| per contact at @p x (u = W x + q). */
+      std::vector<double>
+      desaxce_shift(const dealii::Vector<double> &x) const;
+      /** shift_ := the shift @p s on the normal components. */
+      void
+      set_shift(const std::vector<double> &s) const;
+      /** The Tresca slip bounds mu_i max(x_n,i, 0) of the iterate @p x. */
+      std::vector<double>
+      slip_bounds(const dealii::Vector<double> &x) const;
+      /** Appends the QP record @p s to @p result; whether it converged. */
+      static bool
+      record(const qp::SolverStatistics &s, Result &result);
+      /** The proximal center r := r^k + beta (r^k - r^{k-1}) (Nesterov). */
+      void
+      extrapolate_center(Loop &loop, dealii::Vector<double> &r) const;
+      /** After a proximal QP that failed in iteration @p it: rho stronger,
+       *  r back to the previous iterate; false when rho cannot grow. */
+      bool
+      retry_with_stronger_rho(Loop                   &loop,
+                              const unsigned int      it,
+                              dealii::Vector<double> &r,
+                              Result                 &result) const;
+      /** The reason of a loop that stops on a failed QP. */
+      void
+      report_qp_failure(const Loop        &loop,
+                        const unsigned int it,
+                        Result            &result) const;
+      /** ||rho (r - r^k) + W_a (r - r^k)|| / ||q|| (recorded), and the
+       *  extrapolation's gradient restart. */
+      double
+      proximal_perturbation(Loop                         &loop,
+                            const dealii::Vector<double> &r,
+                            Result                       &result) const;
+      /** psi from the new iterate @p r; the relative change (recorded). */
+      double
+      update_slip_bounds(Loop                         &loop,
+                         const dealii::Vector<double> &r,
+                         Result                       &result) const;
+      /** True, with the reason set, when the iterate is non-finite or the
+       *  loop converged. */
+      bool
+      converged_or_non_finite(Loop        &loop,
+                              const double change,
+                              const double perturbation,
+                              Result      &result) const;
+      /** The inexact loop's next QP tolerance and the adaptive rho. */
+      void
+      adapt_tolerance_and_rho(Loop              &loop,
+                              const double       progress,
+                              const unsigned int qp_iterations,
+                              Result            &result) const;
+      /** True, with the reason set, when the Coulomb loop diverges or the
+       *  iteration limit is reached. */
+      bool
+      diverged_or_exhausted(Loop              &loop,
+                            const unsigned int it,
+                            const double       change,
+                            const double       perturbation,
+                            Result            &result) const;
+
       /**
        * lambda_max of @p hessian by Lanczos from q, with the QP solver's
        * limit and safety factor and the Lanczos tolerance; its products
