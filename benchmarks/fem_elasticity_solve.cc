@@ -67,7 +67,7 @@ run(const unsigned int n, const unsigned int degree, const std::string &name)
     solver = std::make_unique<fem::CholmodSolver>();
   else // cholmod-<ordering>
     solver = std::make_unique<fem::CholmodSolver>(
-      fem::CholmodSolver::parse_ordering(name.substr(8)));
+      fem::CholmodSolver::ordering_names.value(name.substr(8)));
   timer.restart();
   solver->initialize(body.stiffness_matrix());
   const double   t_factorize = timer.wall_time();

@@ -30,6 +30,29 @@ namespace dualcontact
             local.push_back(i);
         return local;
       }
+
+      /**
+       * Calls @p visit(cell, f, cell_dofs) for every face f of @p body on
+       * @p boundary, cell_dofs being the dof indices of its cell.
+       */
+      template <int dim, typename Visitor>
+      void
+      for_each_face_on(const fem::ElasticBody<dim> &body,
+                       const types::boundary_id     boundary,
+                       const Visitor               &visit)
+      {
+        std::vector<types::global_dof_index> cell_dofs(
+          body.fe().n_dofs_per_cell());
+        for (const auto &cell : body.dof_handler().active_cell_iterators())
+          if (cell->at_boundary())
+            for (const unsigned int f : cell->face_indices())
+              if (cell->face(f)->at_boundary() &&
+                  cell->face(f)->boundary_id() == boundary)
+              {
+                cell->get_dof_indices(cell_dofs);
+                visit(cell, f, cell_dofs);
+              }
+      }
     } // namespace
 
 
@@ -43,27 +66,26 @@ namespace dualcontact
         index[nodes[i].dof] = i;
       // neighbours: the nodes that share a slave face
       neighbours_.assign(nodes.size(), {});
-      const FiniteElement<dim>            &fe = slave.fe();
-      std::vector<types::global_dof_index> cell_dofs(fe.n_dofs_per_cell());
-      for (const auto &cell : slave.dof_handler().active_cell_iterators())
-        if (cell->at_boundary())
-          for (const unsigned int f : cell->face_indices())
-            if (cell->face(f)->at_boundary() &&
-                cell->face(f)->boundary_id() == slave_boundary)
-            {
-              cell->get_dof_indices(cell_dofs);
-              std::vector<unsigned int> on_face;
-              for (const unsigned int i : face_nodes(fe, f))
-              {
-                const auto it = index.find(cell_dofs[i]);
-                if (it != index.end())
-                  on_face.push_back(it->second);
-              }
-              for (const unsigned int a : on_face)
-                for (const unsigned int b : on_face)
-                  if (a != b)
-                    neighbours_[a].push_back(b);
-            }
+      const FiniteElement<dim> &fe = slave.fe();
+      for_each_face_on(
+        slave,
+        slave_boundary,
+        [&](const auto &,
+            const unsigned int                          f,
+            const std::vector<types::global_dof_index> &cell_dofs)
+        {
+          std::vector<unsigned int> on_face;
+          for (const unsigned int i : face_nodes(fe, f))
+          {
+            const auto it = index.find(cell_dofs[i]);
+            if (it != index.end())
+              on_face.push_back(it->second);
+          }
+          for (const unsigned int a : on_face)
+            for (const unsigned int b : on_face)
+              if (a != b)
+                neighbours_[a].push_back(b);
+        });
       for (auto &list : neighbours_)
       {
         std::sort(list.begin(), list.end());
@@ -235,41 +257,40 @@ namespace dualcontact
                               fe,
                               whole_rule,
                               update_JxW_values);
-      std::vector<types::global_dof_index> cell_dofs(fe.n_dofs_per_cell());
-      for (const auto &cell : slave.dof_handler().active_cell_iterators())
-        if (cell->at_boundary())
-          for (const unsigned int f : cell->face_indices())
-            if (cell->face(f)->at_boundary() &&
-                cell->face(f)->boundary_id() == slave_boundary)
-            {
-              cell->get_dof_indices(cell_dofs);
-              const std::vector<unsigned int> local = face_nodes(fe, f);
-              std::vector<double>             values;
-              for (const unsigned int i : local)
-                values.push_back(nodal_psi(cell_dofs[i]));
-              if (std::none_of(values.begin(),
-                               values.end(),
-                               [](const double v) { return v > 0; }))
-                continue;
-              if (std::all_of(values.begin(),
-                              values.end(),
-                              [](const double v) { return v >= 0; }))
-              {
-                whole.reinit(cell, f);
-                for (const unsigned int q : whole.quadrature_point_indices())
-                  measure_ += whole.JxW(q);
-                continue;
-              }
-              cut.reinit(cell, f);
-              for (const unsigned int q : cut.quadrature_point_indices())
-              {
-                double psi_h = 0;
-                for (unsigned int k = 0; k < local.size(); ++k)
-                  psi_h += values[k] * cut.shape_value(local[k], q);
-                if (psi_h > 0)
-                  measure_ += cut.JxW(q);
-              }
-            }
+      for_each_face_on(
+        slave,
+        slave_boundary,
+        [&](const auto                                 &cell,
+            const unsigned int                          f,
+            const std::vector<types::global_dof_index> &cell_dofs)
+        {
+          const std::vector<unsigned int> local = face_nodes(fe, f);
+          std::vector<double>             values;
+          for (const unsigned int i : local)
+            values.push_back(nodal_psi(cell_dofs[i]));
+          if (std::none_of(values.begin(),
+                           values.end(),
+                           [](const double v) { return v > 0; }))
+            return;
+          if (std::all_of(values.begin(),
+                          values.end(),
+                          [](const double v) { return v >= 0; }))
+          {
+            whole.reinit(cell, f);
+            for (const unsigned int q : whole.quadrature_point_indices())
+              measure_ += whole.JxW(q);
+            return;
+          }
+          cut.reinit(cell, f);
+          for (const unsigned int q : cut.quadrature_point_indices())
+          {
+            double psi_h = 0;
+            for (unsigned int k = 0; k < local.size(); ++k)
+              psi_h += values[k] * cut.shape_value(local[k], q);
+            if (psi_h > 0)
+              measure_ += cut.JxW(q);
+          }
+        });
     }
 
 

@@ -16,7 +16,7 @@ namespace dualcontact
       if (solver == "umfpack")
         return std::make_unique<fem::UmfpackSolver>();
       return std::make_unique<fem::CholmodSolver>(
-        fem::CholmodSolver::parse_ordering(ordering));
+        fem::CholmodSolver::ordering_names.value(ordering));
     }
   } // namespace decomposition
 } // namespace dualcontact

@@ -521,7 +521,7 @@ namespace dualcontact
                       "(`set Method = none' in `subsection Decomposition')."));
         // the solution only if there is one
         fclib::write_scene_problem<dim>(folder,
-                                        fclib::parse_export_form(form),
+                                        fclib::export_form_names.value(form),
                                         bodies,
                                         contact_->discretization(),
                                         *dual,

@@ -39,31 +39,6 @@ namespace dualcontact
     } // namespace
 
 
-    std::string
-    to_string(const Storage storage)
-    {
-      return storage == Storage::dense  ? "dense" :
-             storage == Storage::sparse ? "sparse" :
-                                          "auto";
-    }
-
-
-    Storage
-    parse_storage(const std::string &name)
-    {
-      if (name == "auto")
-        return Storage::automatic;
-      if (name == "dense")
-        return Storage::dense;
-      if (name == "sparse")
-        return Storage::sparse;
-      AssertThrow(false,
-                  dealii::ExcMessage("unknown storage of W `" + name +
-                                     "' (auto | dense | sparse)"));
-      return Storage::automatic;
-    }
-
-
     DelassusOperator::DelassusOperator(const Triplets &W, const Storage storage)
         : n_(W.n_rows())
         , W_(W)

@@ -3,6 +3,7 @@
 #include <deal.II/lac/vector.h>
 
 #include <fclib/triplets.h>
+#include <util/enum_names.h>
 
 #include <string>
 #include <vector>
@@ -20,12 +21,11 @@ namespace dualcontact
       sparse
     };
 
-    /** "auto" / "dense" / "sparse". */
-    std::string
-    to_string(const Storage storage);
-    /** Accepts "auto", "dense", "sparse"; throws otherwise. */
-    Storage
-    parse_storage(const std::string &name);
+    /** The names of Storage: "auto", "dense", "sparse". */
+    inline constexpr util::EnumNames<Storage, 3> storage_names{
+      "storage of W",
+      {{"auto", "dense", "sparse"}},
+    };
 
     /**
      * The products with the Delassus matrix W of a local problem: u = W r

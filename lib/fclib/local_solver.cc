@@ -14,61 +14,6 @@ namespace dualcontact
 {
   namespace fclib
   {
-    std::string
-    to_string(const Model model)
-    {
-      return model == Model::cone                ? "cone" :
-             model == Model::desaxce_fixed_point ? "desaxce" :
-                                                   "coulomb";
-    }
-
-
-    Model
-    parse_model(const std::string &name)
-    {
-      if (name == "coulomb")
-        return Model::coulomb_fixed_point;
-      if (name == "cone")
-        return Model::cone;
-      if (name == "desaxce")
-        return Model::desaxce_fixed_point;
-      AssertThrow(false,
-                  dealii::ExcMessage("unknown model `" + name +
-                                     "' (coulomb | cone | desaxce)"));
-      return Model::cone;
-    }
-
-
-    std::string
-    to_string(const FirstIterate first)
-    {
-      return first == FirstIterate::bonded ? "bonded" : "frictionless";
-    }
-
-
-    FirstIterate
-    parse_first_iterate(const std::string &name)
-    {
-      if (name == "bonded")
-        return FirstIterate::bonded;
-      if (name == "frictionless")
-        return FirstIterate::frictionless;
-      AssertThrow(false,
-                  dealii::ExcMessage("unknown first Coulomb iterate `" + name +
-                                     "' (bonded | frictionless)"));
-      return FirstIterate::bonded;
-    }
-
-
-    std::string
-    to_string(const Proximal proximal)
-    {
-      return proximal == Proximal::off ? "off" :
-             proximal == Proximal::on  ? "on" :
-                                         "auto";
-    }
-
-
     void
     LocalSolver::Parameters::declare_parameters(dealii::ParameterHandler &prm)
     {
@@ -191,8 +136,8 @@ namespace dualcontact
     void
     LocalSolver::Parameters::parse_parameters(dealii::ParameterHandler &prm)
     {
-      model   = parse_model(prm.get("Model"));
-      first   = parse_first_iterate(prm.get("First Coulomb iterate"));
+      model   = model_names.value(prm.get("Model"));
+      first   = first_iterate_names.value(prm.get("First Coulomb iterate"));
       inexact = prm.get_bool("Inexact QPs");
       initial_qp_tolerance = prm.get_double("Initial QP tolerance");
       qp_tolerance_factor  = prm.get_double("QP tolerance factor");

@@ -8,6 +8,7 @@
 #include <qp/solver_base.h>
 #include <qp/solver_parameters.h>
 #include <qp/solver_statistics.h>
+#include <util/enum_names.h>
 
 #include <memory>
 #include <string>
@@ -46,12 +47,11 @@ namespace dualcontact
       desaxce_fixed_point
     };
 
-    /** "coulomb" / "cone". */
-    std::string
-    to_string(const Model model);
-    /** Accepts "coulomb", "cone"; throws otherwise. */
-    Model
-    parse_model(const std::string &name);
+    /** The names of Model: "coulomb", "cone", "desaxce". */
+    inline constexpr util::EnumNames<Model, 3> model_names{
+      "model",
+      {{"coulomb", "cone", "desaxce"}},
+    };
 
     /** The first iterate of the Coulomb fixed point from a zero start. */
     enum class FirstIterate
@@ -67,12 +67,11 @@ namespace dualcontact
       frictionless
     };
 
-    /** "bonded" / "frictionless". */
-    std::string
-    to_string(const FirstIterate first);
-    /** Accepts "bonded", "frictionless"; throws otherwise. */
-    FirstIterate
-    parse_first_iterate(const std::string &name);
+    /** The names of FirstIterate: "bonded", "frictionless". */
+    inline constexpr util::EnumNames<FirstIterate, 2> first_iterate_names{
+      "first Coulomb iterate",
+      {{"bonded", "frictionless"}},
+    };
 
     /** Whether the loop gets a proximal term. */
     enum class Proximal
@@ -82,10 +81,6 @@ namespace dualcontact
       /** the plain loop, and the proximal one if the plain loop fails */
       automatic
     };
-
-    /** "off" / "on" / "auto". */
-    std::string
-    to_string(const Proximal proximal);
 
     /**
      * Solves a LocalProblem with the project's QP solvers (any of

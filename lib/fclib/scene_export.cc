@@ -158,24 +158,6 @@ namespace dualcontact
     }
 
 
-    ExportForm
-    parse_export_form(const std::string &name)
-    {
-      if (name == "none")
-        return ExportForm::none;
-      if (name == "global")
-        return ExportForm::global;
-      if (name == "local")
-        return ExportForm::local;
-      if (name == "both")
-        return ExportForm::both;
-      AssertThrow(false,
-                  dealii::ExcMessage("unknown FCLIB problem form `" + name +
-                                     "' (none | global | local | both)"));
-      return ExportForm::none;
-    }
-
-
     namespace
     {
       /** Let @p write make a file by path, then copy it into @p folder. */

@@ -7,6 +7,7 @@
 #include <fclib/global_problem.h>
 #include <fem/elastic_body.h>
 #include <io/output_folder.h>
+#include <util/enum_names.h>
 
 #include <string>
 #include <vector>
@@ -59,9 +60,11 @@ namespace dualcontact
       both
     };
 
-    /** "none|global|local|both" -> ExportForm; throws otherwise. */
-    ExportForm
-    parse_export_form(const std::string &name);
+    /** The names of ExportForm: "none", "global", "local", "both". */
+    inline constexpr util::EnumNames<ExportForm, 4> export_form_names{
+      "FCLIB problem form",
+      {{"none", "global", "local", "both"}},
+    };
 
     /**
      * Write the scene's contact problem into @p folder as

@@ -365,24 +365,5 @@ namespace dualcontact
     {
       return "cholmod";
     }
-
-
-    CholmodSolver::Ordering
-    CholmodSolver::parse_ordering(const std::string &name)
-    {
-      if (name == "automatic")
-        return Ordering::automatic;
-      if (name == "amd")
-        return Ordering::amd;
-      if (name == "metis")
-        return Ordering::metis;
-      if (name == "nested dissection")
-        return Ordering::nested_dissection;
-      AssertThrow(false,
-                  dealii::ExcMessage("Unknown CHOLMOD ordering `" + name +
-                                     "' (`set Ordering' in `subsection "
-                                     "Stiffness solver')."));
-      return Ordering::automatic;
-    }
   } // namespace fem
 } // namespace dualcontact

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <fem/stiffness_solver.h>
+#include <util/enum_names.h>
 
 #include <string>
 
@@ -63,8 +64,11 @@ namespace dualcontact
       std::string
       name() const override;
 
-      static Ordering
-      parse_ordering(const std::string &name);
+      /** The names of Ordering (`Stiffness solver/Ordering'). */
+      static constexpr util::EnumNames<Ordering, 4> ordering_names{
+        "CHOLMOD ordering (`Stiffness solver/Ordering')",
+        {{"automatic", "amd", "metis", "nested dissection"}},
+      };
 
     private:
       void

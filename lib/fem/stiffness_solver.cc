@@ -136,7 +136,7 @@ namespace dualcontact
                     "Stiffness solver'."));
       if (solver == "cholmod")
         return std::make_unique<CholmodSolver>(
-          CholmodSolver::parse_ordering(ordering));
+          CholmodSolver::ordering_names.value(ordering));
       if (solver == "umfpack")
         return std::make_unique<UmfpackSolver>();
       AssertThrow(false,

@@ -5,6 +5,7 @@
 #include <primal/complete_cholesky.h>
 #include <primal/incomplete_cholesky.h>
 #include <primal/uzawa_cgc.h>
+#include <util/enum_names.h>
 
 #include <nlohmann/json.hpp>
 
@@ -20,19 +21,13 @@ namespace dualcontact
     {
       using VectorType = dealii::Vector<double>;
 
-      qp::CGC<VectorType>::Release
-      parse_release(const std::string &name)
-      {
-        if (name == "one")
-          return qp::CGC<VectorType>::Release::one;
-        if (name == "all negative")
-          return qp::CGC<VectorType>::Release::all_negative;
-        AssertThrow(name == "automatic",
-                    dealii::ExcMessage("CGC release must be one, all "
-                                       "negative or automatic, got `" +
-                                       name + "'"));
-        return qp::CGC<VectorType>::Release::automatic;
-      }
+      using Release = qp::CGC<VectorType>::Release;
+
+      /// The names of the CGC release rules (`CGC release').
+      constexpr util::EnumNames<Release, 3> release_names{
+        "CGC release",
+        {{"one", "all negative", "automatic"}},
+      };
 
 
       /**
@@ -438,7 +433,7 @@ namespace dualcontact
       data.max_iterations  = parameters_.cgc_max_iterations;
       data.loose_tolerance = parameters_.cgc_loose_tolerance;
       data.n_loose         = parameters_.cgc_loose_iterations;
-      data.release         = parse_release(parameters_.cgc_release);
+      data.release         = release_names.value(parameters_.cgc_release);
       qp::CGC<VectorType> cgc(data);
 
       qp::SolverStatistics stats;

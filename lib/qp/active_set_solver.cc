@@ -8,6 +8,30 @@ namespace dualcontact
 {
   namespace qp
   {
+    ActiveSetVariant
+    ActiveSetVariant::of(const ActiveSetMethod method)
+    {
+      ActiveSetVariant variant; // gamma test, projection step
+      switch (method)
+      {
+        case ActiveSetMethod::mprgp:
+          variant.step                      = Step::proportioning;
+          variant.expand_with_free_gradient = true;
+          variant.bounds_only               = true;
+          break;
+        case ActiveSetMethod::mpgp:
+          break;
+        case ActiveSetMethod::mpgp_bb:
+          variant.barzilai_borwein = true;
+          break;
+        case ActiveSetMethod::mwpgp:
+          variant.test = Test::weak_reduced;
+          break;
+      }
+      return variant;
+    }
+
+
     template <typename VectorType>
     ActiveSetSolver<VectorType>::ActiveSetSolver(
       const std::string      &name,
@@ -15,6 +39,17 @@ namespace dualcontact
       const ActiveSetVariant &variant)
         : SolverBase<VectorType>(name, parameters)
         , variant(variant)
+    {
+    }
+
+
+    template <typename VectorType>
+    ActiveSetSolver<VectorType>::ActiveSetSolver(
+      const SolverParameters &parameters,
+      const ActiveSetMethod   method)
+        : ActiveSetSolver(active_set_method_names.name(method),
+                          parameters,
+                          ActiveSetVariant::of(method))
     {
     }
 

@@ -12,11 +12,32 @@
 #define dualcontact_qp_active_set_solver_h
 
 #include <qp/solver_base.h>
+#include <util/enum_names.h>
 
 namespace dualcontact
 {
   namespace qp
   {
+    /// The published members of the MPGP family (thesis 2.4).
+    enum class ActiveSetMethod
+    {
+      /// MPRGP (2.4.4) with the solvability test of MPRGPS (2.4.5)
+      mprgp,
+      /// MPGP (2.4.1, algorithm 7)
+      mpgp,
+      /// MPGP-BB (2.4.2)
+      mpgp_bb,
+      /// MwPGP (2.4.3)
+      mwpgp
+    };
+
+    /// The solver names of ActiveSetMethod (the registry's keys).
+    inline constexpr util::EnumNames<ActiveSetMethod, 4>
+      active_set_method_names{
+        "active-set method",
+        {{"mprgp", "mpgp", "mpgp-bb", "mwpgp"}},
+      };
+
     /// What distinguishes the members of the MPGP family.
     struct ActiveSetVariant
     {
@@ -49,15 +70,30 @@ namespace dualcontact
       bool barzilai_borwein = false;
       /// accept only bound and box blocks (MPRGP)
       bool bounds_only = false;
+
+      /**
+       * The variant of a published method:
+       *  - MPRGP: gamma test, proportioning step, expansion along the free
+       *    gradient, bound and box blocks only;
+       *  - MPGP: gamma test, projection step;
+       *  - MPGP-BB: MPGP with Barzilai-Borwein projections under the
+       *    non-monotone safeguard of `QP solver/MPGP-BB/Memory' (one the
+       *    thesis leaves out; memory 0 makes it monotone);
+       *  - MwPGP: the weak test 2 delta ||g~^P_alpha||^2 <= ||phi||^2 on the
+       *    reduced projected gradient (`QP solver/MwPGP/Delta'), projection
+       *    step: for strongly curved sets (ill-conditioned ellipses).
+       */
+      static ActiveSetVariant
+      of(const ActiveSetMethod method);
     };
 
     template <typename VectorType>
     class ActiveSetIteration;
 
     /**
-     * Engine of the active-set solvers; see the derived classes MPRGP,
-     * MPGP, MPGPBB, MwPGP for the published algorithms.  With every
-     * variant:
+     * Engine of the active-set solvers; ActiveSetVariant::of() gives the
+     * published algorithms (the solver classes MPRGP, MPGP, MPGPBB, MwPGP
+     * below).  With every variant:
      *  - a CG step whose curvature p'Ap is zero (relative to lambda_max
      *    ||p||^2) has alpha_cg = infinity; if the feasible step is
      *    infinite too the cost is unbounded below (the MPRGPS solvability
@@ -73,6 +109,10 @@ namespace dualcontact
       ActiveSetSolver(const std::string      &name,
                       const SolverParameters &parameters,
                       const ActiveSetVariant &variant);
+
+      /// The published @p method under its name.
+      ActiveSetSolver(const SolverParameters &parameters,
+                      const ActiveSetMethod   method);
 
       SolverStatistics
       solve(const Problem<VectorType> &problem, VectorType &x) override;
@@ -96,6 +136,33 @@ namespace dualcontact
        */
       VectorType g, p, Ap, phi, work, x_given;
     };
+
+    /**
+     * The solver class of a published @p method, constructed from the
+     * parameters alone as the registry (solver_registry.h) creates solvers.
+     */
+    template <typename VectorType, ActiveSetMethod method>
+    class ActiveSetMethodSolver : public ActiveSetSolver<VectorType>
+    {
+    public:
+      explicit ActiveSetMethodSolver(const SolverParameters &parameters)
+          : ActiveSetSolver<VectorType>(parameters, method)
+      {
+      }
+    };
+
+    /// MPRGP (thesis 2.4.4, with MPRGPS' solvability test of 2.4.5)
+    template <typename VectorType>
+    using MPRGP = ActiveSetMethodSolver<VectorType, ActiveSetMethod::mprgp>;
+    /// MPGP (thesis 2.4.1, algorithm 7)
+    template <typename VectorType>
+    using MPGP = ActiveSetMethodSolver<VectorType, ActiveSetMethod::mpgp>;
+    /// MPGP-BB (thesis 2.4.2)
+    template <typename VectorType>
+    using MPGPBB = ActiveSetMethodSolver<VectorType, ActiveSetMethod::mpgp_bb>;
+    /// MwPGP (thesis 2.4.3)
+    template <typename VectorType>
+    using MwPGP = ActiveSetMethodSolver<VectorType, ActiveSetMethod::mwpgp>;
   } // namespace qp
 } // namespace dualcontact
 

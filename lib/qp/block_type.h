@@ -6,6 +6,8 @@
 #ifndef dualcontact_qp_block_type_h
 #define dualcontact_qp_block_type_h
 
+#include <util/enum_names.h>
+
 namespace dualcontact
 {
   namespace qp
@@ -28,9 +30,12 @@ namespace dualcontact
     /// Number of BlockType values (for arrays indexed by type).
     constexpr unsigned int n_block_types = 5;
 
-    /// "bound", "box", "disc", "ellipse", "cone".
-    const char *
-    block_type_name(BlockType type);
+    /// The names of BlockType in reports: "bound", "box", "disc", "ellipse",
+    /// "cone".
+    inline constexpr util::EnumNames<BlockType, n_block_types> block_type_names{
+      "block type",
+      {{"bound", "box", "disc", "ellipse", "cone"}},
+    };
   } // namespace qp
 } // namespace dualcontact
 

@@ -19,20 +19,6 @@ namespace dualcontact
     }
 
 
-    MembraneGenerator::Variant
-    MembraneGenerator::parse_variant(const std::string &name)
-    {
-      if (name == "thesis")
-        return Variant::thesis;
-      if (name == "permon")
-        return Variant::permon;
-      AssertThrow(false,
-                  dealii::ExcMessage("membrane: unknown variant '" + name +
-                                     "' (thesis or permon)"));
-      return Variant::thesis;
-    }
-
-
     unsigned int
     MembraneGenerator::n_unknowns() const
     {

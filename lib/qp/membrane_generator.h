@@ -15,6 +15,7 @@
 #define dualcontact_qp_membrane_generator_h
 
 #include <qp/problem_io.h>
+#include <util/enum_names.h>
 
 #include <memory>
 #include <string>
@@ -82,9 +83,11 @@ namespace dualcontact
       std::pair<double, double>
       exact_extreme_eigenvalues() const;
 
-      /// "thesis" or "permon" -> Variant; throws on anything else.
-      static Variant
-      parse_variant(const std::string &name);
+      /// The names of Variant: "thesis", "permon".
+      static constexpr util::EnumNames<Variant, 2> variant_names{
+        "membrane variant",
+        {{"thesis", "permon"}},
+      };
 
     private:
       Parameters parameters;

@@ -100,13 +100,7 @@ namespace dualcontact
                     "power iteration: the safety factor must be >= 1"));
       PowerIterationResult result;
       VectorType           x(layout), y(layout);
-      {
-        const dealii::IndexSet owned = x.locally_owned_elements();
-        double                *v     = x.begin();
-        std::size_t            k     = 0;
-        for (auto it = owned.begin(); it != owned.end(); ++it, ++k)
-          v[k] = start_value(*it);
-      }
+      fill_start(x);
       const double norm0 = internal::norm(x);
       if (norm0 == 0.) // empty problem
         return result;
@@ -193,39 +187,23 @@ namespace dualcontact
     }
 
 
-    template PowerIterationResult
-    lanczos_lambda_max<dealii::Vector<double>>(
-      const std::function<void(dealii::Vector<double> &,
-                               const dealii::Vector<double> &)> &,
-      const dealii::Vector<double> &,
-      unsigned int,
-      double,
-      double);
-    template PowerIterationResult
-    lanczos_lambda_max<dealii::TrilinosWrappers::MPI::Vector>(
-      const std::function<void(dealii::TrilinosWrappers::MPI::Vector &,
-                               const dealii::TrilinosWrappers::MPI::Vector &)>
-        &,
-      const dealii::TrilinosWrappers::MPI::Vector &,
-      unsigned int,
-      double,
-      double);
-    template PowerIterationResult
-    power_iteration<dealii::Vector<double>>(
-      const std::function<void(dealii::Vector<double> &,
-                               const dealii::Vector<double> &)> &,
-      const dealii::Vector<double> &,
-      unsigned int,
-      double,
-      double);
-    template PowerIterationResult
-    power_iteration<dealii::TrilinosWrappers::MPI::Vector>(
-      const std::function<void(dealii::TrilinosWrappers::MPI::Vector &,
-                               const dealii::TrilinosWrappers::MPI::Vector &)>
-        &,
-      const dealii::TrilinosWrappers::MPI::Vector &,
-      unsigned int,
-      double,
-      double);
+#define DUALCONTACT_INSTANTIATE_POWER_ITERATION(VectorType)        \
+  template PowerIterationResult power_iteration<VectorType>(       \
+    const std::function<void(VectorType &, const VectorType &)> &, \
+    const VectorType &,                                            \
+    unsigned int,                                                  \
+    double,                                                        \
+    double);                                                       \
+  template PowerIterationResult lanczos_lambda_max<VectorType>(    \
+    const std::function<void(VectorType &, const VectorType &)> &, \
+    const VectorType &,                                            \
+    unsigned int,                                                  \
+    double,                                                        \
+    double);
+
+    DUALCONTACT_INSTANTIATE_POWER_ITERATION(dealii::Vector<double>)
+    DUALCONTACT_INSTANTIATE_POWER_ITERATION(
+      dealii::TrilinosWrappers::MPI::Vector)
+#undef DUALCONTACT_INSTANTIATE_POWER_ITERATION
   } // namespace qp
 } // namespace dualcontact

@@ -184,7 +184,7 @@ namespace dualcontact
         for (const auto &block : added)
           if (place(block.first,
                     Kind::n_components,
-                    block_type_name(Kind::type),
+                    block_type_names.name(Kind::type),
                     local))
             placed.push_back({local, block.block});
         std::sort(placed.begin(),

@@ -108,10 +108,11 @@ namespace dualcontact
                   dealii::ExcMessage(solver_name +
                                      ": the constraint set was not finalized"));
       SolverStatistics stats;
-      stats.solver             = solver_name;
-      stats.stopping_criterion = to_string(prm.stopping_criterion);
-      stats.tolerance          = prm.tolerance;
-      const double norm_b      = internal::norm(problem.b);
+      stats.solver = solver_name;
+      stats.stopping_criterion =
+        stopping_criterion_names.name(prm.stopping_criterion);
+      stats.tolerance     = prm.tolerance;
+      const double norm_b = internal::norm(problem.b);
       AssertThrow(std::isfinite(norm_b),
                   dealii::ExcMessage(solver_name + ": b is not finite"));
       // b = 0 would make every relative test unreachable; use an absolute

@@ -73,7 +73,7 @@ namespace dualcontact
       {
         return criterion == StoppingCriterion::reduced_projected ?
                  "reduced-projected" :
-                 to_string(criterion);
+                 stopping_criterion_names.name(criterion);
       }
 
 
@@ -95,40 +95,6 @@ namespace dualcontact
                                        "': " + why));
       }
     } // namespace
-
-
-    std::string
-    to_string(const StoppingCriterion criterion)
-    {
-      switch (criterion)
-      {
-        case StoppingCriterion::projected:
-          return "projected";
-        case StoppingCriterion::reduced:
-          return "reduced";
-        case StoppingCriterion::reduced_projected:
-          return "reduced_projected";
-      }
-      Assert(false, dealii::ExcInternalError());
-      return "";
-    }
-
-
-    StoppingCriterion
-    parse_stopping_criterion(const std::string &name)
-    {
-      if (name == "projected")
-        return StoppingCriterion::projected;
-      if (name == "reduced")
-        return StoppingCriterion::reduced;
-      if (name == "reduced_projected" || name == "reduced-projected")
-        return StoppingCriterion::reduced_projected;
-      AssertThrow(false,
-                  dealii::ExcMessage(
-                    "Unknown stopping criterion '" + name +
-                    "': expected projected, reduced or reduced-projected."));
-      return StoppingCriterion::projected;
-    }
 
 
     void
@@ -283,7 +249,7 @@ namespace dualcontact
       solver    = prm.get("Solver");
       tolerance = prm.get_double("Tolerance");
       stopping_criterion =
-        parse_stopping_criterion(prm.get("Stopping criterion"));
+        stopping_criterion_names.value(prm.get("Stopping criterion"));
       max_iterations      = prm.get_integer("Maximum iterations");
       stagnation_window   = prm.get_integer("Stagnation window");
       alpha_bar_factor    = prm.get_double("Alpha bar factor");

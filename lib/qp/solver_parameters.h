@@ -14,6 +14,7 @@
 #include <deal.II/base/parameter_handler.h>
 
 #include <qp/solver_progress.h>
+#include <util/enum_names.h>
 
 #include <string>
 #include <vector>
@@ -33,12 +34,14 @@ namespace dualcontact
       reduced_projected
     };
 
-    /// "projected", "reduced", "reduced_projected".
-    std::string
-    to_string(StoppingCriterion criterion);
-    /// Accepts the names above and "reduced-projected"; throws otherwise.
-    StoppingCriterion
-    parse_stopping_criterion(const std::string &name);
+    /// The names of StoppingCriterion: "projected", "reduced",
+    /// "reduced_projected" (also spelt "reduced-projected").
+    inline constexpr util::EnumNames<StoppingCriterion, 3, 1>
+      stopping_criterion_names{
+        "stopping criterion",
+        {{"projected", "reduced", "reduced_projected"}},
+        {{{StoppingCriterion::reduced_projected, "reduced-projected"}}},
+      };
 
     /*
      * The parameters of one solver each, in their own subsection of `QP

@@ -1,10 +1,7 @@
 #include <deal.II/base/exceptions.h>
 
+#include <qp/active_set_solver.h>
 #include <qp/apgd.h>
-#include <qp/mpgp.h>
-#include <qp/mpgp_bb.h>
-#include <qp/mprgp.h>
-#include <qp/mwpgp.h>
 #include <qp/pbbf.h>
 #include <qp/solver_chain.h>
 #include <qp/solver_registry.h>

@@ -14,23 +14,7 @@ namespace dualcontact
     std::string
     to_string(const ConvergenceReason reason)
     {
-      switch (reason)
-      {
-        case ConvergenceReason::converged:
-          return "converged";
-        case ConvergenceReason::max_iterations:
-          return "max_iterations";
-        case ConvergenceReason::stagnation:
-          return "stagnation";
-        case ConvergenceReason::breakdown:
-          return "breakdown";
-        case ConvergenceReason::non_finite:
-          return "non_finite";
-        case ConvergenceReason::unbounded:
-          return "unbounded";
-      }
-      Assert(false, dealii::ExcInternalError());
-      return "unknown";
+      return convergence_reason_names.name(reason);
     }
 
 
@@ -86,19 +70,15 @@ namespace dualcontact
     }
 
 
-    namespace
+    nlohmann::json
+    json_number(const double value)
     {
-      // JSON has no Inf/NaN: write them as strings so nothing is lost.
-      nlohmann::json
-      number(const double value)
-      {
-        if (std::isfinite(value))
-          return value;
-        std::ostringstream s;
-        s << value;
-        return s.str();
-      }
-    } // namespace
+      if (std::isfinite(value))
+        return value;
+      std::ostringstream s;
+      s << value;
+      return s.str();
+    }
 
 
     void
@@ -108,7 +88,7 @@ namespace dualcontact
       nlohmann::json j;
       j["solver"]             = solver;
       j["stopping_criterion"] = stopping_criterion;
-      j["tolerance"]          = number(tolerance);
+      j["tolerance"]          = json_number(tolerance);
       j["reason"]             = to_string(reason);
       j["converged"]          = converged();
       if (!message.empty())
@@ -127,18 +107,19 @@ namespace dualcontact
                                  {"outer", n_outer}};
       j["hessian_products"]   = n_hessian_products;
       j["projections"]        = n_projections;
-      j["preconditioner"]     = {{"setups", n_preconditioner_setups},
-                                 {"setup_time", number(preconditioner_setup_time)},
-                                 {"applications", n_preconditioner_applications},
-                                 {"apply_time", number(preconditioner_apply_time)}};
-      j["wall_time"]          = number(wall_time);
-      j["norm_b"]             = number(norm_b);
-      j["lambda_max"]         = number(lambda_max);
-      j["alpha_bar"]          = number(alpha_bar);
-      j["final_criterion"]    = number(final_criterion);
-      j["kkt"]                = {{"stationarity", number(kkt.stationarity)},
-                                 {"feasibility", number(kkt.feasibility)},
-                                 {"complementarity", number(kkt.complementarity)}};
+      j["preconditioner"]     = {
+            {"setups", n_preconditioner_setups},
+            {"setup_time", json_number(preconditioner_setup_time)},
+            {"applications", n_preconditioner_applications},
+            {"apply_time", json_number(preconditioner_apply_time)}};
+      j["wall_time"]       = json_number(wall_time);
+      j["norm_b"]          = json_number(norm_b);
+      j["lambda_max"]      = json_number(lambda_max);
+      j["alpha_bar"]       = json_number(alpha_bar);
+      j["final_criterion"] = json_number(final_criterion);
+      j["kkt"]             = {{"stationarity", json_number(kkt.stationarity)},
+                              {"feasibility", json_number(kkt.feasibility)},
+                              {"complementarity", json_number(kkt.complementarity)}};
       if (!attempts.empty())
       {
         nlohmann::json a = nlohmann::json::array();
@@ -156,7 +137,7 @@ namespace dualcontact
       {
         nlohmann::json h = nlohmann::json::array();
         for (const double v : history)
-          h.push_back(number(v));
+          h.push_back(json_number(v));
         j["history"] = h;
         // the time stamps etc. exist only where the history was recorded
         // through record_criterion(); a record filled by hand may lack them

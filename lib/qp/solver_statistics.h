@@ -7,6 +7,9 @@
 #ifndef dualcontact_qp_solver_statistics_h
 #define dualcontact_qp_solver_statistics_h
 
+#include <nlohmann/json_fwd.hpp>
+#include <util/enum_names.h>
+
 #include <ostream>
 #include <string>
 #include <vector>
@@ -38,7 +41,19 @@ namespace dualcontact
       unbounded
     };
 
-    /// Lower-case name used in JSON and console output ("max_iterations").
+    /// The names of ConvergenceReason in JSON and console output.
+    inline constexpr util::EnumNames<ConvergenceReason, 6>
+      convergence_reason_names{
+        "convergence reason",
+        {{"converged",
+          "max_iterations",
+          "stagnation",
+          "breakdown",
+          "non_finite",
+          "unbounded"}},
+      };
+
+    /// convergence_reason_names.name(reason), e.g. "max_iterations".
     std::string
     to_string(ConvergenceReason reason);
 
@@ -175,6 +190,11 @@ namespace dualcontact
       std::string
       to_json(const bool with_history = true) const;
     };
+
+    /// @p value for JSON, which has no Inf or NaN: the number where it is
+    /// finite, else its text ("inf", "nan"), so nothing is lost.
+    nlohmann::json
+    json_number(const double value);
   } // namespace qp
 } // namespace dualcontact
 

@@ -180,9 +180,9 @@ namespace dualcontact
         LocalSolver::Parameters &loop = settings.loop;
         loop.parse_parameters(prm);
         if (!o.model_name.empty())
-          loop.model = parse_model(o.model_name);
+          loop.model = model_names.value(o.model_name);
         if (!o.first_name.empty())
-          loop.first = parse_first_iterate(o.first_name);
+          loop.first = first_iterate_names.value(o.first_name);
         if (!o.prox.empty())
           loop.parse_proximal(o.prox);
         if (o.fixed_rho)
@@ -211,9 +211,9 @@ namespace dualcontact
         if (o.coulomb_max_iter)
           settings.coulomb.max_iterations = *o.coulomb_max_iter;
         settings.qp.check();
-        settings.storage = parse_storage(prm.get("Storage of W"));
+        settings.storage = storage_names.value(prm.get("Storage of W"));
         if (!o.storage_name.empty())
-          settings.storage = parse_storage(o.storage_name);
+          settings.storage = storage_names.value(o.storage_name);
         return settings;
       }
 
@@ -303,9 +303,10 @@ namespace dualcontact
       {
         const auto &last  = result.qp_statistics.back();
         const Model model = settings.loop.model;
-        out << "model " << to_string(model)
+        out << "model " << model_names.name(model)
             << (model == Model::coulomb_fixed_point ?
-                  " (first iterate " + to_string(settings.loop.first) + ")" :
+                  std::string(" (first iterate ") +
+                    first_iterate_names.name(settings.loop.first) + ")" :
                   "")
             << ", QP solver " << settings.qp.solver << " (tolerance "
             << settings.qp.tolerance << ")\n";
@@ -370,8 +371,9 @@ namespace dualcontact
                  const Settings            &settings,
                  nlohmann::json            &summary)
       {
-        summary["model"]            = to_string(settings.loop.model);
-        summary["first_iterate"]    = to_string(settings.loop.first);
+        summary["model"] = model_names.name(settings.loop.model);
+        summary["first_iterate"] =
+          first_iterate_names.name(settings.loop.first);
         summary["proximal"]         = result.proximal;
         summary["proximal_reason"]  = result.proximal_reason;
         summary["rhos"]             = result.rhos;
@@ -519,8 +521,8 @@ namespace dualcontact
           write_local(options.write_file,
                       problem,
                       r,
-                      "solved by dualcontact fclibsolve, model " +
-                        to_string(settings.loop.model) + ", solver " +
+                      std::string("solved by dualcontact fclibsolve, model ") +
+                        model_names.name(settings.loop.model) + ", solver " +
                         settings.qp.solver);
         return result.converged ? 0 : 2;
       }

@@ -191,17 +191,6 @@ namespace dualcontact
                            "' (valid: " + names + ")");
         return o;
       }
-
-
-      nlohmann::json
-      number(const double value)
-      {
-        if (std::isfinite(value))
-          return value;
-        std::ostringstream s;
-        s << value;
-        return s.str();
-      }
     } // namespace
 
 
@@ -280,7 +269,7 @@ namespace dualcontact
           if (a == "--dir")
             directory = v;
           else if (a == "--variant")
-            prm.variant = MembraneGenerator::parse_variant(v);
+            prm.variant = MembraneGenerator::variant_names.value(v);
           else if (a == "--h")
           {
             // n = h^2 unknowns (and a dense-free CSR of ~5 n entries):
@@ -376,7 +365,8 @@ namespace dualcontact
         if (options.tolerance > 0.)
           prm.tolerance = options.tolerance;
         if (!options.criterion.empty())
-          prm.stopping_criterion = parse_stopping_criterion(options.criterion);
+          prm.stopping_criterion =
+            stopping_criterion_names.value(options.criterion);
         if (options.max_iterations > 0)
           prm.max_iterations = options.max_iterations;
         if (options.stagnation_window >= 0)
@@ -624,8 +614,8 @@ namespace dualcontact
                                double(std::clock() - cpu_start) /
                                  CLOCKS_PER_SEC / n_products);
         }
-        j["matvec_time"]     = number(least);
-        j["matvec_cpu_time"] = number(least_cpu);
+        j["matvec_time"]     = json_number(least);
+        j["matvec_cpu_time"] = json_number(least_cpu);
         // deal.II's SparseMatrix::vmult (here and in the solver's
         // products) runs on this many threads; the solver's vector passes
         // on one.  DEAL_II_NUM_THREADS=1 compares like with like.
@@ -670,7 +660,7 @@ namespace dualcontact
         const SolverStatistics &stats = result.stats;
         nlohmann::json          j;
         add_problem_summary(d, options, j);
-        j["read_time"] = number(read_time);
+        j["read_time"] = json_number(read_time);
         {
           std::ostringstream s;
           stats.write_json(s, false);
@@ -682,19 +672,19 @@ namespace dualcontact
         j["converged"]        = stats.converged();
         j["iterations"]       = stats.iterations;
         j["hessian_products"] = stats.n_hessian_products;
-        j["time"]             = number(result.least_time);
+        j["time"]             = json_number(result.least_time);
         j["runs"]             = options.repeat;
-        j["cpu_time"]         = number(result.least_cpu_time);
-        j["final_criterion"]  = number(stats.final_criterion);
+        j["cpu_time"]         = json_number(result.least_cpu_time);
+        j["final_criterion"]  = json_number(stats.final_criterion);
         j["preconditioner"]   = result.chosen_preconditioner;
         if (!stats.settings.empty())
           j["settings"] = stats.settings;
         j["preconditioner_setups"] = stats.n_preconditioner_setups;
         j["preconditioner_setup_time"] =
-          number(stats.preconditioner_setup_time);
+          json_number(stats.preconditioner_setup_time);
         j["preconditioner_applications"] = stats.n_preconditioner_applications;
         j["preconditioner_apply_time"] =
-          number(stats.preconditioner_apply_time);
+          json_number(stats.preconditioner_apply_time);
         if (built.amg)
         {
           // of the last run: full ML setups and in-place recomputes
@@ -707,14 +697,14 @@ namespace dualcontact
         j["kkt"] = j["statistics"]["kkt"];
         if (result.equality_residual >= 0.)
         {
-          j["equality_residual"] = number(result.equality_residual);
+          j["equality_residual"] = json_number(result.equality_residual);
           j["outer_iterations"]  = stats.n_outer;
         }
         {
           const auto     active = built.set->n_active_blocks(result.x);
           nlohmann::json a;
           for (unsigned int t = 0; t < n_block_types; ++t)
-            a[block_type_name(static_cast<BlockType>(t))] = active[t];
+            a[block_type_names.name(static_cast<BlockType>(t))] = active[t];
           j["active_blocks"] = a;
         }
         add_matvec_time(d, result.x, j);

@@ -16,7 +16,7 @@
 
 #include <deal.II/base/parameter_handler.h>
 
-#include <qp/mpgp.h>
+#include <qp/active_set_solver.h>
 #include <qp/power_iteration.h>
 #include <qp/problem_io.h>
 #include <qp/solver_factory.h>

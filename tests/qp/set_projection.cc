@@ -27,7 +27,7 @@ namespace
   void
   test_type(const BlockType type, Checker &check)
   {
-    const std::string name = dualcontact::qp::block_type_name(type);
+    const std::string name = dualcontact::qp::block_type_names.name(type);
     std::mt19937      rng(12345 + static_cast<int>(type));
     std::normal_distribution<double> normal(0., 1.5);
     const unsigned int               w        = width(type);

@@ -136,7 +136,7 @@ main()
       const double err   = distance(x, P.x_star);
       check.check(stats.converged() && err <= 1e-8 * (1. + norm(P.x_star)),
                   solver + ", ellipses with axis ratio up to 1e4, " +
-                    to_string(criterion) +
+                    stopping_criterion_names.name(criterion) +
                     " criterion: " + to_string(stats.reason) + " in " +
                     std::to_string(stats.iterations) +
                     " iterations, |x - x*| = " + sci(err));
