@@ -21,6 +21,7 @@
 
 #include <array>
 #include <cstdint>
+#include <limits>
 #include <type_traits>
 #include <vector>
 
@@ -150,6 +151,24 @@ namespace dualcontact
       /// True if every block is a bound or box (what MPRGP accepts).
       bool
       only_bounds_and_boxes() const;
+
+      /**
+       * Calls @p f(index, lower, upper) for every bound block (upper =
+       * +infinity), then for every box block, in the order they were added
+       * (global indices, current bounds): the constraints as rows for a
+       * solver of general linear inequalities (CGCSolver).
+       */
+      template <typename Function>
+      void
+      for_each_bound_and_box(const Function &f) const
+      {
+        for (const Placed<blocks::Bound> &placed : added_bounds)
+          f(placed.first,
+            placed.block.lower,
+            std::numeric_limits<double>::infinity());
+        for (const Placed<blocks::Box> &placed : added_boxes)
+          f(placed.first, placed.block.lower, placed.block.upper);
+      }
 
       /// x := P_Omega(x), the Euclidean projection, block by block.
       void

@@ -1,4 +1,3 @@
-#include <qp/cgc.h>
 #include <qp/free_set_amg.h>
 #include <qp/kkt_residuals.h>
 #include <qp/membrane_generator.h>
@@ -185,7 +184,7 @@ namespace dualcontact
         }
         if (o.problem_file.empty())
           throw UsageError("no PROBLEM.json given");
-        const std::string names = solver_names() + "|cgc";
+        const std::string names = solver_names();
         if (("|" + names + "|").find("|" + o.solver + "|") == std::string::npos)
           throw UsageError("--solver: unknown solver '" + o.solver +
                            "' (valid: " + names + ")");
@@ -198,7 +197,7 @@ namespace dualcontact
     QPSolveDriver::usage()
     {
       return "usage: qpsolve PROBLEM.json --solver " + solver_names() +
-             "|cgc [--tol T] [--criterion "
+             " [--tol T] [--criterion "
              "projected|reduced|reduced-projected] [--max-iter N] "
              "[--stagnation-window N] [--gamma G] "
              "[--expansion alpha-bar|projected-cg] "
@@ -361,7 +360,7 @@ namespace dualcontact
         SolverParameters prm;
         if (base)
           prm = *base;
-        prm.solver = options.solver == "cgc" ? "mprgp" : options.solver;
+        prm.solver = options.solver;
         if (options.tolerance > 0.)
           prm.tolerance = options.tolerance;
         if (!options.criterion.empty())
@@ -480,64 +479,6 @@ namespace dualcontact
       }
 
 
-      /// --solver cgc takes bounds and boxes only, no equalities, and the
-      /// projected criterion.
-      void
-      check_cgc_input(const ProblemData      &d,
-                      const Options          &options,
-                      const SolverParameters &prm)
-      {
-        for (const auto &block : d.constraints)
-          AssertThrow(block.type == "bound" || block.type == "box",
-                      dealii::ExcMessage(
-                        options.problem_file +
-                        ": --solver cgc accepts only bound and box "
-                        "constraints (linear inequalities), the "
-                        "problem has a '" +
-                        block.type + "' block"));
-        AssertThrow(!d.has_equality(),
-                    dealii::ExcMessage(options.problem_file +
-                                       ": --solver cgc does not take equality "
-                                       "constraints (field 'equality')"));
-        AssertThrow(prm.stopping_criterion == StoppingCriterion::projected,
-                    dealii::ExcMessage("--solver cgc supports only --criterion "
-                                       "projected"));
-      }
-
-
-      /// The 1996 report's CGC on the bounds and boxes as linear
-      /// inequalities, with the KKT report of every other solver.
-      SolverStatistics
-      solve_with_cgc(const ProblemData      &d,
-                     const Problem<Vec>     &problem,
-                     const SolverParameters &prm,
-                     Vec                    &x)
-      {
-        auto rows = std::make_shared<LinearInequalities>();
-        for (const auto &block : d.constraints)
-          for (unsigned int k = 0; k < block.count; ++k)
-          {
-            rows->add_lower_bound(block.first + k, block.lower[k]);
-            if (block.type == "box")
-              rows->add_upper_bound(block.first + k, block.upper[k]);
-          }
-        CGCProblem<Vec> cgc_problem;
-        cgc_problem.hessian     = problem.hessian;
-        cgc_problem.b           = problem.b;
-        cgc_problem.constraints = rows;
-        CGC<Vec>::AdditionalData cgc_data;
-        cgc_data.tolerance         = prm.tolerance;
-        cgc_data.max_iterations    = prm.max_iterations;
-        cgc_data.stagnation_window = prm.stagnation_window;
-        CGC<Vec>         cgc(cgc_data);
-        SolverStatistics stats        = cgc.solve(cgc_problem, x);
-        const double     stationarity = stats.kkt.stationarity;
-        stats.kkt                     = compute_kkt_residuals(problem, x);
-        stats.kkt.stationarity = std::min(stationarity, stats.kkt.stationarity);
-        return stats;
-      }
-
-
       /// --repeat N solves from the same start; the least wall and
       /// processor times.
       SolveResult
@@ -565,22 +506,17 @@ namespace dualcontact
           x = 0.;
           if (d.x0.size() > 0)
             x = d.x0;
-          if (options.solver == "cgc")
-            result.stats = solve_with_cgc(d, problem, prm, x);
-          else
-          {
-            // the fall-back chain, SMALSE-M around the solver with
-            // equality constraints, or the solver itself
-            auto solver  = make_solver<Vec>(prm, SMALSEMParameters(), problem);
-            result.stats = solver->solve(problem, x);
-            // the settings the chain chose (its chosen attempt's)
-            if (const auto *chain =
-                  dynamic_cast<const SolverChain<Vec> *>(solver.get()))
-              result.chosen_preconditioner =
-                chain->chosen_parameters().preconditioner;
-            if (problem.equality)
-              result.equality_residual = solver->equality_residual();
-          }
+          // the fall-back chain, SMALSE-M around the solver with equality
+          // constraints, or the solver itself
+          auto solver  = make_solver<Vec>(prm, SMALSEMParameters(), problem);
+          result.stats = solver->solve(problem, x);
+          // the settings the chain chose (its chosen attempt's)
+          if (const auto *chain =
+                dynamic_cast<const SolverChain<Vec> *>(solver.get()))
+            result.chosen_preconditioner =
+              chain->chosen_parameters().preconditioner;
+          if (problem.equality)
+            result.equality_residual = solver->equality_residual();
           result.least_time =
             std::min(result.least_time, result.stats.wall_time);
           result.least_cpu_time =
@@ -770,8 +706,6 @@ namespace dualcontact
         data = read_problem(options.problem_file);
         prm  = solver_parameters(options, base_parameters);
         build_problem(*data, options, prm, built);
-        if (options.solver == "cgc")
-          check_cgc_input(*data, options, prm);
       }
       catch (const std::exception &e)
       {

@@ -9,9 +9,10 @@
 //  B. a block pressed onto a clamped block (non-matching meshes,
 //     node-to-segment rows coupling both bodies), Tresca;
 //  C. scene A with Coulomb friction (fixed point over Tresca problems).
-// Also: the CGC outer iterations of the first solve start on the facet of
-// all contact constraints (the report's tables 11.3-11.10), and the
-// multipliers respect |lambda_T| <= psi.
+// The dual QP by CGC (the report's DUAL, `Solver = cgc') agrees with MPGP
+// to 1e-8 / 1e-7.  Also: the CGC outer iterations of the first solve start on
+// the facet of all contact constraints (the report's tables 11.3-11.10), and
+// the multipliers respect |lambda_T| <= psi.
 
 #include <deal.II/base/function.h>
 
@@ -52,6 +53,22 @@ compare(const std::string &name, Scene &scene, const bool expect_partial_slip)
         name + ": dual solver converged",
         reference.reason);
   const unsigned int n = scene.contact->n_nodes();
+
+  // the report's DUAL method: the same dual QP by CGC
+  {
+    qp::SolverParameters cgc_parameters = qp_parameters;
+    cgc_parameters.solver               = "cgc";
+    contact::ContactSolver<2> cgc_solver(dual, cgc_parameters, {}, coulomb);
+    const auto                by_cgc = cgc_solver.solve();
+    check(by_cgc.converged, name + ": dual by CGC converged", by_cgc.reason);
+    const double du =
+      relative_difference(by_cgc.displacements, reference.displacements);
+    check(du < 1e-8, name + ": dual by CGC vs MPGP, displacements", du);
+    Vector<double> dl(by_cgc.lambda);
+    dl -= reference.lambda;
+    const double rl = dl.linfty_norm() / reference.lambda.linfty_norm();
+    check(rl < 1e-7, name + ": dual by CGC vs MPGP, multipliers", rl);
+  }
 
   for (const auto &[preconditioner, version] :
        std::vector<std::pair<std::string, std::string>>{{"none", "pcg2"},

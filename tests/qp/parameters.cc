@@ -199,16 +199,18 @@ main()
     for (const std::string &name : names)
       joined += (joined.empty() ? "" : "|") + name;
     check.check(joined == solver_names() &&
-                  joined == "mprgp|mpgp|mpgp-bb|mwpgp|spg-qp|pbbf|apgd|auto",
+                  joined == "mprgp|mpgp|mpgp-bb|mwpgp|spg-qp|pbbf|apgd|cgc|auto",
                 "registry order is the Solver pattern: " + joined);
     const auto bounds  = registry.chainable_names(false);
     const auto general = registry.chainable_names(true);
     check.check(bounds.size() == 7 && bounds.front() == "mprgp" &&
                   general.size() == 6 && general.front() == "mpgp" &&
                   registry.find("auto") != nullptr &&
-                  !registry.find("auto")->chainable,
+                  !registry.find("auto")->chainable &&
+                  registry.find("cgc") != nullptr &&
+                  !registry.find("cgc")->chainable,
                 "chains hold 7 solvers (general sets 6: not mprgp), never "
-                "auto");
+                "auto or cgc");
 
     // a solver a program adds: found by create(), chains and the checks
     DUALCONTACT_QP_REGISTER_SOLVER(registry,

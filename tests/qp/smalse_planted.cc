@@ -101,7 +101,7 @@ main()
     problem.equality  = eq;
 
     const std::string kind = semidefinite ? "SPS" : "SPD";
-    for (const std::string inner :
+    for (const std::string &inner :
          semidefinite ? std::vector<std::string>{"mprgp", "pbbf"} :
                         std::vector<std::string>{"mprgp", "spg-qp"})
     {

@@ -1,4 +1,5 @@
-// Every core solver (mprgp, mpgp, mpgp-bb, mwpgp) on every set type it
+// Every core solver (mprgp, mpgp, mpgp-bb, mwpgp; cgc on bounds and boxes) on
+// every set type it
 // accepts (bound, box, disc, ellipse, cone, a mix), on random strictly
 // convex QPs with a planted solution: x*, the active blocks and positive
 // multipliers are chosen, b = A x* + sum mu_j n_j(x*).  Solved from x0 = 0
@@ -111,6 +112,34 @@ main()
                     tag + "statistics consistent (history with time "
                           "stamps and counts)");
       }
+  // the report's CGC as a registered solver (bounds and boxes as rows of
+  // one entry): the same planted solutions
+  for (const Case &c : bound_sets)
+    for (const unsigned int seed : {1u, 2u, 3u})
+    {
+      const Planted      P = make_planted(c.types, 30, 8, 100 * seed + 7);
+      const unsigned int n = P.x_star.size();
+      Vec                layout(n);
+      auto               problem = make_problem(P.A, P.b, P.blocks, layout);
+      SolverParameters   prm;
+      prm.tolerance      = 1e-10;
+      prm.max_iterations = 5000;
+      Vec               x(n);
+      const auto        stats = create<Vec>("cgc", prm)->solve(problem, x);
+      const double      err   = distance(x, P.x_star);
+      const std::string tag =
+        "cgc/" + c.name + "/" + std::to_string(seed) + ": ";
+      check.check(stats.converged() && stats.solver == "cgc",
+                  tag + "converged (" + to_string(stats.reason) + ")");
+      check.check(err <= 1e-8 * (1. + norm(P.x_star)),
+                  tag + "||x - x*|| = " + sci(err));
+      check.check(stats.kkt.stationarity <= 1e-9 * stats.norm_b &&
+                    stats.kkt.feasibility <= 1e-12 &&
+                    stats.kkt.complementarity <= 1e-8 * stats.norm_b,
+                  tag + "KKT " + sci(stats.kkt.stationarity) + " " +
+                    sci(stats.kkt.feasibility) + " " +
+                    sci(stats.kkt.complementarity));
+    }
   check.verbose = true;
   check.check(n_projected_cg >= 10,
               std::to_string(n_projected_cg) +
