@@ -94,15 +94,7 @@ namespace dualcontact
           "Nesterov's accelerated projected gradient descent (thesis 2.3, "
           "algorithm 6)",
           apgd);
-        // Not chainable: CGC's facet restarts can take many more products
-        // than the MPGP family on the same problem (the report's DUAL
-        // method, kept for its tables, not for the fall-back chains).
-        registry.add(solver_entry<CGCSolver>(
-          "cgc",
-          bounds,
-          "the 1996 report's conjugate gradients with projection and facet "
-          "restarts (its DUAL method), bound and box constraints only",
-          false));
+        registry.add(cgc_solver_entry());
         // SolverChain's second constructor argument (the SMALSE-M settings)
         // keeps its default here; make_solver() passes the caller's.  Not
         // chainable: the chain creates the solvers of a chain.
