@@ -53,6 +53,8 @@ namespace dualcontact
         std::string proportioning;
         double      projected_cg_gradient_factor = -1.;
         int         amg_reuse_aggregates         = -1;
+        long        amg_smoother_sweeps          = -1;
+        double      amg_aggregation_threshold    = -1.;
         std::string x_out;
         std::string json_out;
       };
@@ -168,6 +170,21 @@ namespace dualcontact
                                "' is not 0 or 1");
             o.amg_reuse_aggregates = v == "1";
           }
+          else if (a == "--amg-smoother-sweeps")
+          {
+            const std::string v   = value();
+            o.amg_smoother_sweeps = parse_integer(a, v);
+            if (o.amg_smoother_sweeps < 1)
+              throw UsageError("--amg-smoother-sweeps must be at least 1");
+          }
+          else if (a == "--amg-aggregation-threshold")
+          {
+            const std::string v         = value();
+            o.amg_aggregation_threshold = parse_number(a, v);
+            if (!(o.amg_aggregation_threshold >= 0. &&
+                  o.amg_aggregation_threshold < 1.))
+              throw UsageError("--amg-aggregation-threshold must be in [0, 1)");
+          }
           else if (a == "--x-out")
             o.x_out = value();
           else if (a == "--json-out")
@@ -205,6 +222,7 @@ namespace dualcontact
              "[--projected-cg-gradient-factor R] "
              "[--proportioning chopped-gradient|preconditioned] "
              "[--amg-reuse-aggregates 0|1] [--amg-keep-fraction F] "
+             "[--amg-smoother-sweeps N] [--amg-aggregation-threshold T] "
              "[--repeat N] "
              "[--x-out FILE] [--json-out FILE] [--prm FILE.prm] "
              "[--set \"QP solver/Entry=value\"]...\n"
@@ -220,7 +238,10 @@ namespace dualcontact
              "default, ML aggregates A once and recomputes its hierarchy in "
              "place for each active set; 0: a full setup each time; "
              "--amg-keep-fraction F (default 0) keeps the hierarchy while "
-             "at most F * n unknowns changed state).\n"
+             "at most F * n unknowns changed state; "
+             "--amg-smoother-sweeps N (default 2) Chebyshev sweeps per "
+             "level, --amg-aggregation-threshold T (default 1e-4) ML's "
+             "strength-of-connection threshold).\n"
              "--solver auto (the default): the fall-back chain; on bound and "
              "box "
              "constraints it runs MPRGP with the settings measured best "
@@ -454,6 +475,11 @@ namespace dualcontact
             amg_parameters.keep_fraction = options.amg_keep_fraction;
           if (options.amg_reuse_aggregates >= 0)
             amg_parameters.reuse_aggregates = options.amg_reuse_aggregates;
+          if (options.amg_smoother_sweeps > 0)
+            amg_parameters.smoother_sweeps = options.amg_smoother_sweeps;
+          if (options.amg_aggregation_threshold >= 0.)
+            amg_parameters.aggregation_threshold =
+              options.amg_aggregation_threshold;
           built.amg = std::make_unique<FreeSetAMG>(d.hessian, amg_parameters);
           problem.free_set_preconditioner = built.amg->factory();
         }

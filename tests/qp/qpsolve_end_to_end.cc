@@ -326,6 +326,9 @@ main()
     {dir + "/p.json --solver mpgp --preconditioner amg",
      {"--preconditioner", "mprgp"}},
     {dir + "/p.json --projected-cg-trials 0", {"--projected-cg-trials"}},
+    {dir + "/p.json --amg-smoother-sweeps 0", {"--amg-smoother-sweeps"}},
+    {dir + "/p.json --amg-aggregation-threshold 1.5",
+     {"--amg-aggregation-threshold"}},
   };
   for (const auto &[args, pieces] : bad)
   {
