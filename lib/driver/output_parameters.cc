@@ -1,6 +1,7 @@
 #include <deal.II/base/patterns.h>
 
 #include <driver/output_parameters.h>
+#include <fclib/scene_export.h>
 
 namespace dualcontact
 {
@@ -64,7 +65,8 @@ namespace dualcontact
                         "and the time).");
       prm.declare_entry("FCLIB problem",
                         "none",
-                        dealii::Patterns::Selection("none|global|local|both"),
+                        dealii::Patterns::Selection(
+                          fclib::export_form_names.choices()),
                         "Scenes with contact pairs: also write the contact "
                         "problem as a Frictional Contact Library (FCLIB, "
                         "HDF5) file with the solution found (/solution): "

@@ -19,7 +19,7 @@ namespace dualcontact
     {
       prm.declare_entry("Model",
                         "coulomb",
-                        dealii::Patterns::Selection("coulomb|cone|desaxce"),
+                        dealii::Patterns::Selection(model_names.choices()),
                         "coulomb: the fixed point over Tresca QPs (bound x "
                         "disc blocks), which solves the Coulomb problem; "
                         "cone: one QP over the Coulomb cones, a convex "
@@ -29,7 +29,8 @@ namespace dualcontact
                         "solves the Coulomb problem, 3D only.");
       prm.declare_entry("First Coulomb iterate",
                         "bonded",
-                        dealii::Patterns::Selection("bonded|frictionless"),
+                        dealii::Patterns::Selection(
+                          first_iterate_names.choices()),
                         "Model coulomb, cold start: bonded (no bound on the "
                         "tangential forces, as the contact solver of the "
                         "scenes) or frictionless (slip bounds 0); bonded "

@@ -67,7 +67,7 @@ namespace dualcontact
       prm.declare_entry(
         "Ordering",
         "automatic",
-        dealii::Patterns::Selection("automatic|amd|metis|nested dissection"),
+        dealii::Patterns::Selection(CholmodSolver::ordering_names.choices()),
         "Fill-reducing ordering of CHOLMOD. automatic: CHOLMOD's default "
         "(AMD, then METIS if AMD gives much fill); amd; metis; nested "
         "dissection (CHOLMOD's NESDIS).");

@@ -1,6 +1,8 @@
 #include <deal.II/base/exceptions.h>
+#include <deal.II/lac/vector.h>
 
 #include <primal/primal_parameters.h>
+#include <qp/cgc.h>
 
 namespace dualcontact
 {
@@ -56,15 +58,16 @@ namespace dualcontact
                         dealii::Patterns::Integer(0),
                         "Number of outer CGC iterations with the loose "
                         "tolerance.");
-      prm.declare_entry("CGC release",
-                        "automatic",
-                        dealii::Patterns::Selection(
-                          "one|all negative|automatic"),
-                        "Constraints leaving the facet when the facet problem "
-                        "is solved: the most negative multiplier (one), all "
-                        "negative ones (report, lemma 7.2; safe for "
-                        "orthogonal rows), or all negative if the rows are "
-                        "orthogonal, else one (automatic).");
+      prm.declare_entry(
+        "CGC release",
+        "automatic",
+        dealii::Patterns::Selection(
+          qp::CGC<dealii::Vector<double>>::release_names.choices()),
+        "Constraints leaving the facet when the facet problem "
+        "is solved: the most negative multiplier (one), all "
+        "negative ones (report, lemma 7.2; safe for "
+        "orthogonal rows), or all negative if the rows are "
+        "orthogonal, else one (automatic).");
       prm.declare_entry("Uzawa step factor",
                         "1.0",
                         dealii::Patterns::Double(0.),

@@ -5,7 +5,6 @@
 #include <primal/complete_cholesky.h>
 #include <primal/incomplete_cholesky.h>
 #include <primal/uzawa_cgc.h>
-#include <util/enum_names.h>
 
 #include <nlohmann/json.hpp>
 
@@ -20,14 +19,6 @@ namespace dualcontact
     namespace
     {
       using VectorType = dealii::Vector<double>;
-
-      using Release = qp::CGC<VectorType>::Release;
-
-      /// The names of the CGC release rules (`CGC release').
-      constexpr util::EnumNames<Release, 3> release_names{
-        "CGC release",
-        {{"one", "all negative", "automatic"}},
-      };
 
 
       /**
@@ -433,7 +424,8 @@ namespace dualcontact
       data.max_iterations  = parameters_.cgc_max_iterations;
       data.loose_tolerance = parameters_.cgc_loose_tolerance;
       data.n_loose         = parameters_.cgc_loose_iterations;
-      data.release         = release_names.value(parameters_.cgc_release);
+      data.release =
+        qp::CGC<VectorType>::release_names.value(parameters_.cgc_release);
       qp::CGC<VectorType> cgc(data);
 
       qp::SolverStatistics stats;

@@ -22,6 +22,7 @@
 
 #include <qp/linear_inequalities.h>
 #include <qp/solver_statistics.h>
+#include <util/enum_names.h>
 
 #include <functional>
 #include <memory>
@@ -104,6 +105,12 @@ namespace dualcontact
         /// multipliers (A_J A_J') u = -A_J g when rows are not orthogonal
         double       projection_tolerance      = 1e-13;
         unsigned int projection_max_iterations = 1000;
+      };
+
+      /// The names of Release (`Primal solver/CGC release').
+      static constexpr util::EnumNames<Release, 3> release_names{
+        "CGC release",
+        {{"one", "all negative", "automatic"}},
       };
 
       explicit CGC(const AdditionalData &data = AdditionalData());

@@ -58,7 +58,7 @@ namespace dualcontact
         LocalSolver::Parameters::declare_parameters(prm);
         prm.declare_entry("Storage of W",
                           "auto",
-                          dealii::Patterns::Selection("auto|dense|sparse"),
+                          dealii::Patterns::Selection(storage_names.choices()),
                           "How W is kept for its products: dense (BLAS "
                           "dsymv/dgemv, column-major), sparse, or auto "
                           "(dense when at least a quarter of the entries are "

@@ -101,6 +101,15 @@ namespace block_scenes
     return scene;
   }
 
+  // ||a - b||_inf / ||b||_inf
+  inline double
+  relative_difference(const Vector<double> &a, const Vector<double> &b)
+  {
+    Vector<double> d(a);
+    d -= b;
+    return d.linfty_norm() / b.linfty_norm();
+  }
+
   // max_k ||a_k - b_k||_inf / max_k ||b_k||_inf
   inline double
   relative_difference(const std::vector<Vector<double>> &a,

@@ -64,9 +64,7 @@ compare(const std::string &name, Scene &scene, const bool expect_partial_slip)
     const double du =
       relative_difference(by_cgc.displacements, reference.displacements);
     check(du < 1e-8, name + ": dual by CGC vs MPGP, displacements", du);
-    Vector<double> dl(by_cgc.lambda);
-    dl -= reference.lambda;
-    const double rl = dl.linfty_norm() / reference.lambda.linfty_norm();
+    const double rl = relative_difference(by_cgc.lambda, reference.lambda);
     check(rl < 1e-7, name + ": dual by CGC vs MPGP, multipliers", rl);
   }
 
@@ -101,9 +99,7 @@ compare(const std::string &name, Scene &scene, const bool expect_partial_slip)
     const double du =
       relative_difference(result.displacements, reference.displacements);
     check(du < 1e-6, label + "displacement vs dual, relative difference", du);
-    Vector<double> dl(result.lambda);
-    dl -= reference.lambda;
-    const double rl = dl.linfty_norm() / reference.lambda.linfty_norm();
+    const double rl = relative_difference(result.lambda, reference.lambda);
     check(rl < 1e-5, label + "multipliers vs dual, relative difference", rl);
     check(!result.first_outer.empty() && result.first_outer[0].n_active == n,
           label + "first CGC outer iteration on the facet of all " +

@@ -199,7 +199,8 @@ main()
     for (const std::string &name : names)
       joined += (joined.empty() ? "" : "|") + name;
     check.check(joined == solver_names() &&
-                  joined == "mprgp|mpgp|mpgp-bb|mwpgp|spg-qp|pbbf|apgd|cgc|auto",
+                  joined ==
+                    "mprgp|mpgp|mpgp-bb|mwpgp|spg-qp|pbbf|apgd|cgc|auto",
                 "registry order is the Solver pattern: " + joined);
     const auto bounds  = registry.chainable_names(false);
     const auto general = registry.chainable_names(true);
