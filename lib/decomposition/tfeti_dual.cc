@@ -27,78 +27,6 @@ namespace dualcontact
       const unsigned int invalid = std::numeric_limits<unsigned int>::max();
 
       /**
-       * Cholesky factorization A = L L' in place (lower triangle; the
-       * upper one is zeroed) of a symmetric positive semidefinite matrix:
-       * a pivot below @p relative_tolerance times the largest diagonal
-       * entry marks a direction of the kernel, whose column is set to zero.
-       * Returns the number of such directions.
-       */
-      unsigned int
-      semidefinite_cholesky(FullMatrix<double> &A,
-                            const double        relative_tolerance)
-      {
-        const unsigned int n    = A.m();
-        double             diag = 0;
-        for (unsigned int k = 0; k < n; ++k)
-          diag = std::max(diag, A(k, k));
-        unsigned int n_zero = 0;
-        for (unsigned int j = 0; j < n; ++j)
-        {
-          double pivot = A(j, j);
-          for (unsigned int k = 0; k < j; ++k)
-            pivot -= A(j, k) * A(j, k);
-          if (!(pivot > relative_tolerance * diag))
-          {
-            ++n_zero;
-            for (unsigned int i = j; i < n; ++i)
-              A(i, j) = 0;
-            continue;
-          }
-          const double l = std::sqrt(pivot);
-          A(j, j)        = l;
-          for (unsigned int i = j + 1; i < n; ++i)
-          {
-            double sum = A(i, j);
-            for (unsigned int k = 0; k < j; ++k)
-              sum -= A(i, k) * A(j, k);
-            A(i, j) = sum / l;
-          }
-        }
-        for (unsigned int i = 0; i < n; ++i)
-          for (unsigned int j = i + 1; j < n; ++j)
-            A(i, j) = 0;
-        return n_zero;
-      }
-
-      /**
-       * x := L^{-1} x (or L^{-T} x) for the factor of
-       * semidefinite_cholesky(); kernel directions (zero pivots) get 0.
-       */
-      void
-      triangular_solve(const FullMatrix<double> &L,
-                       Vector<double>           &x,
-                       const bool                transpose)
-      {
-        const unsigned int n = L.m();
-        if (!transpose)
-          for (unsigned int i = 0; i < n; ++i)
-          {
-            double sum = x(i);
-            for (unsigned int k = 0; k < i; ++k)
-              sum -= L(i, k) * x(k);
-            x(i) = L(i, i) != 0 ? sum / L(i, i) : 0.;
-          }
-        else
-          for (unsigned int i = n; i-- > 0;)
-          {
-            double sum = x(i);
-            for (unsigned int k = i + 1; k < n; ++k)
-              sum -= L(k, i) * x(k);
-            x(i) = L(i, i) != 0 ? sum / L(i, i) : 0.;
-          }
-      }
-
-      /**
        * The concatenation, in process order, of @p local of every process
        * of @p communicator (on every process).
        */
@@ -472,10 +400,10 @@ namespace dualcontact
     void
     TFETIDual<dim>::build_coarse_problem()
     {
-      const unsigned int n_rigid = dim * (dim + 1) / 2;
-      n_modes_                   = subdomains_.size() * n_rigid;
-      G_columns_.assign(n_multipliers(), {});
-      e_.reinit(n_modes_);
+      const unsigned int     n_rigid = dim * (dim + 1) / 2;
+      const unsigned int     n_modes = subdomains_.size() * n_rigid;
+      CoarseProblem::Columns columns(n_multipliers());
+      e_.reinit(n_modes);
       // R_s'f_s and the entries of R_s'B_s' of the owned subdomains, as
       // (row, mode, value) triples, gathered on every process
       std::vector<double> triples;
@@ -496,12 +424,12 @@ namespace dualcontact
       if (n_processes_ > 1)
         triples = all_gather(triples, communicator_);
       for (unsigned int t = 0; t < triples.size(); t += 3)
-        G_columns_[static_cast<unsigned int>(triples[t])].emplace_back(
+        columns[static_cast<unsigned int>(triples[t])].emplace_back(
           static_cast<unsigned int>(triples[t + 1]), triples[t + 2]);
       // merge the entries of a mode in a column (a contact row may touch
       // several dofs of one subdomain), in their order (stable: the same
       // sums on any number of processes)
-      for (auto &column : G_columns_)
+      for (auto &column : columns)
       {
         std::stable_sort(column.begin(),
                          column.end(),
@@ -516,27 +444,9 @@ namespace dualcontact
         column.resize(n);
       }
 
-      coarse_factor_.reinit(n_modes_, n_modes_);
-      for (const auto &column : G_columns_)
-        for (const auto &[k, v] : column)
-          for (const auto &[l, w] : column)
-            coarse_factor_(k, l) += v * w;
-      AssertThrow(semidefinite_cholesky(coarse_factor_, 1e-12) == 0,
-                  ExcMessage(
-                    "A rigid-body motion of a body is not restrained by any "
-                    "contact constraint (G = R'B' is rank deficient): add a "
-                    "Dirichlet condition, a contact pair or friction that "
-                    "holds it."));
+      coarse_ = std::make_unique<CoarseProblem>(n_modes, std::move(columns));
       e_orthonormal_ = e_;
-      triangular_solve(coarse_factor_, e_orthonormal_, false);
-    }
-
-
-    template <int dim>
-    void
-    TFETIDual<dim>::coarse_solve(VectorType &x, const bool transpose) const
-    {
-      triangular_solve(coarse_factor_, x, transpose);
+      coarse_->orthonormalize(e_orthonormal_);
     }
 
 
@@ -777,25 +687,19 @@ namespace dualcontact
       auto equality   = std::make_shared<qp::EqualityConstraints<VectorType>>();
       equality->vmult = [this](VectorType &dst, const VectorType &src)
       {
-        dst.reinit(n_modes_);
-        for (unsigned int r = 0; r < G_columns_.size(); ++r)
-          for (const auto &[k, v] : G_columns_[r])
-            dst(k) += v * src(r);
-        coarse_solve(dst, false);
+        coarse_->vmult(dst, src);
+        coarse_->orthonormalize(dst);
       };
       equality->Tvmult = [this](VectorType &dst, const VectorType &src)
       {
         VectorType y = src;
-        coarse_solve(y, true);
-        dst.reinit(n_multipliers());
-        for (unsigned int r = 0; r < G_columns_.size(); ++r)
-          for (const auto &[k, v] : G_columns_[r])
-            dst(r) += v * y(k);
+        coarse_->orthonormalize_transpose(y);
+        coarse_->Tvmult(dst, y);
       };
       equality->c             = e_orthonormal_;
-      equality->n_constraints = n_modes_;
+      equality->n_constraints = coarse_->n_modes();
       equality->norm_sq       = 1.; // ||G~||^2 = lambda_max(G~ G~') = 1
-      // G~ G~' = L^-1 G G' L^-T = I: SMALSE-M may use the coarse projector
+      // G~ G~' = L^-1 P G G' P' L^-T = I: SMALSE-M may use the coarse projector
       equality->orthonormal_rows = true;
       problem.equality           = equality;
       problem.semidefinite       = true;
@@ -826,28 +730,21 @@ namespace dualcontact
       double             scale     = 0;
       for (unsigned int i = 0; i < this->n_contact_nodes(); ++i)
         scale = std::max(scale, std::abs(lambda(i)));
-      FullMatrix<double> GGt(n_modes_, n_modes_);
-      VectorType         alpha(n_modes_);
       for (unsigned int r = 0; r < n_multipliers(); ++r)
-      {
-        if (r < n_contact &&
-            !this->contact_row_is_active(lambda, r, 1e-8 * scale))
-          continue;
-        const double rr = residual(r) - c_[r];
-        for (const auto &[k, v] : G_columns_[r])
+        residual(r) = c_[r] - residual(r);
+      VectorType alpha;
+      const bool determined = coarse_->least_squares(
+        [&](const unsigned int r)
         {
-          alpha(k) -= v * rr;
-          for (const auto &[l, g] : G_columns_[r])
-            GGt(k, l) += v * g;
-        }
-      }
-      const bool determined = semidefinite_cholesky(GGt, 1e-12) == 0;
+          return r >= n_contact ||
+                 this->contact_row_is_active(lambda, r, 1e-8 * scale);
+        },
+        residual,
+        alpha);
       AssertThrow(determined || !require_determined,
                   ExcMessage("The rigid-body motion of a floating body is "
                              "not determined: no active contact "
                              "constraint holds it."));
-      triangular_solve(GGt, alpha, false);
-      triangular_solve(GGt, alpha, true);
       const unsigned int n_rigid = dim * (dim + 1) / 2;
       for (const unsigned int s : owned_)
         for (unsigned int k = 0; k < n_rigid; ++k)
@@ -899,7 +796,7 @@ namespace dualcontact
     unsigned int
     TFETIDual<dim>::n_rigid_body_modes() const
     {
-      return n_modes_;
+      return coarse_->n_modes();
     }
 
 

@@ -1,13 +1,13 @@
 #pragma once
 
 #include <deal.II/base/mpi.h>
-#include <deal.II/lac/full_matrix.h>
 #include <deal.II/lac/vector.h>
 
 #include <contact/contact_discretization.h>
 #include <contact/dual_formulation.h>
 #include <deal.II/lac/sparse_matrix.h>
 #include <deal.II/lac/sparsity_pattern.h>
+#include <decomposition/coarse_problem.h>
 #include <decomposition/decomposition_parameters.h>
 #include <decomposition/interface_schur_complement.h>
 #include <decomposition/multiplier_scaling.h>
@@ -63,9 +63,9 @@ namespace dualcontact
      * bounds and the Coulomb loop are those of the undecomposed dual.  It is
      * scaled as the undecomposed one: Hessian F / s and d / s with s =
      * lambda_max(F) (power iteration), and G with orthonormal rows: G~ =
-     * L^{-1} G, e~ = L^{-1} e with G G' = L L' (the coarse problem,
-     * factorized once by dense Cholesky; a singular G G' is a rigid-body
-     * motion nothing holds).
+     * L^{-1} P G, e~ = L^{-1} P e with P G G' P' = L L' (CoarseProblem:
+     * G G' is sparse, factorized once by CHOLMOD; a singular G G' is a
+     * rigid-body motion nothing holds).
      *
      * <b>F</b> is applied by local solves: B_s' lambda, K_s^# (two
      * triangular solves with the subdomain's factor), B_s.
@@ -96,13 +96,13 @@ namespace dualcontact
      * process) and assembles, factorizes and solves only these; no process
      * holds a global stiffness matrix or all of B.  The multipliers and
      * the coarse problem are replicated: every process keeps lambda, d, c,
-     * G (gathered once from the processes' R_s'B_s') and the Cholesky
-     * factor of G G', and F lambda is the sum over the owned subdomains
-     * followed by one MPI_Allreduce of the multiplier vector.  So the QP
-     * runs on dealii::Vector on every process in lockstep (the reductions
-     * give every process the same bits), and its result does not depend on
-     * the number of processes beyond round-off.  The recovered field is
-     * assembled from the owned subdomains and summed over the processes:
+     * G (gathered once from the processes' R_s'B_s') and the sparse
+     * Cholesky factor of G G', and F lambda is the sum over the owned
+     * subdomains followed by one MPI_Allreduce of the multiplier vector.  So
+     * the QP runs on dealii::Vector on every process in lockstep (the
+     * reductions give every process the same bits), and its result does not
+     * depend on the number of processes beyond round-off.  The recovered field
+     * is assembled from the owned subdomains and summed over the processes:
      * every process gets the whole field of every body (the mesh is
      * replicated, parallel::shared, and each process writes its cells).
      *
@@ -271,7 +271,7 @@ namespace dualcontact
       /** Contact, gluing and Dirichlet rows (entries_, c_). */
       void
       build_constraint_rows();
-      /** G = R'B' by columns, e, and the Cholesky factor of G G'. */
+      /** G = R'B', e, and the coarse problem (sparse factor of G G'). */
       void
       build_coarse_problem();
       /**
@@ -313,10 +313,6 @@ namespace dualcontact
       apply_K_inverse(const std::vector<VectorType> &w,
                       std::vector<VectorType>       &u) const;
 
-      /** y = L^{-1} x (@p transpose: L^{-T}), L the coarse factor. */
-      void
-      coarse_solve(VectorType &x, const bool transpose) const;
-
       MPI_Comm                                   communicator_;
       unsigned int                               n_processes_ = 1, rank_ = 0;
       std::vector<const fem::ElasticBody<dim> *> bodies_;
@@ -337,14 +333,11 @@ namespace dualcontact
       std::vector<std::vector<std::pair<unsigned int, unsigned int>>>
         first_copy_;
 
-      /** G by columns: per multiplier, (mode, value); modes numbered
-       *  subdomain by subdomain. */
-      std::vector<std::vector<std::pair<unsigned int, double>>> G_columns_;
-      unsigned int                                              n_modes_ = 0;
-      VectorType                                                e_;
-      /** Cholesky factor of G G' (lower), and L^{-1} e. */
-      dealii::FullMatrix<double> coarse_factor_;
-      VectorType                 e_orthonormal_;
+      /** G (modes numbered subdomain by subdomain) and the sparse
+       *  factor of G G'; e, and e~ = L^{-1} P e. */
+      std::unique_ptr<CoarseProblem> coarse_;
+      VectorType                     e_;
+      VectorType                     e_orthonormal_;
 
       VectorType                d_;
       double                    scale_ = 1;

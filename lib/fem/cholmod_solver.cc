@@ -232,9 +232,50 @@ namespace dualcontact
     CholmodSolver::solve(dealii::Vector<double>       &x,
                          const dealii::Vector<double> &b) const
     {
+      dealii::Timer timer;
+      solve_system(CHOLMOD_A, x, b);
+      statistics_.solve_time += timer.wall_time();
+      ++statistics_.n_solves;
+    }
+
+
+    void
+    CholmodSolver::solve_lower(dealii::Vector<double> &x) const
+    {
+      // a supernodal factor is L L' (not L D L'), so CHOLMOD_L is L^{-1}
+      const dealii::Vector<double> b = x;
+      solve_system(CHOLMOD_P, x, b);
+      const dealii::Vector<double> y = x;
+      solve_system(CHOLMOD_L, x, y);
+    }
+
+
+    void
+    CholmodSolver::solve_upper(dealii::Vector<double> &x) const
+    {
+      const dealii::Vector<double> b = x;
+      solve_system(CHOLMOD_Lt, x, b);
+      const dealii::Vector<double> y = x;
+      solve_system(CHOLMOD_Pt, x, y);
+    }
+
+
+    double
+    CholmodSolver::reciprocal_condition() const
+    {
       Assert(data_->factor != nullptr, dealii::ExcNotInitialized());
+      return cholmod_l_rcond(data_->factor, &data_->common);
+    }
+
+
+    void
+    CholmodSolver::solve_system(const int                     system,
+                                dealii::Vector<double>       &x,
+                                const dealii::Vector<double> &b) const
+    {
+      Assert(data_->factor != nullptr, dealii::ExcNotInitialized());
+      Assert(data_->factor->is_ll, dealii::ExcInternalError());
       AssertDimension(b.size(), static_cast<std::size_t>(data_->n));
-      dealii::Timer   timer;
       cholmod_common &c = data_->common;
 
       // Wrap b without copying: CHOLMOD only reads it.
@@ -249,7 +290,7 @@ namespace dualcontact
       rhs.dtype = CHOLMOD_DOUBLE;
 
       cholmod_dense *solution =
-        cholmod_l_solve(CHOLMOD_A, data_->factor, &rhs, &c);
+        cholmod_l_solve(system, data_->factor, &rhs, &c);
       AssertThrow(solution != nullptr && c.status >= CHOLMOD_OK,
                   dealii::ExcMessage("CHOLMOD: solve failed (status " +
                                      std::to_string(c.status) + ")."));
@@ -258,8 +299,6 @@ namespace dualcontact
                   solution->x,
                   sizeof(double) * static_cast<std::size_t>(data_->n));
       cholmod_l_free_dense(&solution, &c);
-      statistics_.solve_time += timer.wall_time();
-      ++statistics_.n_solves;
     }
 
 

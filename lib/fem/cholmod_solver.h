@@ -45,6 +45,27 @@ namespace dualcontact
       solve(dealii::Vector<double>       &x,
             const dealii::Vector<double> &b) const override;
 
+      /**
+       * The two halves of solve() for the factor P K P' = L L' (P the
+       * fill-reducing permutation): x := L^{-1} P x.  With them L^{-1} P G
+       * has orthonormal rows where K = G G' (decomposition::CoarseProblem).
+       */
+      void
+      solve_lower(dealii::Vector<double> &x) const;
+
+      /** x := P' L^{-T} x, the transpose of solve_lower(). */
+      void
+      solve_upper(dealii::Vector<double> &x) const;
+
+      /**
+       * CHOLMOD's estimate of the reciprocal condition number of the
+       * factorized matrix, (min_i L_ii / max_i L_ii)^2: a tiny value is a
+       * matrix that is singular up to round-off (the factorization itself
+       * only stops at a pivot that is not positive).
+       */
+      double
+      reciprocal_condition() const;
+
       bool
       offers_schur_factor() const override;
 
@@ -73,6 +94,13 @@ namespace dualcontact
     private:
       void
       free_factor();
+
+      /** x := the solution of CHOLMOD's @p system (CHOLMOD_A, _L, _P, ...)
+       *  with right-hand side @p b. */
+      void
+      solve_system(const int                     system,
+                   dealii::Vector<double>       &x,
+                   const dealii::Vector<double> &b) const;
 
       /**
        * Analyse and (if @p numeric) factorize @p matrix; with
