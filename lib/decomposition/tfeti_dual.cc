@@ -959,6 +959,14 @@ namespace dualcontact
 
 
     template <int dim>
+    const CoarseProblem &
+    TFETIDual<dim>::coarse_problem() const
+    {
+      return *coarse_;
+    }
+
+
+    template <int dim>
     double
     TFETIDual<dim>::decomposition_time() const
     {

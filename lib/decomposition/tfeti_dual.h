@@ -217,6 +217,9 @@ namespace dualcontact
        *  (the slowest process). */
       double
       decomposition_time() const;
+      /** G and the sparse factor of G G' (sizes, set-up time). */
+      const CoarseProblem &
+      coarse_problem() const;
       /**
        * Largest |u_s(i) - u_t(i)| over the copies of a dof at the last
        * recover() [m], and relative to the largest |u| there.

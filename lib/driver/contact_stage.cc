@@ -192,7 +192,10 @@ namespace dualcontact
            << tfeti.n_gluing_multipliers() << " gluing, "
            << tfeti.n_dirichlet_multipliers()
            << " Dirichlet), coarse problem G G' of order "
-           << tfeti.n_rigid_body_modes();
+           << tfeti.n_rigid_body_modes() << " ("
+           << tfeti.coarse_problem().n_nonzeros() << " nonzeros, sparse factor "
+           << tfeti.coarse_problem().n_factor_nonzeros() << ", "
+           << tfeti.coarse_problem().setup_time() << " s)";
       const std::vector<unsigned int> per_process =
         tfeti.subdomains_per_process();
       if (per_process.size() > 1)

@@ -324,6 +324,10 @@ namespace dualcontact
             {"n_gluing_multipliers", tfeti->n_gluing_multipliers()},
             {"n_dirichlet_multipliers", tfeti->n_dirichlet_multipliers()},
             {"coarse_problem_order", tfeti->n_rigid_body_modes()},
+            {"coarse_problem_nonzeros", tfeti->coarse_problem().n_nonzeros()},
+            {"coarse_factor_nonzeros",
+             tfeti->coarse_problem().n_factor_nonzeros()},
+            {"coarse_setup_time_s", tfeti->coarse_problem().setup_time()},
             {"decomposition_time_s", tfeti->decomposition_time()},
             {"max_interface_jump_m", tfeti->max_interface_jump()},
             {"relative_interface_jump", tfeti->relative_interface_jump()}};
