@@ -233,7 +233,8 @@ namespace dualcontact
                          const dealii::Vector<double> &b) const
     {
       dealii::Timer timer;
-      solve_system(CHOLMOD_A, x, b);
+      x = b;
+      solve_in_turn({CHOLMOD_A}, x);
       statistics_.solve_time += timer.wall_time();
       ++statistics_.n_solves;
     }
@@ -243,20 +244,14 @@ namespace dualcontact
     CholmodSolver::solve_lower(dealii::Vector<double> &x) const
     {
       // a supernodal factor is L L' (not L D L'), so CHOLMOD_L is L^{-1}
-      const dealii::Vector<double> b = x;
-      solve_system(CHOLMOD_P, x, b);
-      const dealii::Vector<double> y = x;
-      solve_system(CHOLMOD_L, x, y);
+      solve_in_turn({CHOLMOD_P, CHOLMOD_L}, x);
     }
 
 
     void
     CholmodSolver::solve_upper(dealii::Vector<double> &x) const
     {
-      const dealii::Vector<double> b = x;
-      solve_system(CHOLMOD_Lt, x, b);
-      const dealii::Vector<double> y = x;
-      solve_system(CHOLMOD_Pt, x, y);
+      solve_in_turn({CHOLMOD_Lt, CHOLMOD_Pt}, x);
     }
 
 
@@ -269,36 +264,37 @@ namespace dualcontact
 
 
     void
-    CholmodSolver::solve_system(const int                     system,
-                                dealii::Vector<double>       &x,
-                                const dealii::Vector<double> &b) const
+    CholmodSolver::solve_in_turn(const std::initializer_list<int> systems,
+                                 dealii::Vector<double>          &x) const
     {
       Assert(data_->factor != nullptr, dealii::ExcNotInitialized());
       Assert(data_->factor->is_ll, dealii::ExcInternalError());
-      AssertDimension(b.size(), static_cast<std::size_t>(data_->n));
+      AssertDimension(x.size(), static_cast<std::size_t>(data_->n));
       cholmod_common &c = data_->common;
+      for (const int system : systems)
+      {
+        // wrap x without copying: CHOLMOD reads it and returns a new
+        // dense vector
+        cholmod_dense rhs;
+        std::memset(&rhs, 0, sizeof(rhs));
+        rhs.nrow  = data_->n;
+        rhs.ncol  = 1;
+        rhs.nzmax = data_->n;
+        rhs.d     = data_->n;
+        rhs.x     = x.begin();
+        rhs.xtype = CHOLMOD_REAL;
+        rhs.dtype = CHOLMOD_DOUBLE;
 
-      // Wrap b without copying: CHOLMOD only reads it.
-      cholmod_dense rhs;
-      std::memset(&rhs, 0, sizeof(rhs));
-      rhs.nrow  = data_->n;
-      rhs.ncol  = 1;
-      rhs.nzmax = data_->n;
-      rhs.d     = data_->n;
-      rhs.x     = const_cast<double *>(b.begin());
-      rhs.xtype = CHOLMOD_REAL;
-      rhs.dtype = CHOLMOD_DOUBLE;
-
-      cholmod_dense *solution =
-        cholmod_l_solve(system, data_->factor, &rhs, &c);
-      AssertThrow(solution != nullptr && c.status >= CHOLMOD_OK,
-                  dealii::ExcMessage("CHOLMOD: solve failed (status " +
-                                     std::to_string(c.status) + ")."));
-      x.reinit(data_->n, /*omit_zeroing_entries=*/true);
-      std::memcpy(x.begin(),
-                  solution->x,
-                  sizeof(double) * static_cast<std::size_t>(data_->n));
-      cholmod_l_free_dense(&solution, &c);
+        cholmod_dense *solution =
+          cholmod_l_solve(system, data_->factor, &rhs, &c);
+        AssertThrow(solution != nullptr && c.status >= CHOLMOD_OK,
+                    dealii::ExcMessage("CHOLMOD: solve failed (status " +
+                                       std::to_string(c.status) + ")."));
+        std::memcpy(x.begin(),
+                    solution->x,
+                    sizeof(double) * static_cast<std::size_t>(data_->n));
+        cholmod_l_free_dense(&solution, &c);
+      }
     }
 
 

@@ -3,6 +3,7 @@
 #include <fem/stiffness_solver.h>
 #include <util/enum_names.h>
 
+#include <initializer_list>
 #include <string>
 
 namespace dualcontact
@@ -95,12 +96,11 @@ namespace dualcontact
       void
       free_factor();
 
-      /** x := the solution of CHOLMOD's @p system (CHOLMOD_A, _L, _P, ...)
-       *  with right-hand side @p b. */
+      /** x := the solution of CHOLMOD's @p systems (CHOLMOD_A, _L, _P,
+       *  ...) applied in turn, each to the result of the one before. */
       void
-      solve_system(const int                     system,
-                   dealii::Vector<double>       &x,
-                   const dealii::Vector<double> &b) const;
+      solve_in_turn(const std::initializer_list<int> systems,
+                    dealii::Vector<double>          &x) const;
 
       /**
        * Analyse and (if @p numeric) factorize @p matrix; with
