@@ -72,48 +72,51 @@ namespace dualcontact
               throw UsageError("option " + a + " needs a value");
             return args[++i];
           };
+          // the option's value as a number the option accepts, else the
+          // option's own message
+          const auto integer_at_least =
+            [&](const long least, const std::string &message)
+          {
+            const long n = parse_integer(a, value());
+            if (n < least)
+              throw UsageError(message);
+            return n;
+          };
+          const auto number_where =
+            [&](const auto &valid, const std::string &message)
+          {
+            const double x = parse_number(a, value());
+            if (!valid(x))
+              throw UsageError(message);
+            return x;
+          };
+          const auto positive_number = [&]()
+          {
+            const std::string v = value();
+            const double      x = parse_number(a, v);
+            if (!(x > 0.))
+              throw UsageError(a + " must be > 0 (got " + v + ")");
+            return x;
+          };
           if (a == "--solver")
           {
             o.solver       = value();
             o.solver_given = true;
           }
           else if (a == "--tol")
-          {
-            const std::string v = value();
-            o.tolerance         = parse_number(a, v);
-            if (!(o.tolerance > 0.))
-              throw UsageError("--tol must be > 0 (got " + v + ")");
-          }
+            o.tolerance = positive_number();
           else if (a == "--criterion")
             o.criterion = value();
           else if (a == "--max-iter")
-          {
-            const std::string v = value();
-            o.max_iterations    = parse_integer(a, v);
-            if (o.max_iterations < 1)
-              throw UsageError("--max-iter must be >= 1");
-          }
+            o.max_iterations = integer_at_least(1, "--max-iter must be >= 1");
           else if (a == "--stagnation-window")
-          {
-            const std::string v = value();
-            o.stagnation_window = parse_integer(a, v);
-            if (o.stagnation_window < 0)
-              throw UsageError("--stagnation-window must be >= 0 (0: never)");
-          }
+            o.stagnation_window =
+              integer_at_least(0,
+                               "--stagnation-window must be >= 0 (0: never)");
           else if (a == "--gamma")
-          {
-            const std::string v = value();
-            o.gamma             = parse_number(a, v);
-            if (!(o.gamma > 0.))
-              throw UsageError("--gamma must be > 0 (got " + v + ")");
-          }
+            o.gamma = positive_number();
           else if (a == "--repeat")
-          {
-            const std::string v = value();
-            o.repeat            = parse_integer(a, v);
-            if (o.repeat < 1)
-              throw UsageError("--repeat must be >= 1");
-          }
+            o.repeat = integer_at_least(1, "--repeat must be >= 1");
           else if (a == "--expansion")
           {
             o.expansion = value();
@@ -123,12 +126,8 @@ namespace dualcontact
                                "' (valid: alpha-bar|projected-cg)");
           }
           else if (a == "--projected-cg-trials")
-          {
-            const std::string v   = value();
-            o.projected_cg_trials = parse_integer(a, v);
-            if (o.projected_cg_trials < 1)
-              throw UsageError("--projected-cg-trials must be >= 1");
-          }
+            o.projected_cg_trials =
+              integer_at_least(1, "--projected-cg-trials must be >= 1");
           else if (a == "--preconditioner")
           {
             o.preconditioner = value();
@@ -138,14 +137,9 @@ namespace dualcontact
                                o.preconditioner + "' (valid: none|jacobi|amg)");
           }
           else if (a == "--projected-cg-gradient-factor")
-          {
-            const std::string v            = value();
-            o.projected_cg_gradient_factor = parse_number(a, v);
-            if (!(o.projected_cg_gradient_factor == 0. ||
-                  o.projected_cg_gradient_factor >= 1.))
-              throw UsageError(
-                "--projected-cg-gradient-factor must be 0 (off) or >= 1");
-          }
+            o.projected_cg_gradient_factor = number_where(
+              [](const double x) { return x == 0. || x >= 1.; },
+              "--projected-cg-gradient-factor must be 0 (off) or >= 1");
           else if (a == "--proportioning")
           {
             o.proportioning = value();
@@ -156,12 +150,9 @@ namespace dualcontact
                                "' (valid: chopped-gradient|preconditioned)");
           }
           else if (a == "--amg-keep-fraction")
-          {
-            const std::string v = value();
-            o.amg_keep_fraction = parse_number(a, v);
-            if (!(o.amg_keep_fraction >= 0. && o.amg_keep_fraction <= 1.))
-              throw UsageError("--amg-keep-fraction must be in [0, 1]");
-          }
+            o.amg_keep_fraction =
+              number_where([](const double x) { return x >= 0. && x <= 1.; },
+                           "--amg-keep-fraction must be in [0, 1]");
           else if (a == "--amg-reuse-aggregates")
           {
             const std::string v = value();
@@ -171,20 +162,12 @@ namespace dualcontact
             o.amg_reuse_aggregates = v == "1";
           }
           else if (a == "--amg-smoother-sweeps")
-          {
-            const std::string v   = value();
-            o.amg_smoother_sweeps = parse_integer(a, v);
-            if (o.amg_smoother_sweeps < 1)
-              throw UsageError("--amg-smoother-sweeps must be at least 1");
-          }
+            o.amg_smoother_sweeps =
+              integer_at_least(1, "--amg-smoother-sweeps must be at least 1");
           else if (a == "--amg-aggregation-threshold")
-          {
-            const std::string v         = value();
-            o.amg_aggregation_threshold = parse_number(a, v);
-            if (!(o.amg_aggregation_threshold >= 0. &&
-                  o.amg_aggregation_threshold < 1.))
-              throw UsageError("--amg-aggregation-threshold must be in [0, 1)");
-          }
+            o.amg_aggregation_threshold =
+              number_where([](const double x) { return x >= 0. && x < 1.; },
+                           "--amg-aggregation-threshold must be in [0, 1)");
           else if (a == "--x-out")
             o.x_out = value();
           else if (a == "--json-out")
