@@ -40,6 +40,19 @@ check_planted_solution(Checker                &check,
                 sci(stats.kkt.complementarity));
 }
 
+/// @p solver with @p prm on the planted problem @p P from x = 0.
+SolverStatistics
+solve_planted(const std::string      &solver,
+              const SolverParameters &prm,
+              const Planted          &P,
+              Vec                    &x)
+{
+  Vec  layout(P.x_star.size());
+  auto problem = make_problem(P.A, P.b, P.blocks, layout);
+  x.reinit(P.x_star.size());
+  return create<Vec>(solver, prm)->solve(problem, x);
+}
+
 int
 main()
 {
@@ -88,16 +101,13 @@ main()
         const std::string  solver = config.substr(0, config.find('/'));
         const Planted      P = make_planted(c.types, 30, 8, 100 * seed + 7);
         const unsigned int n = P.x_star.size();
-        Vec                layout(n);
-        auto               problem = make_problem(P.A, P.b, P.blocks, layout);
         SolverParameters   prm;
         prm.tolerance      = 1e-10;
         prm.max_iterations = 5000;
         if (config.find('/') != std::string::npos)
           prm.expansion = config.substr(config.find('/') + 1);
-        auto           qp = create<Vec>(solver, prm);
-        Vec            x(n);
-        const auto     stats = qp->solve(problem, x);
+        Vec            x;
+        const auto     stats = solve_planted(solver, prm, P, x);
         const double   err   = distance(x, P.x_star);
         const unsigned kinds = stats.n_cg + stats.n_half_steps +
                                stats.n_proportioning +
@@ -130,15 +140,12 @@ main()
   for (const Case &c : bound_sets)
     for (const unsigned int seed : {1u, 2u, 3u})
     {
-      const Planted      P = make_planted(c.types, 30, 8, 100 * seed + 7);
-      const unsigned int n = P.x_star.size();
-      Vec                layout(n);
-      auto               problem = make_problem(P.A, P.b, P.blocks, layout);
-      SolverParameters   prm;
+      const Planted    P = make_planted(c.types, 30, 8, 100 * seed + 7);
+      SolverParameters prm;
       prm.tolerance      = 1e-10;
       prm.max_iterations = 5000;
-      Vec               x(n);
-      const auto        stats = create<Vec>("cgc", prm)->solve(problem, x);
+      Vec               x;
+      const auto        stats = solve_planted("cgc", prm, P, x);
       const std::string tag =
         "cgc/" + c.name + "/" + std::to_string(seed) + ": ";
       check.check(stats.solver == "cgc", tag + "solved by cgc");
@@ -158,14 +165,11 @@ main()
           StoppingCriterion::reduced_projected})
     {
       const Planted P = make_planted({BlockType::ellipse}, 30, 4, 5, 10., 1e4);
-      const unsigned int n = P.x_star.size();
-      Vec                layout(n);
-      auto               problem = make_problem(P.A, P.b, P.blocks, layout);
-      SolverParameters   prm;
+      SolverParameters prm;
       prm.tolerance          = 1e-10;
       prm.stopping_criterion = criterion;
-      Vec          x(n);
-      const auto   stats = create<Vec>(solver, prm)->solve(problem, x);
+      Vec          x;
+      const auto   stats = solve_planted(solver, prm, P, x);
       const double err   = distance(x, P.x_star);
       check.check(stats.converged() && err <= 1e-8 * (1. + norm(P.x_star)),
                   solver + ", ellipses with axis ratio up to 1e4, " +
