@@ -40,10 +40,7 @@ namespace dualcontact
         , columns_(std::move(columns))
     {
       dealii::Timer timer;
-      assemble_normal_matrix([](unsigned int) { return true; },
-                             0.,
-                             pattern_,
-                             ggt_);
+      assemble_normal_matrix([](unsigned int) { return true; }, pattern_, ggt_);
       factor_ = std::make_unique<fem::CholmodSolver>();
       // a singular G G' (CHOLMOD stops at a pivot that is not positive,
       // or round-off leaves a tiny one) is a combination of rigid-body
@@ -123,14 +120,18 @@ namespace dualcontact
       dealii::SparseMatrix<double> normal;
       fem::CholmodSolver           solver;
       bool                         determined = true;
-      assemble_normal_matrix(in_A, 0., pattern, normal);
+      assemble_normal_matrix(in_A, pattern, normal);
       if (!factorize(solver, normal))
       {
         // a floating body that nothing holds yet (an early Coulomb
         // iterate, no active contact): the shift picks, of the
         // least-squares solutions, one with about no kernel component
-        determined = false;
-        assemble_normal_matrix(in_A, 1e-12, pattern, normal);
+        determined     = false;
+        double largest = 0;
+        for (unsigned int k = 0; k < n_modes_; ++k)
+          largest = std::max(largest, normal.diag_element(k));
+        for (unsigned int k = 0; k < n_modes_; ++k)
+          normal.diag_element(k) += 1e-12 * (largest > 0 ? largest : 1.);
         solver.initialize(normal);
       }
       solver.solve(alpha, rhs);
@@ -162,7 +163,6 @@ namespace dualcontact
     void
     CoarseProblem::assemble_normal_matrix(
       const std::function<bool(unsigned int)> &in_A,
-      const double                             shift,
       dealii::SparsityPattern                 &pattern,
       dealii::SparseMatrix<double>            &matrix) const
     {
@@ -174,7 +174,6 @@ namespace dualcontact
           for (const auto &[k, v] : columns_[c])
             for (const auto &[l, w] : columns_[c])
               dynamic.add(k, l);
-      matrix.clear();
       pattern.copy_from(dynamic);
       matrix.reinit(pattern);
       for (unsigned int c = 0; c < columns_.size(); ++c)
@@ -182,14 +181,6 @@ namespace dualcontact
           for (const auto &[k, v] : columns_[c])
             for (const auto &[l, w] : columns_[c])
               matrix.add(k, l, v * w);
-      if (shift > 0)
-      {
-        double largest = 0;
-        for (unsigned int k = 0; k < n_modes_; ++k)
-          largest = std::max(largest, matrix.diag_element(k));
-        for (unsigned int k = 0; k < n_modes_; ++k)
-          matrix.diag_element(k) += shift * (largest > 0 ? largest : 1.);
-      }
     }
   } // namespace decomposition
 } // namespace dualcontact

@@ -89,11 +89,9 @@ namespace dualcontact
       setup_time() const;
 
     private:
-      /** G_A G_A' (pattern and values) over the columns in @p in_A, with
-       *  @p shift times its largest diagonal entry added to the diagonal. */
+      /** G_A G_A' (pattern and values) over the columns in @p in_A. */
       void
       assemble_normal_matrix(const std::function<bool(unsigned int)> &in_A,
-                             const double                             shift,
                              dealii::SparsityPattern                 &pattern,
                              dealii::SparseMatrix<double> &matrix) const;
 
