@@ -247,9 +247,8 @@ namespace dualcontact
       move_hanging_nodes_to_parents(const fem::ElasticBody<dim> &slave,
                                     SlaveSide<dim>              &side)
       {
-        AffineConstraints<double> hanging;
-        DoFTools::make_hanging_node_constraints(slave.dof_handler(), hanging);
-        hanging.close();
+        const AffineConstraints<double> &hanging =
+          slave.hanging_node_constraints();
         for (auto it = side.nodes.begin(); it != side.nodes.end();)
         {
           if (!hanging.is_constrained(it->first))

@@ -30,10 +30,9 @@ namespace dualcontact
         "automatic: tfeti when the estimated Cholesky factor of the "
         "largest body exceeds `Memory limit' (on any number of processes: "
         "without a dual preconditioner TFETI is slower than the "
-        "undecomposed dual where that fits); none otherwise, and none for "
-        "meshes with "
-        "hanging nodes (local or contact refinement), which TFETI does not "
-        "glue yet.");
+        "undecomposed dual where that fits); none otherwise. Hanging nodes "
+        "(local or contact refinement) are condensed into their parents "
+        "inside the subdomains.");
       prm.declare_entry(
         "Subdomains per body",
         "",
@@ -104,13 +103,10 @@ namespace dualcontact
 
 
     DecompositionParameters::Method
-    DecompositionParameters::resolve(const double factor_megabytes,
-                                     const bool   hanging_nodes) const
+    DecompositionParameters::resolve(const double factor_megabytes) const
     {
       if (method != Method::automatic)
         return method;
-      if (hanging_nodes)
-        return Method::none;
       // TFETI only where the global factor does not fit: under MPI too,
       // because without a dual preconditioner it needs thousands of
       // iterations where the undecomposed dual needs tens (the brick at

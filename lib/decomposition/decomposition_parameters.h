@@ -65,12 +65,10 @@ namespace dualcontact
        * (@p factor_megabytes) exceeds memory_limit, on any number of
        * processes; none otherwise (also under MPI: without a dual
        * preconditioner TFETI is slower than the undecomposed dual where
-       * that fits), and none for a scene with @p hanging_nodes (which TFETI
-       * does not glue yet).
+       * that fits).
        */
       Method
-      resolve(const double factor_megabytes,
-              const bool   hanging_nodes = false) const;
+      resolve(const double factor_megabytes) const;
 
       /**
        * An estimate [MB] of the nonzeros of the sparse Cholesky factor of a

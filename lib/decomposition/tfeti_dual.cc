@@ -73,16 +73,14 @@ namespace dualcontact
                   0)
         , bodies_(bodies)
     {
+      // hanging nodes are condensed into their parents inside the
+      // subdomains (ElasticBody::assemble_cells); every other constraint
+      // must be a Dirichlet condition, which becomes multiplier rows
       for (const auto *body : bodies_)
         for (const auto &line : body->constraints().get_lines())
-          AssertThrow(line.entries.empty(),
-                      ExcMessage(
-                        body->name() +
-                        " has hanging-node constraints (from `Contact "
-                        "refinement/Cycles' or `Mesh/Local refinements'), "
-                        "which TFETI does not glue yet: use `set Method = "
-                        "none' in `subsection Decomposition' for this "
-                        "scene."));
+          Assert(line.entries.empty() ||
+                   body->hanging_node_constraints().is_constrained(line.index),
+                 ExcInternalError());
       Timer timer;
       decompose(parameters);
       decomposition_time_ = max_over_processes(timer.wall_time());
@@ -186,19 +184,7 @@ namespace dualcontact
 
       dofs_.resize(cells.size());
       for (unsigned int s = 0; s < cells.size(); ++s)
-      {
-        const fem::ElasticBody<dim>         &body = *bodies_[body_of[s]];
-        std::vector<types::global_dof_index> cell_dofs(
-          body.fe().n_dofs_per_cell());
-        for (const auto &cell : cells[s])
-        {
-          cell->get_dof_indices(cell_dofs);
-          dofs_[s].insert(dofs_[s].end(), cell_dofs.begin(), cell_dofs.end());
-        }
-        std::sort(dofs_[s].begin(), dofs_[s].end());
-        dofs_[s].erase(std::unique(dofs_[s].begin(), dofs_[s].end()),
-                       dofs_[s].end());
-      }
+        dofs_[s] = bodies_[body_of[s]]->dofs_of_cells(cells[s]);
       assign_owners();
 
       subdomains_.resize(cells.size());
@@ -337,6 +323,8 @@ namespace dualcontact
             --b;
           const auto [s, l] =
             first_copy_[b][it->column() - contact_.body_offset(b)];
+          // the rows are condensed: no column of a hanging dof
+          Assert(s != invalid, ExcInternalError());
           add_entry(s, row, l, it->value());
         }
       };
@@ -366,7 +354,8 @@ namespace dualcontact
           for (unsigned int l = 0; l < dofs_[s].size(); ++l)
             copies[b][dofs_[s][l]].push_back({s, l});
       }
-      // gluing rows: a chain through the copies of every free dof
+      // gluing rows: a chain through the copies of every free dof (a
+      // hanging dof has no copy: the subdomains hold its parents)
       for (unsigned int b = 0; b < bodies_.size(); ++b)
         for (unsigned int i = 0; i < copies[b].size(); ++i)
           if (!bodies_[b]->constraints().is_constrained(i))
@@ -381,12 +370,16 @@ namespace dualcontact
               ++n_gluing_;
             }
       // Dirichlet rows: every copy of a dof under a Dirichlet condition
+      // (constrained, and not a hanging dof: those have no copies, and a
+      // hanging dof whose parents are all prescribed has a constraint line
+      // without entries too)
       for (unsigned int b = 0; b < bodies_.size(); ++b)
       {
         const AffineConstraints<double> &constraints =
           bodies_[b]->constraints();
         for (unsigned int i = 0; i < copies[b].size(); ++i)
-          if (constraints.is_constrained(i))
+          if (constraints.is_constrained(i) &&
+              !bodies_[b]->hanging_node_constraints().is_constrained(i))
             for (const auto &[s, l] : copies[b][i])
             {
               add_entry(s, add_row(constraints.get_inhomogeneity(i)), l, 1.);
@@ -761,7 +754,8 @@ namespace dualcontact
         for (unsigned int i = 0; i < bodies_[b]->n_dofs(); ++i)
         {
           const auto [s, l] = first_copy_[b][i];
-          if (owner_[s] == rank_)
+          // a hanging dof (no copy) is set from its parents by distribute()
+          if (s != invalid && owner_[s] == rank_)
             displacements[b](i) = u[s](l);
         }
         sum_over_processes(displacements[b]);

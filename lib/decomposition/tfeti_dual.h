@@ -106,7 +106,9 @@ namespace dualcontact
      * every process gets the whole field of every body (the mesh is
      * replicated, parallel::shared, and each process writes its cells).
      *
-     * Hanging-node constraints (adaptive refinement) are refused.
+     * Hanging nodes (local and contact refinement) are condensed into
+     * their parents inside each subdomain (ElasticBody::assemble_cells):
+     * they have no copy and no multiplier row.
      */
     template <int dim>
     class TFETIDual : public contact::DualFormulation<dim>

@@ -158,18 +158,12 @@ namespace dualcontact
     ContactStage<dim>::decomposed() const
     {
       using Method         = decomposition::DecompositionParameters::Method;
-      double largest       = 0;
-      bool   hanging_nodes = false;
+      double largest = 0;
       for (const auto *body : scene_.bodies())
-      {
         largest = std::max<double>(largest, body->n_dofs());
-        hanging_nodes =
-          hanging_nodes || body->triangulation().has_hanging_nodes();
-      }
       return decomposition_parameters_.resolve(
                decomposition::DecompositionParameters::
-                 estimate_factor_megabytes(dim, largest),
-               hanging_nodes) == Method::tfeti;
+                 estimate_factor_megabytes(dim, largest)) == Method::tfeti;
     }
 
 

@@ -17,7 +17,11 @@
 //     same answer in fewer iterations;
 //  H. the Dirichlet preconditioner Q B S B' Q: S_s v against the
 //     dense Schur complement of a subdomain, and MPRGP / MPGP with it on
-//     the beam and on E's scene: the same answer, fewer iterations.
+//     the beam and on E's scene: the same answer, fewer iterations;
+//  I. hanging nodes (cells refined once in a corner): A's brick with
+//     hanging nodes on the contact face, the Dirichlet face and across
+//     subdomain boundaries; E's two blocks with hanging nodes on both
+//     contact sides; B's Coulomb block; no subdomain holds a hanging dof.
 // Checks: displacements to 1e-8 relative (largest nodal difference over
 // the largest displacement), contact forces (every multiplier, relative to
 // the largest) to 1e-6, the copies of every interface dof agree to 1e-8 of
@@ -59,11 +63,21 @@ namespace
             const std::vector<unsigned int>                 &subdivisions,
             const std::vector<fem::DirichletCondition<dim>> &dirichlet,
             const std::vector<fem::TractionCondition<dim>>  &tractions,
-            const std::vector<double>                       &body_force = {})
+            const std::vector<double>                       &body_force = {},
+            const std::function<bool(const Point<dim> &)>   &refine     = {})
   {
     auto tria = std::make_shared<Triangulation<dim>>();
     GridGenerator::subdivided_hyper_rectangle(
       *tria, subdivisions, lower, upper, true);
+    if (refine)
+    {
+      // the cells whose centre @p refine selects, refined once: hanging
+      // nodes where they meet the others
+      for (const auto &cell : tria->active_cell_iterators())
+        if (refine(cell->center()))
+          cell->set_refine_flag();
+      tria->execute_coarsening_and_refinement();
+    }
     for (const auto &cell : tria->active_cell_iterators())
       cell->set_material_id(0);
     auto body = std::make_unique<fem::ElasticBody<dim>>(
@@ -325,6 +339,21 @@ namespace
   }
 
 
+  /** Coulomb friction (mu = 0.3) of a 2D block's bottom on the plane y = 0. */
+  contact::ContactPair<2>
+  coulomb_pair()
+  {
+    contact::ContactPair<2> pair;
+    pair.name           = "block-plane";
+    pair.slave_boundary = 2;
+    pair.obstacle =
+      std::make_shared<contact::PlaneObstacle<2>>(Point<2>(), Point<2>(0, 1));
+    pair.friction.type  = contact::FrictionLaw::Type::coulomb_isotropic;
+    pair.friction.first = 0.3;
+    return pair;
+  }
+
+
   /** B. 2D Coulomb block pushed down and sideways. */
   void
   coulomb_block()
@@ -336,14 +365,8 @@ namespace
                    {8, 8},
                    {{3, mask<2>({0, 1}), constant<2>({2e-3, -1e-3})}},
                    {});
-    contact::ContactPair<2> pair;
-    pair.name           = "block-plane";
-    pair.slave_boundary = 2;
-    pair.obstacle =
-      std::make_shared<contact::PlaneObstacle<2>>(Point<2>(), Point<2>(0, 1));
-    pair.friction.type  = contact::FrictionLaw::Type::coulomb_isotropic;
-    pair.friction.first = 0.3;
-    compare<2>("B. 2D Coulomb block", {body.get()}, {pair}, {1, 3, 7}, "mprgp");
+    compare<2>(
+      "B. 2D Coulomb block", {body.get()}, {coulomb_pair()}, {1, 3, 7}, "mprgp");
   }
 
 
@@ -683,6 +706,89 @@ namespace
 } // namespace
 
 
+  /**
+   * I. Hanging nodes: every scene refined once where @p corner holds, so
+   * that refined and coarse cells meet on the contact faces, on the
+   * Dirichlet faces and across subdomain boundaries.  TFETI condenses a
+   * hanging dof into its parents inside every subdomain that has it.
+   */
+  void
+  hanging_nodes()
+  {
+    // no subdomain holds a hanging dof: each holds the parents instead
+    const auto no_hanging_copy = [](const fem::ElasticBody<3> &body)
+    {
+      return [&body](const decomposition::TFETIDual<3> &tfeti)
+      {
+        unsigned int n_hanging = 0;
+        for (unsigned int s = 0; s < tfeti.n_subdomains(); ++s)
+          for (const auto dof : tfeti.subdomain(s).dofs())
+            n_hanging += body.hanging_node_constraints().is_constrained(dof);
+        check(n_hanging == 0, "  hanging dofs in subdomains", n_hanging);
+      };
+    };
+
+    const auto brick = make_body<3>(
+      "brick, refined corner",
+      Point<3>(0, 0, 0),
+      Point<3>(1, 2, 1),
+      {4, 8, 4},
+      {{2, mask<3>({0, 1, 2}), constant<3>({0, 0, 0})}},
+      {{5, constant<3>({150, 300, 0})}},
+      {0, 0, -9.81 * 7.85e-2},
+      [](const Point<3> &p) { return p[0] < 0.5 && p[1] < 1.0 && p[2] < 0.5; });
+    check(brick->triangulation().has_hanging_nodes() &&
+            brick->hanging_node_constraints().n_constraints() > 0,
+          "I. brick: hanging-node constraints",
+          brick->hanging_node_constraints().n_constraints());
+    compare<3>("I. brick 4 x 8 x 4 with a refined corner, orthotropic Tresca",
+               {brick.get()},
+               {brick_pair()},
+               {1, 3, 8},
+               "auto",
+               no_hanging_copy(*brick));
+
+    const auto lower = make_body<3>(
+      "lower block, refined corner",
+      Point<3>(0, 0, -1),
+      Point<3>(1, 1, 0),
+      {3, 3, 3},
+      {{4, mask<3>({0, 1, 2}), constant<3>({0, 0, 0})}},
+      {},
+      {},
+      [](const Point<3> &p) { return p[0] > 0.5 && p[2] > -0.5; });
+    const auto upper = make_body<3>(
+      "upper block, refined corner",
+      Point<3>(0.1, 0.1, 0),
+      Point<3>(0.9, 0.9, 0.6),
+      {4, 4, 3},
+      {{5, mask<3>({0, 1, 2}), constant<3>({1e-4, 0, -1e-3})}},
+      {},
+      {},
+      [](const Point<3> &p) { return p[1] < 0.5 && p[2] < 0.2; });
+    compare<3>("I. 3D block on block, both contact sides refined in part",
+               {lower.get(), upper.get()},
+               {block_pair()},
+               {1, 4},
+               "mprgp");
+
+    const auto block = make_body<2>(
+      "block, refined corner",
+      Point<2>(0, 0),
+      Point<2>(1, 1),
+      {8, 8},
+      {{3, mask<2>({0, 1}), constant<2>({2e-3, -1e-3})}},
+      {},
+      {},
+      [](const Point<2> &p) { return p[0] < 0.5 || p[1] > 0.7; });
+    compare<2>("I. 2D Coulomb block, refined in part",
+               {block.get()},
+               {coulomb_pair()},
+               {1, 3, 7},
+               "mprgp");
+  }
+
+
 int
 main()
 {
@@ -695,5 +801,6 @@ main()
   lumped_preconditioner();
   dirichlet_preconditioner();
   bad_counts();
+  hanging_nodes();
   return test_tools::finish();
 }
