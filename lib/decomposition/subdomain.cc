@@ -46,6 +46,15 @@ namespace dualcontact
 
     template <int dim>
     void
+    Subdomain<dim>::release_stiffness_matrix()
+    {
+      stiffness_.clear();
+      sparsity_.reinit(0, 0, 0);
+    }
+
+
+    template <int dim>
+    void
     Subdomain<dim>::apply_generalized_inverse(Vector<double>       &x,
                                               const Vector<double> &b) const
     {
@@ -116,6 +125,8 @@ namespace dualcontact
     const SparseMatrix<double> &
     Subdomain<dim>::stiffness_matrix() const
     {
+      Assert(stiffness_.m() == dofs_.size(),
+             ExcMessage("Subdomain: K_s was released."));
       return stiffness_;
     }
 

@@ -54,6 +54,14 @@ namespace dualcontact
       void
       factorize(std::unique_ptr<fem::StiffnessSolver> solver);
 
+      /**
+       * Frees K_s (its factor stays): for a solve without a preconditioner
+       * that applies K_s, about a third of a subdomain's memory.  Then
+       * stiffness_matrix() may not be called.
+       */
+      void
+      release_stiffness_matrix();
+
       /** x = K_s^# b (local numbering). */
       void
       apply_generalized_inverse(dealii::Vector<double>       &x,

@@ -102,6 +102,10 @@ namespace dualcontact
         preconditioner_setup_time_ =
           max_over_processes(preconditioner_timer.wall_time());
       }
+      else
+        // only the preconditioners apply K_s; the solve needs its factor
+        for (const unsigned int s : owned_)
+          subdomains_[s]->release_stiffness_matrix();
 
       // d = B K^# f - c
       std::vector<VectorType> f(subdomains_.size()), u;

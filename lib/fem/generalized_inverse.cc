@@ -62,18 +62,20 @@ namespace dualcontact
       std::vector<bool> fixed(matrix.m(), false);
       for (const auto dof : fixing_dofs_)
         fixed[dof] = true;
-      reduced_.reinit(matrix.get_sparsity_pattern());
-      reduced_.copy_from(matrix);
+      // a copy only while the solver factorizes (the solvers keep their own
+      // data): one K_s less per TFETI subdomain for the whole solve
+      dealii::SparseMatrix<double> reduced(matrix.get_sparsity_pattern());
+      reduced.copy_from(matrix);
       // Decouple the fixing dofs (rows and columns), keeping their diagonal
       // so that the scale of the matrix is unchanged.
-      for (unsigned int i = 0; i < reduced_.m(); ++i)
-        for (auto it = reduced_.begin(i); it != reduced_.end(i); ++it)
+      for (unsigned int i = 0; i < reduced.m(); ++i)
+        for (auto it = reduced.begin(i); it != reduced.end(i); ++it)
           if ((fixed[i] || fixed[it->column()]) && it->column() != i)
             it->value() = 0.;
       if (schur_dofs != nullptr)
-        solver_->initialize_with_schur_factor(reduced_, *schur_dofs, *schur);
+        solver_->initialize_with_schur_factor(reduced, *schur_dofs, *schur);
       else
-        solver_->initialize(reduced_);
+        solver_->initialize(reduced);
       statistics_ = solver_->statistics();
     }
 

@@ -66,7 +66,6 @@ namespace dualcontact
 
       std::unique_ptr<StiffnessSolver>             solver_;
       std::vector<dealii::types::global_dof_index> fixing_dofs_;
-      dealii::SparseMatrix<double>                 reduced_;
       mutable dealii::Vector<double>               rhs_;
     };
   } // namespace fem

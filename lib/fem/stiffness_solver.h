@@ -62,7 +62,8 @@ namespace dualcontact
 
       virtual ~StiffnessSolver() = default;
 
-      /** Analyse and factorize @p matrix (kept by reference where needed). */
+      /** Analyse and factorize @p matrix (every implementation keeps its
+       *  own copy or factor: @p matrix need not outlive this call). */
       virtual void
       initialize(const dealii::SparseMatrix<double> &matrix) = 0;
 

@@ -616,6 +616,8 @@ namespace
       const contact::ContactDiscretization<3> contact({beam.get()}, {});
       decomposition::DecompositionParameters  parameters;
       parameters.subdomains_per_body = {16};
+      // (with a preconditioner that applies K_s, so that K_s is kept)
+      parameters.preconditioner = "dirichlet";
       decomposition::TFETIDual<3> tfeti({beam.get()},
                                         contact,
                                         parameters,
