@@ -174,6 +174,26 @@ namespace dualcontact
         gather(product, dst);
       };
       gather(full_.b, reduced.b);
+      // the preconditioner in face of the full problem, with the left-out
+      // rows active (their multipliers are fixed at 0): M_F is then one of
+      // the kept free rows, as the solver asks
+      if (full_.free_set_preconditioner)
+        reduced.free_set_preconditioner =
+          [this, n](const VectorType &active_kept)
+        {
+          VectorType active(n);
+          active = 1.;
+          for (unsigned int k = 0; k < index_.size(); ++k)
+            active(index_[k]) = active_kept(k);
+          return [this, n, apply = full_.free_set_preconditioner(active)](
+                   VectorType &dst, const VectorType &src)
+          {
+            VectorType whole(n), result(n);
+            scatter(src, whole);
+            apply(result, whole);
+            gather(result, dst);
+          };
+        };
       // an upper bound of the full A is one of A_WW
       reduced.lambda_max   = full_.lambda_max;
       reduced.semidefinite = full_.semidefinite;

@@ -23,7 +23,15 @@ namespace dualcontact
         , n_cells_(cells.size())
     {
       AssertThrow(!cells.empty(), ExcMessage(name + " has no cells."));
-      dofs_ = body.dofs_of_cells(cells);
+      std::vector<types::global_dof_index> cell_dofs(
+        body.fe().n_dofs_per_cell());
+      for (const auto &cell : cells)
+      {
+        cell->get_dof_indices(cell_dofs);
+        dofs_.insert(dofs_.end(), cell_dofs.begin(), cell_dofs.end());
+      }
+      std::sort(dofs_.begin(), dofs_.end());
+      dofs_.erase(std::unique(dofs_.begin(), dofs_.end()), dofs_.end());
       body.assemble_cells(cells, dofs_, sparsity_, stiffness_, load_);
       modes_ = std::make_unique<fem::RigidBodyModes<dim>>(support_points,
                                                           components,

@@ -73,14 +73,15 @@ namespace dualcontact
                   0)
         , bodies_(bodies)
     {
-      // hanging nodes are condensed into their parents inside the
-      // subdomains (ElasticBody::assemble_cells); every other constraint
-      // must be a Dirichlet condition, which becomes multiplier rows
+      // hanging nodes and Dirichlet conditions become multiplier rows;
+      // every other constraint line must be one of these
+#ifdef DEBUG
       for (const auto *body : bodies_)
         for (const auto &line : body->constraints().get_lines())
           Assert(line.entries.empty() ||
                    body->hanging_node_constraints().is_constrained(line.index),
                  ExcInternalError());
+#endif
       Timer timer;
       decompose(parameters);
       decomposition_time_ = max_over_processes(timer.wall_time());
@@ -188,7 +189,19 @@ namespace dualcontact
 
       dofs_.resize(cells.size());
       for (unsigned int s = 0; s < cells.size(); ++s)
-        dofs_[s] = bodies_[body_of[s]]->dofs_of_cells(cells[s]);
+      {
+        const fem::ElasticBody<dim>         &body = *bodies_[body_of[s]];
+        std::vector<types::global_dof_index> cell_dofs(
+          body.fe().n_dofs_per_cell());
+        for (const auto &cell : cells[s])
+        {
+          cell->get_dof_indices(cell_dofs);
+          dofs_[s].insert(dofs_[s].end(), cell_dofs.begin(), cell_dofs.end());
+        }
+        std::sort(dofs_[s].begin(), dofs_[s].end());
+        dofs_[s].erase(std::unique(dofs_[s].begin(), dofs_[s].end()),
+                       dofs_[s].end());
+      }
       assign_owners();
 
       subdomains_.resize(cells.size());
@@ -327,8 +340,6 @@ namespace dualcontact
             --b;
           const auto [s, l] =
             first_copy_[b][it->column() - contact_.body_offset(b)];
-          // the rows are condensed: no column of a hanging dof
-          Assert(s != invalid, ExcInternalError());
           add_entry(s, row, l, it->value());
         }
       };
@@ -358,11 +369,19 @@ namespace dualcontact
           for (unsigned int l = 0; l < dofs_[s].size(); ++l)
             copies[b][dofs_[s][l]].push_back({s, l});
       }
-      // gluing rows: a chain through the copies of every free dof (a
-      // hanging dof has no copy: the subdomains hold its parents)
+      // a dof under a Dirichlet condition: constrained, and not hanging (a
+      // hanging dof whose parents are all prescribed has a constraint line
+      // without entries too)
+      const auto prescribed = [this](const unsigned int b, const unsigned int i)
+      {
+        return bodies_[b]->constraints().is_constrained(i) &&
+               !bodies_[b]->hanging_node_constraints().is_constrained(i);
+      };
+      // gluing rows: a chain through the copies of every dof that is not
+      // prescribed (hanging dofs too)
       for (unsigned int b = 0; b < bodies_.size(); ++b)
         for (unsigned int i = 0; i < copies[b].size(); ++i)
-          if (!bodies_[b]->constraints().is_constrained(i))
+          if (!prescribed(b, i))
             for (unsigned int k = 0; k + 1 < copies[b][i].size(); ++k)
             {
               const unsigned int row = add_row(0.);
@@ -373,23 +392,38 @@ namespace dualcontact
                         -1.);
               ++n_gluing_;
             }
-      // Dirichlet rows: every copy of a dof under a Dirichlet condition
-      // (constrained, and not a hanging dof: those have no copies, and a
-      // hanging dof whose parents are all prescribed has a constraint line
-      // without entries too)
+      // hanging-node rows, counted with the gluing rows: u_h - sum_j w_j u_j
+      // = 0 between the first copies of a hanging dof and of its parents.
+      // As rows, not condensed into K_s: every cell then keeps its own
+      // (isoparametric) vertices, so the rigid motions stay in the kernel
+      // of K_s even where a refined vertex lies on a curved manifold off
+      // the coarse edge (there the condensed K_s has no exact rotation).
       for (unsigned int b = 0; b < bodies_.size(); ++b)
-      {
-        const AffineConstraints<double> &constraints =
-          bodies_[b]->constraints();
+        for (const auto &line :
+             bodies_[b]->hanging_node_constraints().get_lines())
+        {
+          const unsigned int row = add_row(0.);
+          const auto [s, l]      = first_copy_[b][line.index];
+          add_entry(s, row, l, 1.);
+          for (const auto &[parent, weight] : line.entries)
+          {
+            const auto [sp, lp] = first_copy_[b][parent];
+            add_entry(sp, row, lp, -weight);
+          }
+          ++n_gluing_;
+        }
+      // Dirichlet rows: every copy of a prescribed dof
+      for (unsigned int b = 0; b < bodies_.size(); ++b)
         for (unsigned int i = 0; i < copies[b].size(); ++i)
-          if (constraints.is_constrained(i) &&
-              !bodies_[b]->hanging_node_constraints().is_constrained(i))
+          if (prescribed(b, i))
             for (const auto &[s, l] : copies[b][i])
             {
-              add_entry(s, add_row(constraints.get_inhomogeneity(i)), l, 1.);
+              add_entry(s,
+                        add_row(bodies_[b]->constraints().get_inhomogeneity(i)),
+                        l,
+                        1.);
               ++n_dirichlet_;
             }
-      }
     }
 
 
@@ -758,8 +792,7 @@ namespace dualcontact
         for (unsigned int i = 0; i < bodies_[b]->n_dofs(); ++i)
         {
           const auto [s, l] = first_copy_[b][i];
-          // a hanging dof (no copy) is set from its parents by distribute()
-          if (s != invalid && owner_[s] == rank_)
+          if (owner_[s] == rank_)
             displacements[b](i) = u[s](l);
         }
         sum_over_processes(displacements[b]);

@@ -393,31 +393,6 @@ namespace dualcontact
 
 
     template <int dim>
-    std::vector<types::global_dof_index>
-    ElasticBody<dim>::dofs_of_cells(
-      const std::vector<typename DoFHandler<dim>::active_cell_iterator> &cells)
-      const
-    {
-      std::vector<types::global_dof_index> dofs;
-      std::vector<types::global_dof_index> cell_dofs(fe_.n_dofs_per_cell());
-      for (const auto &cell : cells)
-      {
-        cell->get_dof_indices(cell_dofs);
-        for (const auto dof : cell_dofs)
-          if (const auto *parents =
-                hanging_node_constraints_.get_constraint_entries(dof))
-            for (const auto &[parent, weight] : *parents)
-              dofs.push_back(parent);
-          else
-            dofs.push_back(dof);
-      }
-      std::sort(dofs.begin(), dofs.end());
-      dofs.erase(std::unique(dofs.begin(), dofs.end()), dofs.end());
-      return dofs;
-    }
-
-
-    template <int dim>
     void
     ElasticBody<dim>::assemble_cells(
       const std::vector<typename DoFHandler<dim>::active_cell_iterator> &cells,
@@ -427,37 +402,26 @@ namespace dualcontact
       Vector<double>       &load) const
     {
       Assert(std::is_sorted(dofs.begin(), dofs.end()), ExcInternalError());
-      const auto local_index = [&](const types::global_dof_index dof)
-      {
-        const auto it = std::lower_bound(dofs.begin(), dofs.end(), dof);
-        Assert(it != dofs.end() && *it == dof, ExcInternalError());
-        return static_cast<unsigned int>(it - dofs.begin());
-      };
-      // each cell dof as (local index, weight) pairs, once: itself with
-      // weight 1, or a hanging node's parents with its constraint's weights
-      using Expansion = std::vector<std::pair<unsigned int, double>>;
       const unsigned int dofs_per_cell = fe_.n_dofs_per_cell();
-      std::vector<std::vector<Expansion>>  expansions(cells.size());
+      // the local indices of each cell's dofs, once
+      std::vector<std::vector<types::global_dof_index>> local(cells.size());
       std::vector<types::global_dof_index> cell_dofs(dofs_per_cell);
       for (unsigned int c = 0; c < cells.size(); ++c)
       {
         cells[c]->get_dof_indices(cell_dofs);
-        expansions[c].resize(dofs_per_cell);
+        local[c].resize(dofs_per_cell);
         for (unsigned int i = 0; i < dofs_per_cell; ++i)
-          if (const auto *parents =
-                hanging_node_constraints_.get_constraint_entries(cell_dofs[i]))
-            for (const auto &[parent, weight] : *parents)
-              expansions[c][i].emplace_back(local_index(parent), weight);
-          else
-            expansions[c][i].emplace_back(local_index(cell_dofs[i]), 1.);
+        {
+          const auto it =
+            std::lower_bound(dofs.begin(), dofs.end(), cell_dofs[i]);
+          Assert(it != dofs.end() && *it == cell_dofs[i], ExcInternalError());
+          local[c][i] = it - dofs.begin();
+        }
       }
       DynamicSparsityPattern dsp(dofs.size());
-      for (const auto &cell_expansions : expansions)
-        for (const Expansion &row : cell_expansions)
-          for (const auto &[i, wi] : row)
-            for (const Expansion &column : cell_expansions)
-              for (const auto &[j, wj] : column)
-                dsp.add(i, j);
+      for (const auto &indices : local)
+        for (const auto i : indices)
+          dsp.add_entries(i, indices.begin(), indices.end());
       sparsity.copy_from(dsp);
       matrix.reinit(sparsity);
       load.reinit(dofs.size());
@@ -469,13 +433,11 @@ namespace dualcontact
       {
         cell_system(cells[c], scratch, cell_matrix, cell_rhs);
         for (unsigned int i = 0; i < dofs_per_cell; ++i)
-          for (const auto &[a, wa] : expansions[c][i])
-          {
-            for (unsigned int j = 0; j < dofs_per_cell; ++j)
-              for (const auto &[b, wb] : expansions[c][j])
-                matrix.add(a, b, wa * wb * cell_matrix(i, j));
-            load(a) += wa * cell_rhs(i);
-          }
+        {
+          for (unsigned int j = 0; j < dofs_per_cell; ++j)
+            matrix.add(local[c][i], local[c][j], cell_matrix(i, j));
+          load(local[c][i]) += cell_rhs(i);
+        }
       }
     }
 

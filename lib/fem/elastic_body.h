@@ -133,23 +133,11 @@ namespace dualcontact
       is_assembled() const;
 
       /**
-       * The dofs of a subdomain made of @p cells, sorted: the cells' dofs
-       * that are not hanging, and the parents of those that are (a parent
-       * may lie on a cell outside @p cells: the coarse side of the face).
-       */
-      std::vector<dealii::types::global_dof_index>
-      dofs_of_cells(const std::vector<
-                    typename dealii::DoFHandler<dim>::active_cell_iterator>
-                      &cells) const;
-
-      /**
-       * K_S and f_S of the cells @p cells alone, without any Dirichlet
-       * condition: the stiffness matrix and load of a subdomain
-       * (decomposition::Subdomain), with the same cell integrals as
-       * assemble().  Hanging nodes are condensed into their parents
-       * (hanging_node_constraints()), so that K_S is the stiffness of the
-       * conforming field on these cells.  @p dofs is dofs_of_cells(@p
-       * cells); row i of the result belongs to dofs[i].  @p sparsity is
+       * K_S and f_S of the cells @p cells alone, without any constraint (no
+       * Dirichlet condition, no hanging node): the stiffness matrix and
+       * load of a subdomain (decomposition::Subdomain), with the same cell
+       * integrals as assemble().  @p dofs lists the dofs of these cells,
+       * sorted; row i of the result belongs to dofs[i].  @p sparsity is
        * built here, @p matrix and @p load are initialized on it.
        */
       void
