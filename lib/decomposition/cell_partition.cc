@@ -50,8 +50,16 @@ namespace dualcontact
                                body_name + " empty: ask for fewer subdomains " +
                                parameters + "."));
 
-      // The face-connected pieces of every part, by breadth-first search
-      // from the lowest unvisited cell: numbered by their first cell.
+      // The pieces of every part connected through whole faces, by
+      // breadth-first search from the lowest unvisited cell, numbered by
+      // their first cell.  A refined cell and a coarser neighbour share
+      // one vertex only (the others of the fine face hang, and TFETI glues
+      // hanging nodes by multiplier rows, not inside K_s): joined in one
+      // subdomain they would hinge about that vertex.
+      std::vector<typename Triangulation<dim>::active_cell_iterator> cells(
+        n_cells);
+      for (const auto &cell : triangulation.active_cell_iterators())
+        cells[cell->active_cell_index()] = cell;
       const unsigned int        none = std::numeric_limits<unsigned int>::max();
       std::vector<unsigned int> subdomain(n_cells, none);
       std::vector<unsigned int> queue;
@@ -63,9 +71,16 @@ namespace dualcontact
         queue.assign(1, seed);
         subdomain[seed] = n_subdomains;
         for (unsigned int q = 0; q < queue.size(); ++q)
-          for (auto it = graph.begin(queue[q]); it != graph.end(queue[q]); ++it)
+        {
+          const auto &cell = cells[queue[q]];
+          for (const unsigned int f : cell->face_indices())
           {
-            const unsigned int neighbour = it->column();
+            if (cell->at_boundary(f) || cell->face(f)->has_children() ||
+                cell->neighbor(f)->level() != cell->level() ||
+                !cell->neighbor(f)->is_active())
+              continue;
+            const unsigned int neighbour =
+              cell->neighbor(f)->active_cell_index();
             if (subdomain[neighbour] == none &&
                 part[neighbour] == part[queue[q]])
             {
@@ -73,6 +88,7 @@ namespace dualcontact
               queue.push_back(neighbour);
             }
           }
+        }
         ++n_subdomains;
       }
       return subdomain;

@@ -31,8 +31,7 @@ namespace dualcontact
         "largest body exceeds `Memory limit' (on any number of processes: "
         "without a dual preconditioner TFETI is slower than the "
         "undecomposed dual where that fits); none otherwise. Hanging nodes "
-        "(local or contact refinement) are condensed into their parents "
-        "inside the subdomains.");
+        "(local or contact refinement) are glued by multiplier rows.");
       prm.declare_entry(
         "Subdomains per body",
         "",
@@ -40,8 +39,8 @@ namespace dualcontact
         "Method = tfeti: the number of subdomains of each body (one number "
         "per body, or one for all bodies); empty: from `Cells per "
         "subdomain'. A part that METIS leaves in pieces (cells joined by "
-        "an edge or a vertex only) becomes one subdomain per piece, so a "
-        "body may get a few more.");
+        "an edge or a vertex only, or a refined cell beside a coarser one) "
+        "becomes one subdomain per piece, so a body may get more.");
       prm.declare_entry("Cells per subdomain",
                         "4096",
                         Patterns::Integer(1),

@@ -21,10 +21,10 @@ namespace dualcontact
     /**
      * One subdomain of a body in TFETI: a set of the body's active cells
      * with its own copy of their dofs (numbered locally: local dof i is the
-     * body dof dofs()[i], sorted; a hanging dof is replaced by its
-     * parents), its stiffness matrix K_s and load f_s assembled from these
-     * cells alone, hanging nodes condensed, without Dirichlet conditions
-     * (they are multiplier rows in TFETI, so every subdomain floats),
+     * body dof dofs()[i], sorted), its stiffness matrix K_s and load f_s
+     * assembled from these cells alone without any constraint (Dirichlet
+     * conditions and hanging nodes are multiplier rows in TFETI, so every
+     * subdomain floats),
      * its kernel R_s (the dim (dim + 1) / 2 rigid-body motions,
      * orthonormal), and its generalized inverse K_s^# (the fixing-dof
      * method around the given stiffness solver).

@@ -106,9 +106,8 @@ namespace dualcontact
      * every process gets the whole field of every body (the mesh is
      * replicated, parallel::shared, and each process writes its cells).
      *
-     * Hanging nodes (local and contact refinement) are condensed into
-     * their parents inside each subdomain (ElasticBody::assemble_cells):
-     * they have no copy and no multiplier row.
+     * Hanging nodes (local and contact refinement) are multiplier rows
+     * u_h - sum_j w_j u_j = 0, counted with the gluing rows.
      */
     template <int dim>
     class TFETIDual : public contact::DualFormulation<dim>

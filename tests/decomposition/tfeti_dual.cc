@@ -737,16 +737,25 @@ namespace
   void
   hanging_nodes()
   {
-    // one row per hanging dof: with one subdomain, the only "gluing" rows
+    // the gluing rows: a chain through the copies of every dof that is
+    // not prescribed, and one row per hanging dof
     const auto one_row_per_hanging_dof = [](const fem::ElasticBody<3> &body)
     {
       return [&body](const decomposition::TFETIDual<3> &tfeti)
       {
-        if (tfeti.n_subdomains() == 1)
-          check(tfeti.n_gluing_multipliers() ==
-                  body.hanging_node_constraints().n_constraints(),
-                "  1 subdomain: gluing rows = hanging dofs",
-                tfeti.n_gluing_multipliers());
+        std::vector<unsigned int> copies(body.n_dofs(), 0);
+        for (unsigned int s = 0; s < tfeti.n_subdomains(); ++s)
+          for (const auto dof : tfeti.subdomain(s).dofs())
+            ++copies[dof];
+        const auto  &hanging  = body.hanging_node_constraints();
+        unsigned int expected = hanging.n_constraints();
+        for (unsigned int i = 0; i < body.n_dofs(); ++i)
+          if (!body.constraints().is_constrained(i) ||
+              hanging.is_constrained(i))
+            expected += copies[i] - 1;
+        check(tfeti.n_gluing_multipliers() == expected,
+              "  gluing rows: copies - 1 per free dof, one per hanging dof",
+              tfeti.n_gluing_multipliers());
       };
     };
 
