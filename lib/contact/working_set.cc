@@ -1,4 +1,5 @@
 #include <deal.II/base/exceptions.h>
+#include <deal.II/lac/lapack_full_matrix.h>
 
 #include <contact/working_set.h>
 #include <qp/separable_set.h>
@@ -159,6 +160,99 @@ namespace dualcontact
     }
 
 
+    namespace
+    {
+      /** Largest order of G_W G_W' factorized densely. */
+      constexpr unsigned int max_dense_coarse_order = 3000;
+
+      /**
+       * Rows of @p equality (B = G~_W: the orthonormal rows of the full
+       * problem restricted to the kept columns, no longer orthonormal)
+       * made orthonormal again: B := L^{-1} B, c := L^{-1} c with
+       * B B' = L L' (dense, of the order of the rigid-body modes), so
+       * that SMALSE-M keeps its coarse projector on the working set.  Left
+       * as it is (penalty form) when B B' is too large for a dense factor
+       * or numerically singular (a mode that only left-out rows hold).
+       */
+      void
+      orthonormalize_rows(
+        qp::EqualityConstraints<dealii::Vector<double>> &equality)
+      {
+        const unsigned int m = equality.c.size();
+        if (m == 0 || m > max_dense_coarse_order)
+          return;
+        dealii::LAPACKFullMatrix<double> BBt(m, m);
+        dealii::Vector<double>           unit(m), column(m), Bt;
+        for (unsigned int j = 0; j < m; ++j)
+        {
+          unit    = 0.;
+          unit(j) = 1.;
+          equality.Tvmult(Bt, unit);
+          equality.vmult(column, Bt);
+          for (unsigned int i = 0; i < m; ++i)
+            BBt(i, j) = column(i);
+        }
+        double largest = 0;
+        for (unsigned int i = 0; i < m; ++i)
+          largest = std::max(largest, BBt(i, i));
+        try
+        {
+          BBt.compute_cholesky_factorization();
+        }
+        catch (...)
+        {
+          return;
+        }
+        // the pivots: L_ii^2 below 1e-12 of the largest diagonal entry of
+        // B B' is a mode the kept columns do not hold
+        auto factor =
+          std::make_shared<dealii::LAPACKFullMatrix<double>>(std::move(BBt));
+        for (unsigned int i = 0; i < m; ++i)
+          if (!((*factor)(i, i) * (*factor)(i, i) > 1e-12 * largest))
+            return;
+        // L^{-1} v and L^{-T} v by forward and backward substitution
+        const auto lower_solve = [factor, m](dealii::Vector<double> &v)
+        {
+          for (unsigned int i = 0; i < m; ++i)
+          {
+            double sum = v(i);
+            for (unsigned int k = 0; k < i; ++k)
+              sum -= (*factor)(i, k) * v(k);
+            v(i) = sum / (*factor)(i, i);
+          }
+        };
+        const auto upper_solve = [factor, m](dealii::Vector<double> &v)
+        {
+          for (unsigned int i = m; i-- > 0;)
+          {
+            double sum = v(i);
+            for (unsigned int k = i + 1; k < m; ++k)
+              sum -= (*factor)(k, i) * v(k);
+            v(i) = sum / (*factor)(i, i);
+          }
+        };
+        equality.vmult = [vmult = equality.vmult, lower_solve](
+                           dealii::Vector<double>       &dst,
+                           const dealii::Vector<double> &src)
+        {
+          vmult(dst, src);
+          lower_solve(dst);
+        };
+        equality.Tvmult = [Tvmult = equality.Tvmult, upper_solve](
+                            dealii::Vector<double>       &dst,
+                            const dealii::Vector<double> &src)
+        {
+          dealii::Vector<double> y = src;
+          upper_solve(y);
+          Tvmult(dst, y);
+        };
+        lower_solve(equality.c);
+        equality.norm_sq          = 1.;
+        equality.orthonormal_rows = true;
+      }
+    } // namespace
+
+
     template <int dim>
     qp::Problem<typename WorkingSet<dim>::VectorType>
     WorkingSet<dim>::reduced_problem() const
@@ -226,7 +320,9 @@ namespace dualcontact
         equality->n_constraints = G.n_constraints;
         // dropping columns does not increase ||G||
         equality->norm_sq = G.norm_sq;
-        reduced.equality  = equality;
+        if (G.orthonormal_rows)
+          orthonormalize_rows(*equality);
+        reduced.equality = equality;
 
         // b := b - G_W' beta, beta the least-squares fit of b by the rows
         // of G_W (normal equations G_W G_W' beta = G_W b, of the order of
