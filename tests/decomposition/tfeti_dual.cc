@@ -22,7 +22,8 @@
 //     hanging nodes on the contact face, the Dirichlet face and across
 //     subdomain boundaries; E's two blocks with hanging nodes on both
 //     contact sides; B's Coulomb block; a quarter ring refined where it
-//     touches a plane (hanging nodes on arcs, off the coarse edges).
+//     touches a plane (hanging nodes on arcs, off the coarse edges), where
+//     the working set leaves rows out and keeps the coarse projector.
 // Checks: displacements to 1e-8 relative (largest nodal difference over
 // the largest displacement), contact forces (every multiplier, relative to
 // the largest) to 1e-6, the copies of every interface dof agree to 1e-8 of
@@ -865,6 +866,30 @@ namespace
                {ring_pair},
                {1, 4},
                "mprgp");
+
+    // the working set leaves out the rows beyond its reach, and the QP on
+    // the rest keeps SMALSE-M's coarse projector (its columns of G~ made
+    // orthonormal again)
+    {
+      const contact::ContactDiscretization<2> contact({quarter_ring.get()},
+                                                      {ring_pair});
+      decomposition::DecompositionParameters  parameters;
+      parameters.subdomains_per_body = {4};
+      decomposition::TFETIDual<2> tfeti({quarter_ring.get()},
+                                        contact,
+                                        parameters,
+                                        cholmod());
+      const auto   result    = solve(tfeti, "mprgp");
+      const auto  &message   = result.qp_statistics.back().message;
+      unsigned int n_dropped = 0;
+      for (const auto &record : result.working_sets)
+        n_dropped += record.n_dropped;
+      check(n_dropped > 0 &&
+              message.find("coarse projector") != std::string::npos,
+            "  working set: rows left out, coarse projector kept (" +
+              message + "), rows left out",
+            n_dropped);
+    }
   }
 
 
