@@ -204,49 +204,33 @@ namespace dualcontact
           return;
         }
         // the pivots: L_ii^2 below 1e-12 of the largest diagonal entry of
-        // B B' is a mode the kept columns do not hold
-        auto factor =
-          std::make_shared<dealii::LAPACKFullMatrix<double>>(std::move(BBt));
+        // B B' is a mode the kept columns do not hold; L as a triangular
+        // matrix, for LAPACK's triangular solves
+        auto L = std::make_shared<dealii::LAPACKFullMatrix<double>>(m, m);
         for (unsigned int i = 0; i < m; ++i)
-          if (!((*factor)(i, i) * (*factor)(i, i) > 1e-12 * largest))
+        {
+          if (!(BBt(i, i) * BBt(i, i) > 1e-12 * largest))
             return;
-        // L^{-1} v and L^{-T} v by forward and backward substitution
-        const auto lower_solve = [factor, m](dealii::Vector<double> &v)
-        {
-          for (unsigned int i = 0; i < m; ++i)
-          {
-            double sum = v(i);
-            for (unsigned int k = 0; k < i; ++k)
-              sum -= (*factor)(i, k) * v(k);
-            v(i) = sum / (*factor)(i, i);
-          }
-        };
-        const auto upper_solve = [factor, m](dealii::Vector<double> &v)
-        {
-          for (unsigned int i = m; i-- > 0;)
-          {
-            double sum = v(i);
-            for (unsigned int k = i + 1; k < m; ++k)
-              sum -= (*factor)(k, i) * v(k);
-            v(i) = sum / (*factor)(i, i);
-          }
-        };
-        equality.vmult = [vmult = equality.vmult, lower_solve](
-                           dealii::Vector<double>       &dst,
-                           const dealii::Vector<double> &src)
+          for (unsigned int k = 0; k <= i; ++k)
+            (*L)(i, k) = BBt(i, k);
+        }
+        L->set_property(dealii::LAPACKSupport::lower_triangular);
+        equality.vmult =
+          [vmult = equality.vmult, L](dealii::Vector<double>       &dst,
+                                      const dealii::Vector<double> &src)
         {
           vmult(dst, src);
-          lower_solve(dst);
+          L->solve(dst);
         };
-        equality.Tvmult = [Tvmult = equality.Tvmult, upper_solve](
-                            dealii::Vector<double>       &dst,
-                            const dealii::Vector<double> &src)
+        equality.Tvmult =
+          [Tvmult = equality.Tvmult, L](dealii::Vector<double>       &dst,
+                                        const dealii::Vector<double> &src)
         {
           dealii::Vector<double> y = src;
-          upper_solve(y);
+          L->solve(y, true);
           Tvmult(dst, y);
         };
-        lower_solve(equality.c);
+        L->solve(equality.c);
         equality.norm_sq          = 1.;
         equality.orthonormal_rows = true;
       }

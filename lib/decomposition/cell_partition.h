@@ -18,8 +18,8 @@ namespace dualcontact
      * stiffness matrix has exactly the rigid-body motions as kernel (a
      * part joined by an edge or a vertex only would have a hinge; so would
      * a refined cell joined to a coarser one, which share one vertex: the
-     * other vertices of the fine face hang).  The subdomains are numbered by their first cell.  The
-     * triangulation's subdomain ids are not touched.
+     * other vertices of the fine face hang).  The subdomains are numbered by
+     * their first cell.  The triangulation's subdomain ids are not touched.
      *
      * Throws, naming `Subdomains per body' / `Cells per subdomain' of
      * `subsection Decomposition' and @p body_name, when @p n_parts exceeds

@@ -157,7 +157,7 @@ namespace dualcontact
     bool
     ContactStage<dim>::decomposed() const
     {
-      using Method         = decomposition::DecompositionParameters::Method;
+      using Method   = decomposition::DecompositionParameters::Method;
       double largest = 0;
       for (const auto *body : scene_.bodies())
         largest = std::max<double>(largest, body->n_dofs());

@@ -128,12 +128,11 @@ namespace dualcontact
 
       dof_handler_.distribute_dofs(fe_);
 
-      hanging_node_constraints_.clear();
-      DoFTools::make_hanging_node_constraints(dof_handler_,
-                                              hanging_node_constraints_);
-      hanging_node_constraints_.close();
       constraints_.clear();
       DoFTools::make_hanging_node_constraints(dof_handler_, constraints_);
+      // the hanging nodes alone, before the Dirichlet conditions join them
+      hanging_node_constraints_.copy_from(constraints_);
+      hanging_node_constraints_.close();
       // Conditions are applied in the order given: where two boundaries meet,
       // the first condition on a dof wins (AffineConstraints keeps the first).
       for (const auto &condition : dirichlet_)

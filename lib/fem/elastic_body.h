@@ -297,9 +297,9 @@ namespace dualcontact
       std::shared_ptr<const dealii::Function<dim>>            body_force_;
       dealii::AffineConstraints<double>                       constraints_;
       dealii::AffineConstraints<double> hanging_node_constraints_;
-      dealii::SparsityPattern                                 sparsity_;
-      dealii::SparseMatrix<double>                            stiffness_;
-      dealii::Vector<double>                                  load_;
+      dealii::SparsityPattern           sparsity_;
+      dealii::SparseMatrix<double>      stiffness_;
+      dealii::Vector<double>            load_;
     };
   } // namespace fem
 } // namespace dualcontact

@@ -276,6 +276,26 @@ namespace
   }
 
 
+  /**
+   * A frictionless pair of @p slave_boundary on the rigid plane through the
+   * origin whose outward normal is the last axis (z = 0 in 3D, y = 0 in
+   * 2D).
+   */
+  template <int dim>
+  contact::ContactPair<dim>
+  pair_on_plane(const std::string &name, const unsigned int slave_boundary)
+  {
+    Point<dim> normal;
+    normal[dim - 1] = 1;
+    contact::ContactPair<dim> pair;
+    pair.name           = name;
+    pair.slave_boundary = slave_boundary;
+    pair.obstacle =
+      std::make_shared<contact::PlaneObstacle<dim>>(Point<dim>(), normal);
+    return pair;
+  }
+
+
   /** The brick of inputs/brick.prm, 4 x 8 x 4 cells. */
   std::unique_ptr<fem::ElasticBody<3>>
   brick_body()
@@ -293,12 +313,7 @@ namespace
   contact::ContactPair<3>
   brick_pair()
   {
-    contact::ContactPair<3> pair;
-    pair.name           = "brick-plane";
-    pair.slave_boundary = 4;
-    pair.obstacle =
-      std::make_shared<contact::PlaneObstacle<3>>(Point<3>(),
-                                                  Point<3>(0, 0, 1));
+    contact::ContactPair<3> pair = pair_on_plane<3>("brick-plane", 4);
     pair.friction.type   = contact::FrictionLaw::Type::tresca_orthotropic;
     pair.friction.first  = 10;
     pair.friction.second = 5;
@@ -364,11 +379,7 @@ namespace
   contact::ContactPair<2>
   coulomb_pair()
   {
-    contact::ContactPair<2> pair;
-    pair.name           = "block-plane";
-    pair.slave_boundary = 2;
-    pair.obstacle =
-      std::make_shared<contact::PlaneObstacle<2>>(Point<2>(), Point<2>(0, 1));
+    contact::ContactPair<2> pair = pair_on_plane<2>("block-plane", 2);
     pair.friction.type  = contact::FrictionLaw::Type::coulomb_isotropic;
     pair.friction.first = 0.3;
     return pair;
@@ -386,8 +397,11 @@ namespace
                    {8, 8},
                    {{3, mask<2>({0, 1}), constant<2>({2e-3, -1e-3})}},
                    {});
-    compare<2>(
-      "B. 2D Coulomb block", {body.get()}, {coulomb_pair()}, {1, 3, 7}, "mprgp");
+    compare<2>("B. 2D Coulomb block",
+               {body.get()},
+               {coulomb_pair()},
+               {1, 3, 7},
+               "mprgp");
   }
 
 
@@ -401,13 +415,9 @@ namespace
                                    {8, 8},
                                    {},
                                    {{3, constant<2>({1e-2, -1})}});
-    contact::ContactPair<2> pair;
-    pair.name           = "block-plane";
-    pair.slave_boundary = 2;
-    pair.obstacle =
-      std::make_shared<contact::PlaneObstacle<2>>(Point<2>(), Point<2>(0, 1));
-    pair.friction.type  = contact::FrictionLaw::Type::tresca_isotropic;
-    pair.friction.first = 0.1;
+    contact::ContactPair<2> pair = pair_on_plane<2>("block-plane", 2);
+    pair.friction.type           = contact::FrictionLaw::Type::tresca_isotropic;
+    pair.friction.first          = 0.1;
     compare<2>(
       "C. 2D floating block, Tresca", {body.get()}, {pair}, {1, 4}, "mprgp");
   }
@@ -726,14 +736,13 @@ namespace
           "5 subdomains of 4 cells: error names the parameter",
           message.empty() ? "no error" : "thrown");
   }
-} // namespace
 
 
   /**
-   * I. Hanging nodes: every scene refined once where @p corner holds, so
-   * that refined and coarse cells meet on the contact faces, on the
-   * Dirichlet faces and across subdomain boundaries.  TFETI condenses a
-   * hanging dof into its parents inside every subdomain that has it.
+   * I. Hanging nodes: every scene refined once in part, so that refined
+   * and coarse cells meet on the contact faces, on the Dirichlet faces and
+   * across subdomain boundaries.  TFETI glues a hanging dof to its parents
+   * by a multiplier row.
    */
   void
   hanging_nodes()
@@ -760,15 +769,16 @@ namespace
       };
     };
 
-    const auto brick = make_body<3>(
-      "brick, refined corner",
-      Point<3>(0, 0, 0),
-      Point<3>(1, 2, 1),
-      {4, 8, 4},
-      {{2, mask<3>({0, 1, 2}), constant<3>({0, 0, 0})}},
-      {{5, constant<3>({150, 300, 0})}},
-      {0, 0, -9.81 * 7.85e-2},
-      [](const Point<3> &p) { return p[0] < 0.5 && p[1] < 1.0 && p[2] < 0.5; });
+    const auto brick =
+      make_body<3>("brick, refined corner",
+                   Point<3>(0, 0, 0),
+                   Point<3>(1, 2, 1),
+                   {4, 8, 4},
+                   {{2, mask<3>({0, 1, 2}), constant<3>({0, 0, 0})}},
+                   {{5, constant<3>({150, 300, 0})}},
+                   {0, 0, -9.81 * 7.85e-2},
+                   [](const Point<3> &p)
+                   { return p[0] < 0.5 && p[1] < 1.0 && p[2] < 0.5; });
     check(brick->triangulation().has_hanging_nodes() &&
             brick->hanging_node_constraints().n_constraints() > 0,
           "I. brick: hanging-node constraints",
@@ -780,39 +790,39 @@ namespace
                "auto",
                one_row_per_hanging_dof(*brick));
 
-    const auto lower = make_body<3>(
-      "lower block, refined corner",
-      Point<3>(0, 0, -1),
-      Point<3>(1, 1, 0),
-      {3, 3, 3},
-      {{4, mask<3>({0, 1, 2}), constant<3>({0, 0, 0})}},
-      {},
-      {},
-      [](const Point<3> &p) { return p[0] > 0.5 && p[2] > -0.5; });
-    const auto upper = make_body<3>(
-      "upper block, refined corner",
-      Point<3>(0.1, 0.1, 0),
-      Point<3>(0.9, 0.9, 0.6),
-      {4, 4, 3},
-      {{5, mask<3>({0, 1, 2}), constant<3>({1e-4, 0, -1e-3})}},
-      {},
-      {},
-      [](const Point<3> &p) { return p[1] < 0.5 && p[2] < 0.2; });
+    const auto lower =
+      make_body<3>("lower block, refined corner",
+                   Point<3>(0, 0, -1),
+                   Point<3>(1, 1, 0),
+                   {3, 3, 3},
+                   {{4, mask<3>({0, 1, 2}), constant<3>({0, 0, 0})}},
+                   {},
+                   {},
+                   [](const Point<3> &p) { return p[0] > 0.5 && p[2] > -0.5; });
+    const auto upper =
+      make_body<3>("upper block, refined corner",
+                   Point<3>(0.1, 0.1, 0),
+                   Point<3>(0.9, 0.9, 0.6),
+                   {4, 4, 3},
+                   {{5, mask<3>({0, 1, 2}), constant<3>({1e-4, 0, -1e-3})}},
+                   {},
+                   {},
+                   [](const Point<3> &p) { return p[1] < 0.5 && p[2] < 0.2; });
     compare<3>("I. 3D block on block, both contact sides refined in part",
                {lower.get(), upper.get()},
                {block_pair()},
                {1, 4},
                "mprgp");
 
-    const auto block = make_body<2>(
-      "block, refined corner",
-      Point<2>(0, 0),
-      Point<2>(1, 1),
-      {8, 8},
-      {{3, mask<2>({0, 1}), constant<2>({2e-3, -1e-3})}},
-      {},
-      {},
-      [](const Point<2> &p) { return p[0] < 0.5 || p[1] > 0.7; });
+    const auto block =
+      make_body<2>("block, refined corner",
+                   Point<2>(0, 0),
+                   Point<2>(1, 1),
+                   {8, 8},
+                   {{3, mask<2>({0, 1}), constant<2>({2e-3, -1e-3})}},
+                   {},
+                   {},
+                   [](const Point<2> &p) { return p[0] < 0.5 || p[1] > 0.7; });
     compare<2>("I. 2D Coulomb block, refined in part",
                {block.get()},
                {coulomb_pair()},
@@ -837,30 +847,26 @@ namespace
         if (cell->face(f)->at_boundary())
         {
           const Point<2> c = cell->face(f)->center();
-          cell->face(f)->set_boundary_id(
-            std::abs(c[0]) < 1e-10                  ? 1 :
-            std::abs(c[1] - 1) < 1e-10              ? 2 :
-            c.distance(Point<2>(0, 1)) > 0.75 ? 0 :
-                                                      3);
+          cell->face(f)->set_boundary_id(std::abs(c[0]) < 1e-10            ? 1 :
+                                         std::abs(c[1] - 1) < 1e-10        ? 2 :
+                                         c.distance(Point<2>(0, 1)) > 0.75 ? 0 :
+                                                                             3);
         }
     ring->refine_global(1);
-    const auto quarter_ring = make_body_on<2>(
-      "quarter ring, refined near its lowest point",
-      ring,
-      {{1, mask<2>({0}), constant<2>({0, 0})},
-       {2, mask<2>({0, 1}), constant<2>({0, -2e-3})}},
-      {},
-      {},
-      [](const Point<2> &p) { return p.distance(Point<2>(0, 0)) < 0.4; });
+    const auto quarter_ring =
+      make_body_on<2>("quarter ring, refined near its lowest point",
+                      ring,
+                      {{1, mask<2>({0}), constant<2>({0, 0})},
+                       {2, mask<2>({0, 1}), constant<2>({0, -2e-3})}},
+                      {},
+                      {},
+                      [](const Point<2> &p)
+                      { return p.distance(Point<2>(0, 0)) < 0.4; });
     check(quarter_ring->hanging_node_constraints().n_constraints() > 0,
           "I. quarter ring: hanging-node constraints",
           quarter_ring->hanging_node_constraints().n_constraints());
-    contact::ContactPair<2> ring_pair;
-    ring_pair.name           = "ring-plane";
-    ring_pair.slave_boundary = 0;
-    ring_pair.obstacle =
-      std::make_shared<contact::PlaneObstacle<2>>(Point<2>(), Point<2>(0, 1));
-    ring_pair.search_distance = 0.5;
+    contact::ContactPair<2> ring_pair = pair_on_plane<2>("ring-plane", 0);
+    ring_pair.search_distance         = 0.5;
     compare<2>("I. 2D quarter ring on a plane, refined where it touches",
                {quarter_ring.get()},
                {ring_pair},
@@ -879,18 +885,19 @@ namespace
                                         contact,
                                         parameters,
                                         cholmod());
-      const auto   result    = solve(tfeti, "mprgp");
-      const auto  &message   = result.qp_statistics.back().message;
-      unsigned int n_dropped = 0;
+      const auto                  result  = solve(tfeti, "mprgp");
+      const auto                 &message = result.qp_statistics.back().message;
+      unsigned int                n_dropped = 0;
       for (const auto &record : result.working_sets)
         n_dropped += record.n_dropped;
       check(n_dropped > 0 &&
               message.find("coarse projector") != std::string::npos,
-            "  working set: rows left out, coarse projector kept (" +
-              message + "), rows left out",
+            "  working set: rows left out, coarse projector kept (" + message +
+              "), rows left out",
             n_dropped);
     }
   }
+} // namespace
 
 
 int
