@@ -1,6 +1,7 @@
 #include <contact/contact_solver.h>
 #include <qp/solver_factory.h>
 
+#include <algorithm>
 #include <cmath>
 #include <type_traits>
 
@@ -88,9 +89,13 @@ namespace dualcontact
     template <typename V>
     qp::SolverStatistics
     ContactSolver<dim>::run_solver(const qp::Problem<V> &problem,
-                                   V                    &lambda) const
+                                   V                    &lambda,
+                                   const double          tolerance) const
     {
-      return qp::make_solver<V>(qp_parameters_, smalse_parameters_, problem)
+      qp::SolverParameters parameters = qp_parameters_;
+      if (tolerance > 0.)
+        parameters.tolerance = tolerance;
+      return qp::make_solver<V>(parameters, smalse_parameters_, problem)
         ->solve(problem, lambda);
     }
 
@@ -147,12 +152,19 @@ namespace dualcontact
     {
       const qp::Problem<Replicated> full = dual_.make_problem();
       WorkingSet<dim> working_set(dual_, full, working_set_parameters_);
-      if (!working_set.drops_rows())
+      if (!working_set.drops_rows() && !working_set.separates_rows())
       {
         record = working_set.record();
         return run_solver(full, lambda);
       }
 
+      // with separated rows to find, the rounds start at the separation
+      // tolerance and tighten towards the QP's own (see WorkingSet)
+      const double final_tolerance = qp_parameters_.tolerance;
+      double       tolerance       = final_tolerance;
+      if (working_set.separates_rows())
+        tolerance = std::max(final_tolerance,
+                             working_set_parameters_.separation_tolerance);
       qp::SolverStatistics                total;
       std::vector<dealii::Vector<double>> displacements;
       for (;;)
@@ -160,7 +172,7 @@ namespace dualcontact
         Replicated kept;
         working_set.gather(lambda, kept);
         const qp::SolverStatistics round =
-          run_solver(working_set.reduced_problem(), kept);
+          run_solver(working_set.reduced_problem(), kept, tolerance);
         total =
           working_set.record().n_rounds == 0 ? round : accumulate(total, round);
         ++working_set.record().n_rounds;
@@ -172,10 +184,25 @@ namespace dualcontact
         else if (!dual_.recover(lambda, displacements, false))
           working_set.record().fall_back =
             "the working set leaves a rigid-body motion undetermined";
-        else if (working_set.add_violated_rows(displacements) == 0)
+        else if (const unsigned int added =
+                   working_set.add_violated_rows(displacements);
+                 tolerance > final_tolerance)
+        {
+          // a round of the tolerance ladder: the rows it finds separated
+          // leave, the next round is tighter; once a round that moved finds
+          // no row to drop or add, the next round is the last
+          const unsigned int dropped =
+            working_set.drop_separated_rows(lambda, displacements);
+          tolerance *= working_set_parameters_.separation_reduction;
+          if ((round.iterations > 0 && dropped == 0 && added == 0 &&
+               working_set.record().n_separated > 0) ||
+              tolerance < (1. + 1e-6) * final_tolerance)
+            tolerance = final_tolerance;
+        }
+        else if (added == 0)
           break;
-        else if (working_set.record().n_rounds >=
-                 working_set_parameters_.max_rounds)
+        if (working_set.record().fall_back.empty() &&
+            working_set.record().n_rounds >= working_set_parameters_.max_rounds)
           working_set.record().fall_back =
             "rows still added back after " +
             std::to_string(working_set.record().n_rounds) + " rounds";

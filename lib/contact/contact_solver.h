@@ -118,10 +118,15 @@ namespace dualcontact
       qp::SolverStatistics
       solve_qp(V &lambda, WorkingSetRecord &record) const;
 
-      /** The chosen solver (or the chain auto) on @p problem. */
+      /**
+       * The chosen solver (or the chain auto) on @p problem, to
+       * @p tolerance if positive (else the QP solver's own).
+       */
       template <typename V>
       qp::SolverStatistics
-      run_solver(const qp::Problem<V> &problem, V &lambda) const;
+      run_solver(const qp::Problem<V> &problem,
+                 V                    &lambda,
+                 const double          tolerance = 0.) const;
 
       /** The outer working-set loop (see WorkingSet). */
       qp::SolverStatistics

@@ -44,6 +44,33 @@ namespace dualcontact
                         dealii::Patterns::Integer(1),
                         "Limit on the solve / check / add-back rounds of one "
                         "QP; beyond it the QP is solved on all rows.");
+      prm.declare_entry(
+        "Separated rows",
+        "automatic",
+        dealii::Patterns::Selection("automatic|keep|drop"),
+        "drop: the QP is solved in rounds from the separation tolerance down "
+        "to its own; after each, the normal rows whose multiplier is 0 and "
+        "whose node is open in the recovered displacement are left out too "
+        "(a row once added back stays), and the last round is checked as "
+        "above. Why: such a "
+        "row's column of G = R'B' ties the rigid-body modes of its "
+        "subdomain to a multiplier that cannot move, and SMALSE-M's coarse "
+        "projector then describes the wrong equality (TFETI; "
+        "doc/benchmarks/tfeti.md, 'Separated rows'). automatic: drop where "
+        "the dual has gluing rows (Decomposition/Method = tfeti), keep "
+        "otherwise.");
+      prm.declare_entry("Separation tolerance",
+                        "0.1",
+                        dealii::Patterns::Double(0., 1.),
+                        "Relative tolerance of the first round that looks "
+                        "for separated rows (the QP solver's own tolerance "
+                        "where that is larger) [-].");
+      prm.declare_entry("Separation reduction",
+                        "0.1",
+                        dealii::Patterns::Double(1e-6, 0.9),
+                        "Factor from one round's tolerance to the next "
+                        "while separated rows are looked for, down to the "
+                        "QP solver's tolerance [-].");
       prm.leave_subsection();
       prm.leave_subsection();
     }
@@ -54,9 +81,15 @@ namespace dualcontact
     {
       prm.enter_subsection("Dual problem");
       prm.enter_subsection("Working set");
-      enabled      = prm.get_bool("Enabled");
-      reach_factor = prm.get_double("Reach factor");
-      max_rounds   = prm.get_integer("Maximum rounds");
+      enabled                     = prm.get_bool("Enabled");
+      reach_factor                = prm.get_double("Reach factor");
+      max_rounds                  = prm.get_integer("Maximum rounds");
+      const std::string separated = prm.get("Separated rows");
+      separated_rows              = separated == "drop" ? SeparatedRows::drop :
+                                    separated == "keep" ? SeparatedRows::keep :
+                                                          SeparatedRows::automatic;
+      separation_tolerance        = prm.get_double("Separation tolerance");
+      separation_reduction        = prm.get_double("Separation reduction");
       prm.leave_subsection();
       prm.leave_subsection();
     }
@@ -70,6 +103,7 @@ namespace dualcontact
         , full_(full)
         , parameters_(parameters)
         , kept_(full.b.size(), true)
+        , locked_(dual.contact().n_nodes(), false)
     {
       select_rows();
       update_index();
@@ -354,42 +388,48 @@ namespace dualcontact
 
 
     template <int dim>
+    std::pair<double, double>
+    WorkingSet<dim>::normal_gap(
+      const unsigned int                         i,
+      const std::vector<dealii::Vector<double>> &u) const
+    {
+      const ContactDiscretization<dim> &contact = dual_.contact();
+      const auto                       &B       = contact.normal_matrix();
+      const double                      c       = contact.normal_bound()(i);
+      double                            Bu = 0, size = std::abs(c);
+      for (auto it = B.begin(i); it != B.end(i); ++it)
+      {
+        // the body of the column: the last whose offset is not beyond it
+        unsigned int b = u.size() - 1;
+        while (b > 0 && contact.body_offset(b) > it->column())
+          --b;
+        const double term =
+          it->value() * u[b](it->column() - contact.body_offset(b));
+        Bu += term;
+        size += std::abs(term);
+      }
+      return {c - Bu, size};
+    }
+
+
+    template <int dim>
     unsigned int
     WorkingSet<dim>::add_violated_rows(
       const std::vector<dealii::Vector<double>> &u)
     {
-      const ContactDiscretization<dim> &contact = dual_.contact();
-      const auto                       &B       = contact.normal_matrix();
-      const dealii::Vector<double>     &c       = contact.normal_bound();
-      // the body of a column of B
-      std::vector<dealii::types::global_dof_index> starts;
-      for (unsigned int b = 0; b < u.size(); ++b)
-        starts.push_back(contact.body_offset(b));
-      const auto value_at = [&](const dealii::types::global_dof_index column)
-      {
-        const unsigned int b =
-          std::upper_bound(starts.begin(), starts.end(), column) -
-          starts.begin() - 1;
-        return u[b](column - starts[b]);
-      };
-
       unsigned int added = 0;
-      for (unsigned int i = 0; i < contact.n_nodes(); ++i)
+      for (unsigned int i = 0; i < dual_.contact().n_nodes(); ++i)
       {
         if (kept_[i])
           continue;
-        double Bu = 0, size = std::abs(c(i));
-        for (auto it = B.begin(i); it != B.end(i); ++it)
+        // a row dropped for its reach is far from closing, one dropped as
+        // separated was open: rounding of the sum is far below any
+        // penetration that matters
+        const auto [gap, size] = normal_gap(i, u);
+        if (-gap > 1e-12 * size)
         {
-          const double term = it->value() * value_at(it->column());
-          Bu += term;
-          size += std::abs(term);
-        }
-        // a dropped row is at least `reach' from closing: rounding of the
-        // sum is far below any penetration that matters
-        if (Bu - c(i) > 1e-12 * size)
-        {
-          kept_[i] = true;
+          kept_[i]   = true;
+          locked_[i] = true;
           ++added;
         }
       }
@@ -398,6 +438,47 @@ namespace dualcontact
       if (added > 0)
         update_index();
       return added;
+    }
+
+
+    template <int dim>
+    bool
+    WorkingSet<dim>::separates_rows() const
+    {
+      using Rows = WorkingSetParameters::SeparatedRows;
+      if (!parameters_.enabled || dual_.contact().n_nodes() == 0)
+        return false;
+      if (parameters_.separated_rows == Rows::automatic)
+        return dual_.n_multipliers() > dual_.n_contact_multipliers();
+      return parameters_.separated_rows == Rows::drop;
+    }
+
+
+    template <int dim>
+    unsigned int
+    WorkingSet<dim>::drop_separated_rows(
+      const VectorType                          &lambda,
+      const std::vector<dealii::Vector<double>> &u)
+    {
+      unsigned int dropped = 0;
+      for (unsigned int i = 0; i < dual_.contact().n_nodes(); ++i)
+      {
+        if (!kept_[i] || locked_[i] || lambda(i) > 0.)
+          continue;
+        const auto [gap, size] = normal_gap(i, u);
+        if (gap > 1e-12 * size)
+        {
+          kept_[i] = false;
+          ++dropped;
+        }
+      }
+      record_.n_separated += dropped;
+      record_.n_dropped_final += dropped;
+      // a first solve was made: the record tells, even if nothing dropped
+      record_.used = true;
+      if (dropped > 0)
+        update_index();
+      return dropped;
     }
 
 

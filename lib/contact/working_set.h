@@ -7,6 +7,7 @@
 #include <qp/problem.h>
 
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace dualcontact
@@ -31,6 +32,26 @@ namespace dualcontact
       /** Limit on the solve / check / add-back rounds of one QP. */
       unsigned int max_rounds = 20;
 
+      /** Whether the rows a first solve finds separated are dropped. */
+      enum class SeparatedRows
+      {
+        /** Drop them where the dual has gluing rows (TFETI). */
+        automatic,
+        keep,
+        drop
+      };
+      SeparatedRows separated_rows = SeparatedRows::automatic;
+      /**
+       * Relative tolerance of the first round that looks for separated rows
+       * (the solver's own tolerance where that is larger) [-].
+       */
+      double separation_tolerance = 0.1;
+      /**
+       * Factor from one round's tolerance to the next while separated rows
+       * are looked for (down to the QP solver's tolerance) [-].
+       */
+      double separation_reduction = 0.1;
+
       static void
       declare_parameters(dealii::ParameterHandler &prm);
       void
@@ -41,7 +62,7 @@ namespace dualcontact
     /** What the working set did for one QP (statistics.json, the log). */
     struct WorkingSetRecord
     {
-      /** False: every row was kept from the start (nothing to drop). */
+      /** False: the QP was solved once, on all rows. */
       bool used = false;
       /** Normal rows of the dual. */
       unsigned int n_normal_rows = 0;
@@ -49,6 +70,11 @@ namespace dualcontact
       unsigned int n_dropped = 0;
       /** Dropped rows added back because the displacement violated them. */
       unsigned int n_added = 0;
+      /**
+       * Kept normal rows dropped because a round found their node separated
+       * (WorkingSetParameters::separated_rows).
+       */
+      unsigned int n_separated = 0;
       /** Normal rows still dropped at the end (each checked: no penetration).
        */
       unsigned int n_dropped_final = 0;
@@ -94,6 +120,22 @@ namespace dualcontact
      * are violated are added back and the QP solved again (warm started),
      * until none is.  The final multipliers then satisfy the KKT conditions
      * of the whole dual: the dropped rows are feasible with lambda_N,i = 0.
+     *
+     * Separated rows (TFETI): the rounds start at a loose tolerance (0.1)
+     * and tighten by a factor (0.1) towards the QP's own; after each, the
+     * normal rows with lambda_N,i = 0 whose node is open in the recovered
+     * displacement are dropped too (a row once added back stays), and once
+     * a round that moved drops or adds nothing, the next is the last, at
+     * the QP's tolerance, checked as above.  Why: a row at its bound cannot
+     * move, but its column of G = R'B' still ties the rigid-body modes of its
+     * subdomain to it, so on the free multipliers SMALSE-M's projector and
+     * penalty describe the wrong equality; with every contact row at its bound
+     * the brick of doc/benchmarks/tfeti.md ("Numerical scalability") needs 343
+     * inner iterations with those columns and 37 without.  Dropping the
+     * rows takes their columns out of G_W, which is made orthonormal again:
+     * that brick at 128 subdomains needs 150 inner iterations instead of
+     * 1,246, 3D Hertz 2,026 instead of 4,029 (doc/benchmarks/tfeti.md,
+     * "Separated rows").
      */
     template <int dim>
     class WorkingSet
@@ -128,6 +170,23 @@ namespace dualcontact
       unsigned int
       add_violated_rows(const std::vector<dealii::Vector<double>> &u);
 
+      /**
+       * Whether the rows found separated by a first solve are to be dropped
+       * (WorkingSetParameters::separated_rows; automatic: where the dual
+       * has gluing rows).
+       */
+      bool
+      separates_rows() const;
+
+      /**
+       * Drops every kept normal row whose multiplier in @p lambda (all
+       * multipliers) is 0 and whose node the displacements @p u leave
+       * open; returns their number.
+       */
+      unsigned int
+      drop_separated_rows(const VectorType                          &lambda,
+                          const std::vector<dealii::Vector<double>> &u);
+
       const WorkingSetRecord &
       record() const;
       WorkingSetRecord &
@@ -138,12 +197,21 @@ namespace dualcontact
       select_rows();
       void
       update_index();
+      /**
+       * Gap c_i - B_N,i u of normal row @p i in the displacements @p u (per
+       * body), and the size of the terms it sums (for its rounding).
+       */
+      std::pair<double, double>
+      normal_gap(const unsigned int                         i,
+                 const std::vector<dealii::Vector<double>> &u) const;
 
       const DualFormulation<dim>    &dual_;
       const qp::Problem<VectorType> &full_;
       WorkingSetParameters           parameters_;
       /** Per multiplier: whether it is in the working set. */
       std::vector<bool> kept_;
+      /** Per normal row: added back once, so never dropped again. */
+      std::vector<bool> locked_;
       /** The kept multipliers, in order. */
       std::vector<unsigned int> index_;
       WorkingSetRecord          record_;

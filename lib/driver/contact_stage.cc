@@ -321,9 +321,10 @@ namespace dualcontact
           set << std::setprecision(3) << "  working set: " << w.n_dropped
               << " of " << w.n_normal_rows
               << " normal rows left out (bound beyond the reach " << w.reach
-              << " m), " << w.n_added << " added back, " << w.n_rounds
-              << " round" << (w.n_rounds == 1 ? "" : "s") << ", "
-              << w.n_dropped_final << " checked free of penetration"
+              << " m), " << w.n_separated << " more found separated, "
+              << w.n_added << " added back, " << w.n_rounds << " round"
+              << (w.n_rounds == 1 ? "" : "s") << ", " << w.n_dropped_final
+              << " checked free of penetration"
               << (w.fall_back.empty() ? "" : "; all rows: " + w.fall_back);
           details.push_back(set.str());
         }

@@ -302,6 +302,7 @@ namespace dualcontact
           working_sets.push_back({{"used", w.used},
                                   {"n_normal_rows", w.n_normal_rows},
                                   {"n_dropped", w.n_dropped},
+                                  {"n_separated", w.n_separated},
                                   {"n_added_back", w.n_added},
                                   {"n_dropped_final", w.n_dropped_final},
                                   {"n_rounds", w.n_rounds},
