@@ -32,15 +32,14 @@ namespace dualcontact
       /** Limit on the solve / check / add-back rounds of one QP. */
       unsigned int max_rounds = 20;
 
-      /** Whether the rows a first solve finds separated are dropped. */
-      enum class SeparatedRows
-      {
-        /** Drop them where the dual has gluing rows (TFETI). */
-        automatic,
-        keep,
-        drop
-      };
-      SeparatedRows separated_rows = SeparatedRows::automatic;
+      /**
+       * Whether the rows that rounds of rising precision find separated are
+       * dropped (see WorkingSet).  Off by default: it cuts the iterations
+       * of TFETI 2 to 6 times where separated rows dominate, but doubles
+       * them on the friction brick (doc/benchmarks/tfeti.md, "Separated
+       * rows").
+       */
+      bool drop_separated_rows = false;
       /**
        * Relative tolerance of the first round that looks for separated rows
        * (the solver's own tolerance where that is larger) [-].
@@ -72,7 +71,7 @@ namespace dualcontact
       unsigned int n_added = 0;
       /**
        * Kept normal rows dropped because a round found their node separated
-       * (WorkingSetParameters::separated_rows).
+       * (WorkingSetParameters::drop_separated_rows).
        */
       unsigned int n_separated = 0;
       /** Normal rows still dropped at the end (each checked: no penetration).
@@ -171,9 +170,8 @@ namespace dualcontact
       add_violated_rows(const std::vector<dealii::Vector<double>> &u);
 
       /**
-       * Whether the rows found separated by a first solve are to be dropped
-       * (WorkingSetParameters::separated_rows; automatic: where the dual
-       * has gluing rows).
+       * Whether the rows found separated in rounds are dropped
+       * (WorkingSetParameters::drop_separated_rows).
        */
       bool
       separates_rows() const;
