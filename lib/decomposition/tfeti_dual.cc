@@ -91,7 +91,17 @@ namespace dualcontact
         subdomains_[s]->factorize(make_solver());
       setup_time_ = max_over_processes(timer.wall_time());
 
-      build_constraint_rows();
+      std::vector<bool> kept_here(subdomains_.size());
+      for (unsigned int s = 0; s < subdomains_.size(); ++s)
+        kept_here[s] = owner_[s] == rank_;
+      rows_ = std::make_unique<ConstraintRows<dim>>(
+        bodies_,
+        contact_,
+        frictional_nodes_,
+        typename ConstraintRows<dim>::Layout{
+          dofs_, first_subdomain_, first_copy_, kept_here});
+      AssertThrow(rows_->n_rows() >= this->n_contact_multipliers(),
+                  ExcInternalError());
       build_coarse_problem();
       if (parameters.preconditioner == "lumped" ||
           parameters.preconditioner == "dirichlet")
@@ -117,7 +127,7 @@ namespace dualcontact
       add_B(u, d_);
       sum_over_processes(d_);
       for (unsigned int r = 0; r < n_multipliers(); ++r)
-        d_(r) -= c_[r];
+        d_(r) -= rows_->rhs(r);
 
       const qp::PowerIterationResult power = qp::power_iteration<VectorType>(
         [this](VectorType &dst, const VectorType &src) { apply_F(dst, src); },
@@ -297,137 +307,6 @@ namespace dualcontact
 
 
     template <int dim>
-    unsigned int
-    TFETIDual<dim>::add_row(const double c)
-    {
-      c_.push_back(c);
-      return c_.size() - 1;
-    }
-
-
-    template <int dim>
-    void
-    TFETIDual<dim>::add_entry(const unsigned int s,
-                              const unsigned int row,
-                              const unsigned int local,
-                              const double       value)
-    {
-      // the rows are numbered alike on every process; only the owner of
-      // subdomain s keeps the entries of B_s
-      if (owner_[s] == rank_)
-        entries_[s].push_back({row, local, value});
-    }
-
-
-    template <int dim>
-    void
-    TFETIDual<dim>::build_constraint_rows()
-    {
-      entries_.assign(subdomains_.size(), {});
-      // contact rows: the body dofs of ContactDiscretization's columns
-      // (stacked over the bodies) mapped to their first copy
-      const auto add_contact_row = [&](const SparseMatrix<double> &B,
-                                       const unsigned int          source,
-                                       const double                c)
-      {
-        const unsigned int row = add_row(c);
-        for (auto it = B.begin(source); it != B.end(source); ++it)
-        {
-          if (it->value() == 0.)
-            continue;
-          unsigned int b = bodies_.size() - 1;
-          while (contact_.body_offset(b) > it->column())
-            --b;
-          const auto [s, l] =
-            first_copy_[b][it->column() - contact_.body_offset(b)];
-          add_entry(s, row, l, it->value());
-        }
-      };
-      const unsigned int   n_nodes = contact_.n_nodes();
-      const Vector<double> gap     = contact_.normal_bound();
-      for (unsigned int i = 0; i < n_nodes; ++i)
-        add_contact_row(contact_.normal_matrix(), i, gap(i));
-      for (const unsigned int node : frictional_nodes_)
-        for (unsigned int k = 0; k + 1 < dim; ++k)
-        {
-          const unsigned int source = (dim - 1) * node + k;
-          add_contact_row(contact_.tangential_matrix(),
-                          source,
-                          -contact_.tangential_offset()(source));
-        }
-      AssertDimension(c_.size(), this->n_contact_multipliers());
-
-      // the copies of every dof of a body, in subdomain order
-      std::vector<
-        std::vector<std::vector<std::pair<unsigned int, unsigned int>>>>
-        copies(bodies_.size());
-      for (unsigned int b = 0; b < bodies_.size(); ++b)
-      {
-        copies[b].resize(bodies_[b]->n_dofs());
-        for (unsigned int s = first_subdomain_[b]; s < first_subdomain_[b + 1];
-             ++s)
-          for (unsigned int l = 0; l < dofs_[s].size(); ++l)
-            copies[b][dofs_[s][l]].push_back({s, l});
-      }
-      // a dof under a Dirichlet condition: constrained, and not hanging (a
-      // hanging dof whose parents are all prescribed has a constraint line
-      // without entries too)
-      const auto prescribed = [this](const unsigned int b, const unsigned int i)
-      {
-        return bodies_[b]->constraints().is_constrained(i) &&
-               !bodies_[b]->hanging_node_constraints().is_constrained(i);
-      };
-      // gluing rows: a chain through the copies of every dof that is not
-      // prescribed (hanging dofs too)
-      for (unsigned int b = 0; b < bodies_.size(); ++b)
-        for (unsigned int i = 0; i < copies[b].size(); ++i)
-          if (!prescribed(b, i))
-            for (unsigned int k = 0; k + 1 < copies[b][i].size(); ++k)
-            {
-              const unsigned int row = add_row(0.);
-              add_entry(copies[b][i][k].first, row, copies[b][i][k].second, 1.);
-              add_entry(copies[b][i][k + 1].first,
-                        row,
-                        copies[b][i][k + 1].second,
-                        -1.);
-              ++n_gluing_;
-            }
-      // hanging-node rows, counted with the gluing rows: u_h - sum_j w_j u_j
-      // = 0 between the first copies of a hanging dof and of its parents.
-      // As rows, not condensed into K_s: every cell then keeps its own
-      // (isoparametric) vertices, so the rigid motions stay in the kernel
-      // of K_s even where a refined vertex lies on a curved manifold off
-      // the coarse edge (there the condensed K_s has no exact rotation).
-      for (unsigned int b = 0; b < bodies_.size(); ++b)
-        for (const auto &line :
-             bodies_[b]->hanging_node_constraints().get_lines())
-        {
-          const unsigned int row = add_row(0.);
-          const auto [s, l]      = first_copy_[b][line.index];
-          add_entry(s, row, l, 1.);
-          for (const auto &[parent, weight] : line.entries)
-          {
-            const auto [sp, lp] = first_copy_[b][parent];
-            add_entry(sp, row, lp, -weight);
-          }
-          ++n_gluing_;
-        }
-      // Dirichlet rows: every copy of a prescribed dof
-      for (unsigned int b = 0; b < bodies_.size(); ++b)
-        for (unsigned int i = 0; i < copies[b].size(); ++i)
-          if (prescribed(b, i))
-            for (const auto &[s, l] : copies[b][i])
-            {
-              add_entry(s,
-                        add_row(bodies_[b]->constraints().get_inhomogeneity(i)),
-                        l,
-                        1.);
-              ++n_dirichlet_;
-            }
-    }
-
-
-    template <int dim>
     void
     TFETIDual<dim>::build_coarse_problem()
     {
@@ -444,7 +323,7 @@ namespace dualcontact
         AssertDimension(modes.size(), n_rigid);
         for (unsigned int k = 0; k < n_rigid; ++k)
           e_(s * n_rigid + k) = modes[k] * subdomains_[s]->load();
-        for (const Entry &entry : entries_[s])
+        for (const Entry &entry : rows_->entries(s))
           for (unsigned int k = 0; k < n_rigid; ++k)
             triples.insert(triples.end(),
                            {static_cast<double>(entry.row),
@@ -490,7 +369,7 @@ namespace dualcontact
       for (const unsigned int s : owned_)
       {
         w[s].reinit(subdomains_[s]->n_dofs());
-        for (const Entry &entry : entries_[s])
+        for (const Entry &entry : rows_->entries(s))
           w[s](entry.local) += entry.value * lambda(entry.row);
       }
     }
@@ -502,7 +381,7 @@ namespace dualcontact
                           VectorType                    &lambda) const
     {
       for (const unsigned int s : owned_)
-        for (const Entry &entry : entries_[s])
+        for (const Entry &entry : rows_->entries(s))
           lambda(entry.row) += entry.value * u[s](entry.local);
     }
 
@@ -580,8 +459,8 @@ namespace dualcontact
       {
         // the interface: every local dof an entry of B_s touches
         std::vector<unsigned int> interface;
-        interface.reserve(entries_[s].size());
-        for (const Entry &entry : entries_[s])
+        interface.reserve(rows_->entries(s).size());
+        for (const Entry &entry : rows_->entries(s))
           interface.push_back(entry.local);
         std::sort(interface.begin(), interface.end());
         interface.erase(std::unique(interface.begin(), interface.end()),
@@ -620,7 +499,7 @@ namespace dualcontact
       std::vector<double> triples;
       for (const unsigned int s : owned_)
       {
-        std::vector<Entry> by_dof = entries_[s];
+        std::vector<Entry> by_dof = rows_->entries(s);
         std::sort(by_dof.begin(),
                   by_dof.end(),
                   [](const Entry &a, const Entry &b)
@@ -762,7 +641,7 @@ namespace dualcontact
       for (unsigned int i = 0; i < this->n_contact_nodes(); ++i)
         scale = std::max(scale, std::abs(lambda(i)));
       for (unsigned int r = 0; r < n_multipliers(); ++r)
-        residual(r) = c_[r] - residual(r);
+        residual(r) = rows_->rhs(r) - residual(r);
       VectorType alpha;
       const bool determined = coarse_->least_squares(
         [&](const unsigned int r)
@@ -819,7 +698,7 @@ namespace dualcontact
     unsigned int
     TFETIDual<dim>::n_multipliers() const
     {
-      return c_.size();
+      return rows_->n_rows();
     }
 
 
@@ -977,7 +856,7 @@ namespace dualcontact
     unsigned int
     TFETIDual<dim>::n_gluing_multipliers() const
     {
-      return n_gluing_;
+      return rows_->n_gluing();
     }
 
 
@@ -985,7 +864,7 @@ namespace dualcontact
     unsigned int
     TFETIDual<dim>::n_dirichlet_multipliers() const
     {
-      return n_dirichlet_;
+      return rows_->n_dirichlet();
     }
 
 

@@ -8,6 +8,7 @@
 #include <deal.II/lac/sparse_matrix.h>
 #include <deal.II/lac/sparsity_pattern.h>
 #include <decomposition/coarse_problem.h>
+#include <decomposition/constraint_rows.h>
 #include <decomposition/decomposition_parameters.h>
 #include <decomposition/interface_schur_complement.h>
 #include <decomposition/multiplier_scaling.h>
@@ -235,13 +236,7 @@ namespace dualcontact
       using contact::DualFormulation<dim>::contact_;
       using contact::DualFormulation<dim>::frictional_nodes_;
 
-      /** An entry of B: row, subdomain, local dof, value. */
-      struct Entry
-      {
-        unsigned int row;
-        unsigned int local;
-        double       value;
-      };
+      using Entry = typename ConstraintRows<dim>::Entry;
 
       /**
        * partition_cells() (the first process' partition, broadcast), the dofs
@@ -272,9 +267,6 @@ namespace dualcontact
         const VectorType &src,
         const std::function<
           void(unsigned int, VectorType &, const VectorType &)> &local) const;
-      /** Contact, gluing and Dirichlet rows (entries_, c_). */
-      void
-      build_constraint_rows();
       /** G = R'B', e, and the coarse problem (sparse factor of G G'). */
       void
       build_coarse_problem();
@@ -296,15 +288,6 @@ namespace dualcontact
       build_dirichlet_preconditioner(
         const std::function<std::unique_ptr<fem::StiffnessSolver>()>
           &make_solver);
-
-      /** Adds a row of B; returns its index. */
-      unsigned int
-      add_row(const double c);
-      void
-      add_entry(const unsigned int s,
-                const unsigned int row,
-                const unsigned int local,
-                const double       value);
 
       /** w_s = B_s' lambda for every owned subdomain. */
       void
@@ -328,11 +311,8 @@ namespace dualcontact
       /** The owned subdomains, ascending. */
       std::vector<unsigned int> owned_;
       std::vector<unsigned int> first_subdomain_;
-      /** Per subdomain (owned ones only), the entries of B_s. */
-      std::vector<std::vector<Entry>> entries_;
-      /** Per multiplier, the right-hand side c of its row. */
-      std::vector<double> c_;
-      unsigned int        n_gluing_ = 0, n_dirichlet_ = 0;
+      /** The rows of B u = c (the entries of the owned B_s). */
+      std::unique_ptr<ConstraintRows<dim>> rows_;
       /** Per body dof, its copy in the lowest subdomain (s, local). */
       std::vector<std::vector<std::pair<unsigned int, unsigned int>>>
         first_copy_;
