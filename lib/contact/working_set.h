@@ -111,8 +111,9 @@ namespace dualcontact
      * least-squares G'beta (exact: lambda'G'beta = e'beta is constant on
      * the feasible set), which takes the rigid-body part of the gaps (a
      * uniform 99 m) out of it, then a multiple of G_W'e is added back so
-     * that ||b|| = max(||b||, ||e||) (exact too): the solvers' relative
-     * tests then refer to the loads.
+     * that ||b_W|| = max(||b_W||, min(||e||, ||b||)) (exact too): the
+     * solvers' relative tests then refer to the loads where far gaps
+     * dominate b, and are never looser than the whole QP's.
      *
      * Exact on the whole problem: after each solve the displacement is
      * recovered and every dropped row checked, B_N,i u <= c_i; rows that
