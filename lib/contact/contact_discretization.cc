@@ -610,6 +610,16 @@ namespace dualcontact
     }
 
     template <int dim>
+    unsigned int
+    ContactDiscretization<dim>::body_of_dof(
+      const types::global_dof_index dof) const
+    {
+      AssertIndexRange(dof, n_dofs());
+      return std::upper_bound(offsets_.begin(), offsets_.end(), dof) -
+             offsets_.begin() - 1;
+    }
+
+    template <int dim>
     const SparseMatrix<double> &
     ContactDiscretization<dim>::normal_matrix() const
     {

@@ -117,6 +117,10 @@ namespace dualcontact
       n_dofs() const;
       dealii::types::global_dof_index
       body_offset(const unsigned int body) const;
+      /** The body whose stacked dofs hold @p dof: body_offset(b) <= dof <
+       *  body_offset(b + 1). */
+      unsigned int
+      body_of_dof(const dealii::types::global_dof_index dof) const;
 
       /** B_N: n_nodes() x n_dofs(). */
       const dealii::SparseMatrix<double> &

@@ -102,10 +102,6 @@ namespace dualcontact
       std::vector<std::vector<types::global_dof_index>> contact_dofs(n_bodies);
       std::vector<std::vector<unsigned int>>            body_rows(n_bodies);
       {
-        std::vector<unsigned int> body_of_dof(contact.n_dofs());
-        for (unsigned int b = 0; b < n_bodies; ++b)
-          for (unsigned int i = 0; i < bodies_[b]->n_dofs(); ++i)
-            body_of_dof[contact.body_offset(b) + i] = b;
         std::vector<std::vector<bool>> marked(n_bodies);
         for (unsigned int b = 0; b < n_bodies; ++b)
           marked[b].assign(bodies_[b]->n_dofs(), false);
@@ -116,7 +112,7 @@ namespace dualcontact
             {
               if (value == 0.)
                 return;
-              const unsigned int b                       = body_of_dof[column];
+              const unsigned int b = contact.body_of_dof(column);
               marked[b][column - contact.body_offset(b)] = true;
               if (body_rows[b].empty() || body_rows[b].back() != r)
                 body_rows[b].push_back(r);

@@ -403,11 +403,8 @@ namespace dualcontact
       double                            Bu = 0, size = std::abs(c);
       for (auto it = B.begin(i); it != B.end(i); ++it)
       {
-        // the body of the column: the last whose offset is not beyond it
-        unsigned int b = u.size() - 1;
-        while (b > 0 && contact.body_offset(b) > it->column())
-          --b;
-        const double term =
+        const unsigned int b = contact.body_of_dof(it->column());
+        const double       term =
           it->value() * u[b](it->column() - contact.body_offset(b));
         Bu += term;
         size += std::abs(term);

@@ -54,9 +54,7 @@ namespace dualcontact
         {
           if (it->value() == 0.)
             continue;
-          unsigned int b = bodies_.size() - 1;
-          while (contact.body_offset(b) > it->column())
-            --b;
+          const unsigned int b = contact.body_of_dof(it->column());
           const auto [s, l] =
             layout.first_copy[b][it->column() - contact.body_offset(b)];
           add_entry(s, row, l, it->value());
