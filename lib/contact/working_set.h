@@ -133,8 +133,9 @@ namespace dualcontact
      * the brick of doc/benchmarks/tfeti.md ("Numerical scalability") needs 343
      * inner iterations with those columns and 37 without.  Dropping the
      * rows takes their columns out of G_W, which is made orthonormal again:
-     * that brick at 128 subdomains needs 150 inner iterations instead of
-     * 1,246, 3D Hertz 2,026 instead of 4,029 (doc/benchmarks/tfeti.md,
+     * that brick at 128 subdomains needs 220 inner iterations instead of
+     * 1,246, 3D Hertz at 1e-8 2,671 instead of 5,251; the friction brick
+     * 8,647 instead of 4,511, hence off by default (doc/benchmarks/tfeti.md,
      * "Separated rows").
      */
     template <int dim>
