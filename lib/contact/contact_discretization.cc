@@ -6,10 +6,12 @@
 #include <deal.II/lac/dynamic_sparsity_pattern.h>
 
 #include <contact/contact_discretization.h>
+#include <contact/master_surface.h>
 
 #include <algorithm>
 #include <limits>
 #include <map>
+#include <memory>
 
 namespace dualcontact
 {
@@ -58,69 +60,6 @@ namespace dualcontact
         return t;
       }
 
-      /**
-       * Closest point to x on a boundary face given by its vertices
-       * (segment in 2D, bilinear quadrilateral in 3D), and the unit normal
-       * there (orientation not fixed).  Returns the squared distance.
-       */
-      template <int dim>
-      double
-      project_on_face(const std::vector<Point<dim>> &v,
-                      const Point<dim>              &x,
-                      Point<dim>                    &closest,
-                      Tensor<1, dim>                &normal)
-      {
-        if constexpr (dim == 2)
-        {
-          const Tensor<1, dim> e = v[1] - v[0];
-          const double s = std::clamp(((x - v[0]) * e) / (e * e), 0., 1.);
-          closest        = v[0] + s * e;
-          normal[0]      = e[1];
-          normal[1]      = -e[0];
-          normal /= normal.norm();
-        }
-        else
-        {
-          // X(s, r) = v0 (1-s)(1-r) + v1 s (1-r) + v2 (1-s) r + v3 s r,
-          // Gauss-Newton with clamping to the unit square.
-          double     s = 0.5, r = 0.5;
-          const auto X = [&](const double s_, const double r_)
-          {
-            return Point<dim>(v[0] * ((1 - s_) * (1 - r_)) +
-                              v[1] * (s_ * (1 - r_)) + v[2] * ((1 - s_) * r_) +
-                              v[3] * (s_ * r_));
-          };
-          for (unsigned int it = 0; it < 20; ++it)
-          {
-            const Tensor<1, dim> Xs =
-              (v[1] - v[0]) * (1 - r) + (v[3] - v[2]) * r;
-            const Tensor<1, dim> Xr =
-              (v[2] - v[0]) * (1 - s) + (v[3] - v[1]) * s;
-            const Tensor<1, dim> d = X(s, r) - x;
-            const double         a = Xs * Xs, b = Xs * Xr, c = Xr * Xr;
-            const double         gs = Xs * d, gr = Xr * d;
-            const double         det = a * c - b * b;
-            if (det <= 0)
-              break;
-            const double ds    = -(c * gs - b * gr) / det;
-            const double dr    = -(a * gr - b * gs) / det;
-            const double s_new = std::clamp(s + ds, 0., 1.);
-            const double r_new = std::clamp(r + dr, 0., 1.);
-            const bool done = std::abs(s_new - s) + std::abs(r_new - r) < 1e-14;
-            s               = s_new;
-            r               = r_new;
-            if (done)
-              break;
-          }
-          closest                 = X(s, r);
-          const Tensor<1, dim> Xs = (v[1] - v[0]) * (1 - r) + (v[3] - v[2]) * r;
-          const Tensor<1, dim> Xr = (v[2] - v[0]) * (1 - s) + (v[3] - v[1]) * s;
-          normal                  = cross_product_3d(Xs, Xr);
-          normal /= normal.norm();
-        }
-        return (closest - x).norm_square();
-      }
-
       /** A slave node before it is placed: its dofs, its weight int phi
        * ds and its weighted normal int phi n ds. */
       template <int dim>
@@ -140,17 +79,6 @@ namespace dualcontact
       {
         std::map<types::global_dof_index, SlaveNode<dim>>      nodes;
         std::vector<std::map<types::global_dof_index, double>> face_weights;
-      };
-
-
-      /** A face of the master body's contact boundary. */
-      template <int dim>
-      struct MasterFace
-      {
-        typename DoFHandler<dim>::active_cell_iterator cell;
-        unsigned int                                   face;
-        std::vector<Point<dim>>                        vertices;
-        Point<dim>                                     cell_center;
       };
 
 
@@ -249,6 +177,15 @@ namespace dualcontact
       {
         const AffineConstraints<double> &hanging =
           slave.hanging_node_constraints();
+        // the faces of every hanging node, so that moving a node's weights
+        // visits its own faces, not all of them (parents are never hanging,
+        // so the lists stay valid while weights move)
+        std::map<types::global_dof_index, std::vector<unsigned int>>
+          faces_of_hanging_node;
+        for (unsigned int f = 0; f < side.face_weights.size(); ++f)
+          for (const auto &[key, w] : side.face_weights[f])
+            if (hanging.is_constrained(key))
+              faces_of_hanging_node[key].push_back(f);
         for (auto it = side.nodes.begin(); it != side.nodes.end();)
         {
           if (!hanging.is_constrained(it->first))
@@ -258,11 +195,11 @@ namespace dualcontact
           }
           const auto *line = hanging.get_constraint_entries(it->first);
           Assert(line != nullptr, ExcInternalError());
-          for (auto &face : side.face_weights)
+          for (const unsigned int f : faces_of_hanging_node[it->first])
           {
-            const auto h = face.find(it->first);
-            if (h == face.end())
-              continue;
+            auto      &face = side.face_weights[f];
+            const auto h    = face.find(it->first);
+            Assert(h != face.end(), ExcInternalError());
             const double w = h->second;
             face.erase(h);
             for (const auto &[parent, coefficient] : *line)
@@ -282,32 +219,6 @@ namespace dualcontact
       }
 
 
-      /** The faces of the master body's contact boundary. */
-      template <int dim>
-      std::vector<MasterFace<dim>>
-      master_faces_of(const ContactPair<dim>      &pair,
-                      const fem::ElasticBody<dim> &master)
-      {
-        std::vector<MasterFace<dim>> master_faces;
-        for (const auto &cell : master.dof_handler().active_cell_iterators())
-          for (const unsigned int f : cell->face_indices())
-            if (cell->face(f)->at_boundary() &&
-                cell->face(f)->boundary_id() == pair.master_boundary)
-            {
-              MasterFace<dim> face{cell, f, {}, cell->center()};
-              for (const unsigned int v : cell->face(f)->vertex_indices())
-                face.vertices.push_back(cell->face(f)->vertex(v));
-              master_faces.push_back(face);
-            }
-        AssertThrow(!master_faces.empty(),
-                    ExcMessage("Contact pair `" + pair.name +
-                               "': the master body `" + master.name() +
-                               "' has no boundary with id " +
-                               std::to_string(pair.master_boundary) + "."));
-        return master_faces;
-      }
-
-
       /**
        * Places @p node on the master body: the closest point over the
        * master faces, the node's normal (minus the master cell's outward
@@ -316,40 +227,22 @@ namespace dualcontact
        */
       template <int dim>
       bool
-      place_on_master_body(const ContactPair<dim>             &pair,
-                           const fem::ElasticBody<dim>        &master,
-                           const std::vector<MasterFace<dim>> &master_faces,
-                           ContactNode<dim>                   &node,
-                           MasterEntries                      &master_entries)
+      place_on_master_body(const ContactPair<dim>      &pair,
+                           const fem::ElasticBody<dim> &master,
+                           const MasterSurface<dim>    &master_surface,
+                           ContactNode<dim>            &node,
+                           MasterEntries               &master_entries)
       {
-        double         best      = std::numeric_limits<double>::max();
-        unsigned int   best_face = 0;
-        Tensor<1, dim> best_normal;
-        for (unsigned int mf = 0; mf < master_faces.size(); ++mf)
-        {
-          Point<dim>     closest;
-          Tensor<1, dim> normal;
-          const double   d2 = project_on_face(master_faces[mf].vertices,
-                                            node.position,
-                                            closest,
-                                            normal);
-          if (d2 < best)
-          {
-            best              = d2;
-            best_face         = mf;
-            node.master_point = closest;
-            // outward normal of the master cell
-            if (normal * (closest - master_faces[mf].cell_center) < 0)
-              normal *= -1;
-            best_normal = normal;
-          }
-        }
-        if (std::sqrt(best) > pair.search_distance)
+        const typename MasterSurface<dim>::Projection projection =
+          master_surface.closest_face(node.position);
+        node.master_point = projection.point;
+        if (std::sqrt(projection.distance_square) > pair.search_distance)
           return false;
-        node.normal = -best_normal;
+        node.normal = -projection.outward_normal;
 
-        const MasterFace<dim> &face = master_faces[best_face];
-        const Point<dim>       unit =
+        const typename MasterSurface<dim>::Face &face =
+          master_surface.face(projection.face);
+        const Point<dim> unit =
           master.mapping().transform_real_to_unit_cell(face.cell,
                                                        node.master_point);
         std::vector<types::global_dof_index> master_dofs(
@@ -460,9 +353,12 @@ namespace dualcontact
         DoFTools::map_dofs_to_support_points(slave.mapping(),
                                              slave.dof_handler(),
                                              support_points);
-        const std::vector<MasterFace<dim>> master_faces =
-          pair.obstacle ? std::vector<MasterFace<dim>>() :
-                          master_faces_of(pair, *bodies[pair.master_body]);
+        const std::unique_ptr<MasterSurface<dim>> master_surface =
+          pair.obstacle ?
+            nullptr :
+            std::make_unique<MasterSurface<dim>>(*bodies[pair.master_body],
+                                                 pair.master_boundary,
+                                                 pair.name);
 
         // per node: master point, frame, gap, rows
         PairSummary summary;
@@ -490,7 +386,7 @@ namespace dualcontact
           }
           else if (!place_on_master_body(pair,
                                          *bodies[pair.master_body],
-                                         master_faces,
+                                         *master_surface,
                                          node,
                                          master))
             continue;

@@ -1,0 +1,203 @@
+#include <contact/master_surface.h>
+
+#include <deal.II/base/geometry_info.h>
+
+#include <algorithm>
+#include <cmath>
+#include <iterator>
+#include <limits>
+
+namespace dualcontact
+{
+  namespace contact
+  {
+    using namespace dealii;
+
+    namespace
+    {
+      /** Squared distance from @p x to the box @p box (0 inside). */
+      template <int dim>
+      double
+      distance_square_to_box(const Point<dim> &x, const BoundingBox<dim> &box)
+      {
+        double d2 = 0;
+        for (unsigned int d = 0; d < dim; ++d)
+        {
+          const double below = box.lower_bound(d) - x[d];
+          const double above = x[d] - box.upper_bound(d);
+          const double out   = std::max({0., below, above});
+          d2 += out * out;
+        }
+        return d2;
+      }
+    } // namespace
+
+
+    template <int dim>
+    MasterSurface<dim>::MasterSurface(const fem::ElasticBody<dim> &master,
+                                      const types::boundary_id     boundary_id,
+                                      const std::string           &pair_name)
+    {
+      for (const auto &cell : master.dof_handler().active_cell_iterators())
+        for (const unsigned int f : cell->face_indices())
+          if (cell->face(f)->at_boundary() &&
+              cell->face(f)->boundary_id() == boundary_id)
+          {
+            Face face{cell, f, {}, cell->center()};
+            for (const unsigned int v : cell->face(f)->vertex_indices())
+              face.vertices.push_back(cell->face(f)->vertex(v));
+            faces_.push_back(face);
+          }
+      AssertThrow(!faces_.empty(),
+                  ExcMessage("Contact pair `" + pair_name +
+                             "': the master body `" + master.name() +
+                             "' has no boundary with id " +
+                             std::to_string(boundary_id) + "."));
+      std::vector<Leaf> leaves;
+      leaves.reserve(faces_.size());
+      double largest_diagonal = 0;
+      for (unsigned int f = 0; f < faces_.size(); ++f)
+      {
+        leaves.emplace_back(BoundingBox<dim>(faces_[f].vertices), f);
+        largest_diagonal =
+          std::max(largest_diagonal,
+                   leaves.back().first.vertex(0).distance(
+                     leaves.back().first.vertex(
+                       GeometryInfo<dim>::vertices_per_cell - 1)));
+      }
+      margin_square_ = std::pow(1e-10 * largest_diagonal, 2);
+      tree_          = pack_rtree(leaves);
+    }
+
+
+    template <int dim>
+    unsigned int
+    MasterSurface<dim>::n_faces() const
+    {
+      return faces_.size();
+    }
+
+
+    template <int dim>
+    const typename MasterSurface<dim>::Face &
+    MasterSurface<dim>::face(const unsigned int f) const
+    {
+      AssertIndexRange(f, faces_.size());
+      return faces_[f];
+    }
+
+
+    template <int dim>
+    typename MasterSurface<dim>::Projection
+    MasterSurface<dim>::closest_face(const Point<dim> &x) const
+    {
+      Assert(!faces_.empty(), ExcInternalError());
+      namespace bgi = boost::geometry::index;
+      Projection best;
+      best.distance_square = std::numeric_limits<double>::max();
+      const auto consider  = [&](const unsigned int f)
+      {
+        Point<dim>     closest;
+        Tensor<1, dim> normal;
+        const double   d2 =
+          project_on_face(faces_[f].vertices, x, closest, normal);
+        // the lowest index among equal distances, as a loop over the faces
+        if (d2 < best.distance_square ||
+            (d2 == best.distance_square && f < best.face))
+        {
+          best.face            = f;
+          best.distance_square = d2;
+          best.point           = closest;
+          if (normal * (closest - faces_[f].cell_center) < 0)
+            normal *= -1;
+          best.outward_normal = normal;
+        }
+      };
+      // the face of the nearest box bounds the distance; then every face
+      // whose box meets the cube of that half-width around x (with margins
+      // for the rounding of the distances: a node on an edge is equally far
+      // from the faces that share it)
+      std::vector<Leaf> nearest;
+      tree_.query(bgi::nearest(x, 1), std::back_inserter(nearest));
+      consider(nearest.front().second);
+      const double reach =
+        std::sqrt(best.distance_square * (1. + 1e-10) + margin_square_);
+      Point<dim> lower = x, upper = x;
+      for (unsigned int d = 0; d < dim; ++d)
+      {
+        lower[d] -= reach;
+        upper[d] += reach;
+      }
+      std::vector<Leaf> candidates;
+      tree_.query(bgi::intersects(
+                    BoundingBox<dim>(std::make_pair(lower, upper))),
+                  std::back_inserter(candidates));
+      for (const Leaf &candidate : candidates)
+        if (distance_square_to_box(x, candidate.first) <=
+            best.distance_square * (1. + 1e-10) + margin_square_)
+          consider(candidate.second);
+      return best;
+    }
+
+
+    template <int dim>
+    double
+    MasterSurface<dim>::project_on_face(const std::vector<Point<dim>> &v,
+                                        const Point<dim>              &x,
+                                        Point<dim>                    &closest,
+                                        Tensor<1, dim>                &normal)
+    {
+      if constexpr (dim == 2)
+      {
+        const Tensor<1, dim> e = v[1] - v[0];
+        const double         s = std::clamp(((x - v[0]) * e) / (e * e), 0., 1.);
+        closest                = v[0] + s * e;
+        normal[0]              = e[1];
+        normal[1]              = -e[0];
+        normal /= normal.norm();
+      }
+      else
+      {
+        // X(s, r) = v0 (1-s)(1-r) + v1 s (1-r) + v2 (1-s) r + v3 s r,
+        // Gauss-Newton with clamping to the unit square.
+        double     s = 0.5, r = 0.5;
+        const auto X = [&](const double s_, const double r_)
+        {
+          return Point<dim>(v[0] * ((1 - s_) * (1 - r_)) +
+                            v[1] * (s_ * (1 - r_)) + v[2] * ((1 - s_) * r_) +
+                            v[3] * (s_ * r_));
+        };
+        for (unsigned int it = 0; it < 20; ++it)
+        {
+          const Tensor<1, dim> Xs = (v[1] - v[0]) * (1 - r) + (v[3] - v[2]) * r;
+          const Tensor<1, dim> Xr = (v[2] - v[0]) * (1 - s) + (v[3] - v[1]) * s;
+          const Tensor<1, dim> d  = X(s, r) - x;
+          const double         a = Xs * Xs, b = Xs * Xr, c = Xr * Xr;
+          const double         gs = Xs * d, gr = Xr * d;
+          const double         det = a * c - b * b;
+          if (det <= 0)
+            break;
+          const double ds    = -(c * gs - b * gr) / det;
+          const double dr    = -(a * gr - b * gs) / det;
+          const double s_new = std::clamp(s + ds, 0., 1.);
+          const double r_new = std::clamp(r + dr, 0., 1.);
+          const bool   done = std::abs(s_new - s) + std::abs(r_new - r) < 1e-14;
+          s                 = s_new;
+          r                 = r_new;
+          if (done)
+            break;
+        }
+        closest                 = X(s, r);
+        const Tensor<1, dim> Xs = (v[1] - v[0]) * (1 - r) + (v[3] - v[2]) * r;
+        const Tensor<1, dim> Xr = (v[2] - v[0]) * (1 - s) + (v[3] - v[1]) * s;
+        normal                  = cross_product_3d(Xs, Xr);
+        normal /= normal.norm();
+      }
+      return (closest - x).norm_square();
+    }
+
+
+    template class MasterSurface<2>;
+    template class MasterSurface<3>;
+  } // namespace contact
+} // namespace dualcontact
