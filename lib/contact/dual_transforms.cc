@@ -94,6 +94,7 @@ namespace dualcontact
       equality->c             = rhs_;
       equality->n_constraints = rows_.size();
       equality->norm_sq       = 1.; // ||G~||^2 = lambda_max(G~ G~') = 1
+      equality->orthonormal_rows = true;
       return equality;
     }
 
@@ -161,6 +162,7 @@ namespace dualcontact
       equality->c             = *rhs_distributed_;
       equality->n_constraints = rows_.size();
       equality->norm_sq       = 1.;
+      equality->orthonormal_rows = true;
       return equality;
     }
   } // namespace contact

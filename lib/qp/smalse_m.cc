@@ -50,11 +50,12 @@ namespace dualcontact
       prm.declare_entry("Coarse projector",
                         "true",
                         dealii::Patterns::Bool(),
-                        "With orthonormal equality rows (TFETI's G~): solve "
-                        "the inner QPs with the projected Hessian "
-                        "P F P + rho G~'G~, P = I - G~'G~ (thesis 3.1), "
-                        "instead of F + rho G~'G~. Other problems are not "
-                        "affected.");
+                        "With orthonormal equality rows (the contact duals' "
+                        "G~, undecomposed and TFETI): solve the inner QPs "
+                        "with the projected Hessian P F P + rho G~'G~, "
+                        "P = I - G~'G~ (thesis 3.1), instead of the penalty "
+                        "form F + rho G~'G~ (false: the thesis' SMALBE-M "
+                        "setting). Other problems are not affected.");
       prm.declare_entry("Projector penalty factor",
                         "1",
                         dealii::Patterns::Double(0.),
