@@ -334,7 +334,8 @@ namespace dualcontact
         equality->c             = G.c;
         equality->n_constraints = G.n_constraints;
         // dropping columns does not increase ||G||
-        equality->norm_sq = G.norm_sq;
+        equality->norm_sq                  = G.norm_sq;
+        equality->projector_penalty_factor = G.projector_penalty_factor;
         if (G.orthonormal_rows)
           orthonormalize_rows(*equality);
         reduced.equality = equality;

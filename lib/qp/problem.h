@@ -40,6 +40,10 @@ namespace dualcontact
       /// P = I - B'B onto the kernel of B (SMALSEMParameters::
       /// coarse_projector)
       bool orthonormal_rows = false;
+      /// rho / lambda_max(A) of SMALSE-M's coarse projector when its
+      /// `Projector penalty factor' is automatic: the formulation's
+      /// measured choice (TFETI sets 0.1)
+      double projector_penalty_factor = 1.;
     };
 
     /**

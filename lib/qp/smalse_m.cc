@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <functional>
 
 namespace dualcontact
@@ -57,10 +58,15 @@ namespace dualcontact
                         "form F + rho G~'G~ (false: the thesis' SMALBE-M "
                         "setting). Other problems are not affected.");
       prm.declare_entry("Projector penalty factor",
-                        "1",
-                        dealii::Patterns::Double(0.),
+                        "automatic",
+                        dealii::Patterns::Anything(),
                         "rho = factor * lambda_max(A) with the coarse "
-                        "projector (`Penalty factor' is used without it).");
+                        "projector (`Penalty factor' is used without it): a "
+                        "number > 0, or automatic: the formulation's measured "
+                        "choice, 1 for the undecomposed dual's rigid-body "
+                        "modes, 0.1 for TFETI's coarse space "
+                        "(doc/benchmarks/tfeti.md, \"Penalty factor of the "
+                        "coarse projector\").");
       prm.declare_entry("Equality tolerance factor",
                         "1",
                         dealii::Patterns::Double(0.),
@@ -83,7 +89,18 @@ namespace dualcontact
       max_outer_iterations      = prm.get_integer("Maximum outer iterations");
       equality_tolerance_factor = prm.get_double("Equality tolerance factor");
       coarse_projector          = prm.get_bool("Coarse projector");
-      projector_penalty_factor  = prm.get_double("Projector penalty factor");
+      // automatic: 0; not a number, or not positive: -1, which check()
+      // reports naming the parameter
+      const std::string projector_factor = prm.get("Projector penalty factor");
+      if (projector_factor == "automatic")
+        projector_penalty_factor = 0.;
+      else
+      {
+        char        *end         = nullptr;
+        const double value       = std::strtod(projector_factor.c_str(), &end);
+        const bool   whole       = !projector_factor.empty() && *end == '\0';
+        projector_penalty_factor = whole && value > 0. ? value : -1.;
+      }
       prm.leave_subsection();
       prm.leave_subsection();
       check();
@@ -111,8 +128,8 @@ namespace dualcontact
         fail("Beta", "must be in (0, 1)");
       if (max_outer_iterations < 1)
         fail("Maximum outer iterations", "must be >= 1");
-      if (!(projector_penalty_factor > 0.))
-        fail("Projector penalty factor", "must be > 0");
+      if (!(projector_penalty_factor >= 0.))
+        fail("Projector penalty factor", "must be `automatic' or a number > 0");
       if (!(equality_tolerance_factor > 0.))
         fail("Equality tolerance factor", "must be > 0");
     }
@@ -180,9 +197,12 @@ namespace dualcontact
       // lambda_max(A) sets rho
       const double lmax_A  = this->lambda_max(problem, stats);
       const bool   project = eq.orthonormal_rows && smalse_prm.coarse_projector;
-      const double rho     = (project ? smalse_prm.projector_penalty_factor :
-                                        smalse_prm.rho_factor) *
-                         lmax_A;
+      // automatic (0): the factor the formulation measured for its rows
+      const double projector_factor = smalse_prm.projector_penalty_factor > 0. ?
+                                        smalse_prm.projector_penalty_factor :
+                                        eq.projector_penalty_factor;
+      const double rho =
+        (project ? projector_factor : smalse_prm.rho_factor) * lmax_A;
       AugmentedLagrangian<VectorType> lagrangian(
         problem, project, rho, x, stats);
       Problem<VectorType> inner = lagrangian.inner_problem(lmax_A, prm);

@@ -50,8 +50,10 @@ namespace dualcontact
       /// projector P = I - B'B (Dostal's TFETI, thesis 3.1) instead of over
       /// A + rho B'B
       bool coarse_projector = true;
-      /// rho = projector_penalty_factor * lambda_max(A) with the projector
-      double projector_penalty_factor = 1.;
+      /// rho = projector_penalty_factor * lambda_max(A) with the projector;
+      /// 0: automatic, EqualityConstraints::projector_penalty_factor (the
+      /// formulation's measured choice)
+      double projector_penalty_factor = 0.;
       /// the equality residual must satisfy ||Bx - c|| <=
       /// equality_tolerance_factor * tolerance * min(||b||, max(||c||,
       /// ||B|| ||x||)) (the thesis: ||b||; see SMALSEM)
