@@ -91,9 +91,9 @@ namespace dualcontact
         for (unsigned int k = 0; k < rows_.size(); ++k)
           dst.add(src(k), rows_[k]);
       };
-      equality->c             = rhs_;
-      equality->n_constraints = rows_.size();
-      equality->norm_sq       = 1.; // ||G~||^2 = lambda_max(G~ G~') = 1
+      equality->c                = rhs_;
+      equality->n_constraints    = rows_.size();
+      equality->norm_sq          = 1.; // ||G~||^2 = lambda_max(G~ G~') = 1
       equality->orthonormal_rows = true;
       return equality;
     }
@@ -159,9 +159,9 @@ namespace dualcontact
           dst.begin()[l] = value;
         }
       };
-      equality->c             = *rhs_distributed_;
-      equality->n_constraints = rows_.size();
-      equality->norm_sq       = 1.;
+      equality->c                = *rhs_distributed_;
+      equality->n_constraints    = rows_.size();
+      equality->norm_sq          = 1.;
       equality->orthonormal_rows = true;
       return equality;
     }
