@@ -56,8 +56,11 @@ namespace dualcontact
         "dealii::Vector<double>, the whole QP on every process. "
         "distributed: dealii::TrilinosWrappers::MPI::Vector, the "
         "multipliers of each contact node (normal and tangential) on the "
-        "process owning the node's first slave dof; F products gather what "
-        "they need. automatic: distributed when run on more than one MPI "
+        "process owning the node's first slave dof (TFETI: every row of B, "
+        "gluing and Dirichlet ones too, on the process of the lowest "
+        "subdomain it touches); F products gather what they need. The "
+        "working set (`subsection Working set') runs on replicated vectors "
+        "only. automatic: distributed when run on more than one MPI "
         "process, else replicated.");
       prm.leave_subsection();
     }

@@ -91,6 +91,34 @@ namespace dualcontact
 
 
     void
+    CoarseProblem::add_columns(dealii::Vector<double>          &dst,
+                               const std::vector<unsigned int> &rows,
+                               const double                    *src) const
+    {
+      AssertDimension(dst.size(), n_modes_);
+      for (unsigned int l = 0; l < rows.size(); ++l)
+        for (const auto &[k, v] : columns_[rows[l]])
+          dst(k) += v * src[l];
+    }
+
+
+    void
+    CoarseProblem::Tvmult_columns(const dealii::Vector<double>    &src,
+                                  const std::vector<unsigned int> &rows,
+                                  double                          *dst) const
+    {
+      AssertDimension(src.size(), n_modes_);
+      for (unsigned int l = 0; l < rows.size(); ++l)
+      {
+        double sum = 0;
+        for (const auto &[k, v] : columns_[rows[l]])
+          sum += v * src(k);
+        dst[l] = sum;
+      }
+    }
+
+
+    void
     CoarseProblem::orthonormalize(dealii::Vector<double> &x) const
     {
       factor_->solve_lower(x);

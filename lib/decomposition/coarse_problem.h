@@ -60,6 +60,18 @@ namespace dualcontact
       Tvmult(dealii::Vector<double>       &dst,
              const dealii::Vector<double> &src) const;
 
+      /** dst += G_rows src: the columns @p rows of G times @p src[l]
+       *  (the multiplier of rows[l]); dst sized n_modes(). */
+      void
+      add_columns(dealii::Vector<double>          &dst,
+                  const std::vector<unsigned int> &rows,
+                  const double                    *src) const;
+      /** dst[l] := (G' src)(rows[l]) for the columns @p rows. */
+      void
+      Tvmult_columns(const dealii::Vector<double>    &src,
+                     const std::vector<unsigned int> &rows,
+                     double                          *dst) const;
+
       /** x := L^{-1} P x: G~ = L^{-1} P G, e~ = L^{-1} P e. */
       void
       orthonormalize(dealii::Vector<double> &x) const;

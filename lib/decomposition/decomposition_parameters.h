@@ -46,6 +46,13 @@ namespace dualcontact
        * `QP solver/Preconditioner'.
        */
       std::string preconditioner = "none";
+      /**
+       * Whether the QP runs on distributed multipliers (each on the
+       * process of its subdomain, TFETIDual, "Processes") rather than on
+       * replicated ones.  Not a parameter of this subsection: the driver
+       * resolves `Dual problem/QP vectors'.
+       */
+      bool distributed_multipliers = false;
 
       static void
       declare_parameters(dealii::ParameterHandler &prm);

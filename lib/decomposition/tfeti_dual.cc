@@ -124,7 +124,7 @@ namespace dualcontact
         f[s] = subdomains_[s]->load();
       apply_K_inverse(f, u);
       d_.reinit(n_multipliers());
-      add_B(u, d_);
+      add_B(u, d_.data());
       sum_over_processes(d_);
       for (unsigned int r = 0; r < n_multipliers(); ++r)
         d_(r) -= rows_->rhs(r);
@@ -141,6 +141,13 @@ namespace dualcontact
                              "finite."));
 
       nodes_per_process_ = {this->n_contact_nodes()};
+      distributed_       = parameters.distributed_multipliers;
+      AssertThrow(!distributed_ || Utilities::MPI::job_supports_mpi(),
+                  ExcMessage("`set QP vectors = distributed' in `subsection "
+                             "Dual problem' needs MPI (Trilinos vectors), "
+                             "which this program did not initialize."));
+      if (distributed_)
+        distribute_multipliers();
       std::ostringstream description;
       description << "TFETI, implicit: local solves with the factors of "
                   << subdomains_.size() << " subdomains (K_s^# by "
@@ -154,7 +161,10 @@ namespace dualcontact
         const std::vector<unsigned int> per_process = subdomains_per_process();
         for (unsigned int p = 0; p < per_process.size(); ++p)
           description << (p == 0 ? " " : ", ") << per_process[p];
-        description << "), F lambda summed by MPI_Allreduce";
+        description << (distributed_ ?
+                          "), multipliers distributed: F lambda exchanged "
+                          "between the processes that share rows" :
+                          "), F lambda summed by MPI_Allreduce");
       }
       operator_description_ = description.str();
     }
@@ -362,27 +372,38 @@ namespace dualcontact
 
     template <int dim>
     void
-    TFETIDual<dim>::apply_Bt(const VectorType        &lambda,
-                             std::vector<VectorType> &w) const
+    TFETIDual<dim>::apply_Bt(
+      const double                                 *lambda,
+      std::vector<VectorType>                      &w,
+      const std::vector<std::vector<unsigned int>> *relevant) const
     {
       w.resize(subdomains_.size());
       for (const unsigned int s : owned_)
       {
         w[s].reinit(subdomains_[s]->n_dofs());
-        for (const Entry &entry : rows_->entries(s))
-          w[s](entry.local) += entry.value * lambda(entry.row);
+        const std::vector<Entry> &entries = rows_->entries(s);
+        for (unsigned int e = 0; e < entries.size(); ++e)
+          w[s](entries[e].local) +=
+            entries[e].value *
+            lambda[relevant ? (*relevant)[s][e] : entries[e].row];
       }
     }
 
 
     template <int dim>
     void
-    TFETIDual<dim>::add_B(const std::vector<VectorType> &u,
-                          VectorType                    &lambda) const
+    TFETIDual<dim>::add_B(
+      const std::vector<VectorType>                &u,
+      double                                       *lambda,
+      const std::vector<std::vector<unsigned int>> *relevant) const
     {
       for (const unsigned int s : owned_)
-        for (const Entry &entry : rows_->entries(s))
-          lambda(entry.row) += entry.value * u[s](entry.local);
+      {
+        const std::vector<Entry> &entries = rows_->entries(s);
+        for (unsigned int e = 0; e < entries.size(); ++e)
+          lambda[relevant ? (*relevant)[s][e] : entries[e].row] +=
+            entries[e].value * u[s](entries[e].local);
+      }
     }
 
 
@@ -407,11 +428,28 @@ namespace dualcontact
     void
     TFETIDual<dim>::apply_F(VectorType &dst, const VectorType &src) const
     {
-      apply_Bt(src, work_);
+      apply_Bt(src.data(), work_);
       apply_K_inverse(work_, work_x_);
       dst.reinit(n_multipliers());
-      add_B(work_x_, dst);
+      add_B(work_x_, dst.data());
       sum_over_processes(dst);
+    }
+
+
+    template <int dim>
+    void
+    TFETIDual<dim>::apply_F(DistributedVector       &dst,
+                            const DistributedVector &src) const
+    {
+      Assert(distributed_, ExcInternalError());
+      exchange_->import(src, relevant_values_);
+      apply_Bt(relevant_values_.data(), work_, &relevant_index_);
+      apply_K_inverse(work_, work_x_);
+      relevant_values_.assign(relevant_values_.size(), 0.);
+      add_B(work_x_, relevant_values_.data(), &relevant_index_);
+      if (dst.size() != n_multipliers())
+        initialize_multipliers(dst);
+      exchange_->export_add(relevant_values_, dst);
     }
 
 
@@ -436,7 +474,7 @@ namespace dualcontact
       const std::function<void(unsigned int, VectorType &, const VectorType &)>
         &local) const
     {
-      apply_Bt(src, work_);
+      apply_Bt(src.data(), work_);
       work_x_.resize(subdomains_.size());
       for (const unsigned int s : owned_)
       {
@@ -444,7 +482,7 @@ namespace dualcontact
         local(s, work_x_[s], work_[s]);
       }
       dst.reinit(n_multipliers());
-      add_B(work_x_, dst);
+      add_B(work_x_, dst.data());
       sum_over_processes(dst);
     }
 
@@ -630,7 +668,7 @@ namespace dualcontact
     {
       AssertDimension(lambda.size(), n_multipliers());
       std::vector<VectorType> w, u;
-      apply_Bt(lambda, w);
+      apply_Bt(lambda.data(), w);
       for (const unsigned int s : owned_)
         w[s].sadd(-1., 1., subdomains_[s]->load());
       apply_K_inverse(w, u);
@@ -639,7 +677,7 @@ namespace dualcontact
       // the rows that hold with equality (all but the inactive contact
       // rows)
       VectorType residual(n_multipliers());
-      add_B(u, residual);
+      add_B(u, residual.data());
       sum_over_processes(residual);
       const unsigned int n_contact = this->n_contact_multipliers();
       double             scale     = 0;
@@ -696,6 +734,249 @@ namespace dualcontact
       u_max          = max_over_processes(u_max);
       relative_jump_ = u_max > 0 ? max_jump_ / u_max : 0.;
       return determined;
+    }
+
+
+    template <int dim>
+    void
+    TFETIDual<dim>::distribute_multipliers()
+    {
+      const unsigned int n_rows  = n_multipliers();
+      const unsigned int n_nodes = this->n_contact_nodes();
+      // the lowest subdomain whose B_s touches each row (over all
+      // processes: each knows its own subdomains' entries)
+      std::vector<unsigned int> lowest(n_rows, invalid);
+      for (const unsigned int s : owned_)
+        for (const Entry &entry : rows_->entries(s))
+          lowest[entry.row] = std::min(lowest[entry.row], s);
+      if (n_processes_ > 1)
+      {
+        const int ierr = MPI_Allreduce(MPI_IN_PLACE,
+                                       lowest.data(),
+                                       lowest.size(),
+                                       MPI_UNSIGNED,
+                                       MPI_MIN,
+                                       communicator_);
+        AssertThrowMPI(ierr);
+      }
+      // a contact node's rows stay together (its friction set is one
+      // block of the QP): the lowest subdomain over all of them
+      for (unsigned int node = 0; node < n_nodes; ++node)
+      {
+        const int j = this->frictional_index(node);
+        if (j < 0)
+          continue;
+        const unsigned int first = n_nodes + (dim - 1) * j;
+        unsigned int       m     = lowest[node];
+        for (unsigned int k = 0; k < dim - 1; ++k)
+          m = std::min(m, lowest[first + k]);
+        lowest[node] = m;
+        for (unsigned int k = 0; k < dim - 1; ++k)
+          lowest[first + k] = m;
+      }
+      // a row no subdomain touches (a contact node whose dofs are all
+      // prescribed) goes to process 0
+      std::vector<unsigned int> row_owner(n_rows);
+      for (unsigned int r = 0; r < n_rows; ++r)
+        row_owner[r] = lowest[r] == invalid ? 0 : owner_[lowest[r]];
+      lowest.clear();
+      lowest.shrink_to_fit();
+
+      owned_multipliers_.set_size(n_rows);
+      owned_rows_.clear();
+      for (unsigned int r = 0; r < n_rows; ++r)
+        if (row_owner[r] == rank_)
+          owned_rows_.push_back(r);
+      owned_multipliers_.add_indices(owned_rows_.begin(), owned_rows_.end());
+      owned_multipliers_.compress();
+
+      std::vector<unsigned int> relevant = owned_rows_;
+      for (const unsigned int s : owned_)
+        for (const Entry &entry : rows_->entries(s))
+          relevant.push_back(entry.row);
+      std::sort(relevant.begin(), relevant.end());
+      relevant.erase(std::unique(relevant.begin(), relevant.end()),
+                     relevant.end());
+      std::vector<unsigned int> relevant_owner(relevant.size());
+      for (unsigned int i = 0; i < relevant.size(); ++i)
+        relevant_owner[i] = row_owner[relevant[i]];
+      exchange_ = std::make_unique<MultiplierExchange>(owned_multipliers_,
+                                                       relevant,
+                                                       relevant_owner,
+                                                       communicator_);
+      relevant_index_.assign(subdomains_.size(), {});
+      for (const unsigned int s : owned_)
+        for (const Entry &entry : rows_->entries(s))
+          relevant_index_[s].push_back(exchange_->relevant_index(entry.row));
+
+      std::vector<unsigned int> nodes(n_processes_, 0);
+      for (unsigned int node = 0; node < n_nodes; ++node)
+        ++nodes[row_owner[node]];
+      nodes_per_process_ = nodes;
+
+      d_distributed_ = std::make_unique<DistributedVector>();
+      extract_owned(d_, *d_distributed_);
+      // the coarse space's vectors (n_modes() numbers) live on process 0
+      owned_modes_.set_size(coarse_->n_modes());
+      if (rank_ == 0)
+        owned_modes_.add_range(0, coarse_->n_modes());
+      e_distributed_ =
+        std::make_unique<DistributedVector>(owned_modes_, communicator_);
+      for (unsigned int k = 0; k < e_distributed_->locally_owned_size(); ++k)
+        e_distributed_->begin()[k] = e_orthonormal_(k);
+    }
+
+
+    template <int dim>
+    bool
+    TFETIDual<dim>::is_distributed() const
+    {
+      return distributed_;
+    }
+
+
+    template <int dim>
+    void
+    TFETIDual<dim>::initialize_multipliers(DistributedVector &lambda) const
+    {
+      Assert(distributed_, ExcInternalError());
+      lambda.reinit(owned_multipliers_, communicator_);
+    }
+
+
+    template <int dim>
+    void
+    TFETIDual<dim>::gather(const DistributedVector &lambda,
+                           VectorType              &whole) const
+    {
+      Assert(distributed_, ExcInternalError());
+      whole.reinit(n_multipliers());
+      for (unsigned int l = 0; l < owned_rows_.size(); ++l)
+        whole(owned_rows_[l]) = lambda.begin()[l];
+      sum_over_processes(whole);
+    }
+
+
+    template <int dim>
+    void
+    TFETIDual<dim>::extract_owned(const VectorType  &whole,
+                                  DistributedVector &dst) const
+    {
+      if (dst.size() != n_multipliers())
+        initialize_multipliers(dst);
+      for (unsigned int l = 0; l < owned_rows_.size(); ++l)
+        dst.begin()[l] = whole(owned_rows_[l]);
+    }
+
+
+    template <int dim>
+    qp::Problem<typename TFETIDual<dim>::DistributedVector>
+    TFETIDual<dim>::make_distributed_problem() const
+    {
+      AssertThrow(distributed_,
+                  ExcMessage("TFETIDual: a distributed QP asked for "
+                             "replicated multipliers."));
+      using V = DistributedVector;
+      qp::Problem<V> problem;
+      problem.hessian = [this](V &dst, const V &src)
+      {
+        apply_F(dst, src);
+        dst /= scale_;
+      };
+      problem.b = *d_distributed_;
+      problem.b /= scale_;
+      problem.lambda_max = 1.05; // as make_problem()
+      // the preconditioners act on the whole vector (their scaling
+      // (B B')^{-1} is one replicated factor): gathered, applied, the owned
+      // part kept
+      if (scaling_)
+        problem.free_set_preconditioner = [this](const V &)
+        {
+          return [this](V &dst, const V &src)
+          {
+            VectorType whole, result;
+            gather(src, whole);
+            apply_scaled_preconditioner(result,
+                                        whole,
+                                        has_dirichlet_preconditioner());
+            result *= scale_;
+            extract_owned(result, dst);
+          };
+        };
+
+      // the blocks of the owned contact nodes (a node's rows are owned
+      // together)
+      auto             set = std::make_shared<qp::SeparableSet<V>>();
+      std::vector<int> owned_index(n_multipliers(), -1);
+      for (const unsigned int r : owned_rows_)
+        owned_index[r] = r;
+      this->add_contact_blocks(*set, owned_index);
+      set->finalize(problem.b);
+      problem.constraints = set;
+
+      auto equality = std::make_shared<qp::EqualityConstraints<V>>();
+      // G~ src = L^-1 P G src: the owned columns' sums over the
+      // processes, on process 0
+      equality->vmult = [this](V &dst, const V &src)
+      {
+        VectorType partial(coarse_->n_modes());
+        coarse_->add_columns(partial, owned_rows_, src.begin());
+        sum_over_processes(partial);
+        if (dst.size() != coarse_->n_modes())
+          dst.reinit(owned_modes_, communicator_);
+        if (rank_ == 0)
+        {
+          coarse_->orthonormalize(partial);
+          for (unsigned int k = 0; k < partial.size(); ++k)
+            dst.begin()[k] = partial(k);
+        }
+      };
+      // G~' src = G' P' L^-T src: process 0's coefficients to every
+      // process, then the owned columns
+      equality->Tvmult = [this](V &dst, const V &src)
+      {
+        VectorType y(coarse_->n_modes());
+        if (rank_ == 0)
+        {
+          for (unsigned int k = 0; k < y.size(); ++k)
+            y(k) = src.begin()[k];
+          coarse_->orthonormalize_transpose(y);
+        }
+        sum_over_processes(y);
+        if (dst.size() != n_multipliers())
+          initialize_multipliers(dst);
+        coarse_->Tvmult_columns(y, owned_rows_, dst.begin());
+      };
+      equality->c                        = *e_distributed_;
+      equality->n_constraints            = coarse_->n_modes();
+      equality->norm_sq                  = 1.;
+      equality->orthonormal_rows         = true;
+      equality->projector_penalty_factor = 0.1; // as make_problem()
+      problem.equality                   = equality;
+      problem.semidefinite               = true;
+      return problem;
+    }
+
+
+    template <int dim>
+    void
+    TFETIDual<dim>::update_slip_bounds(const DistributedVector &lambda)
+    {
+      VectorType whole;
+      gather(lambda, whole);
+      this->update_slip_bounds(&whole);
+    }
+
+
+    template <int dim>
+    bool
+    TFETIDual<dim>::recover(const DistributedVector     &lambda,
+                            std::vector<Vector<double>> &displacements,
+                            const bool require_determined) const
+    {
+      VectorType whole;
+      gather(lambda, whole);
+      return recover(whole, displacements, require_determined);
     }
 
 

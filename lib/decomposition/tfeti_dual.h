@@ -11,6 +11,7 @@
 #include <decomposition/constraint_rows.h>
 #include <decomposition/decomposition_parameters.h>
 #include <decomposition/interface_schur_complement.h>
+#include <decomposition/multiplier_exchange.h>
 #include <decomposition/multiplier_scaling.h>
 #include <decomposition/subdomain.h>
 
@@ -95,14 +96,31 @@ namespace dualcontact
      * <b>Processes.</b> Under MPI every process owns whole subdomains
      * (balanced by their dofs, largest first onto the least loaded
      * process) and assembles, factorizes and solves only these; no process
-     * holds a global stiffness matrix or all of B.  The multipliers and
-     * the coarse problem are replicated: every process keeps lambda, d, c,
-     * G (gathered once from the processes' R_s'B_s') and the sparse
-     * Cholesky factor of G G', and F lambda is the sum over the owned
-     * subdomains followed by one MPI_Allreduce of the multiplier vector.  So
-     * the QP runs on dealii::Vector on every process in lockstep (the
-     * reductions give every process the same bits), and its result does not
-     * depend on the number of processes beyond round-off.  The recovered field
+     * holds a global stiffness matrix or all of B.  The coarse problem is
+     * replicated: every process keeps G (gathered once from the processes'
+     * R_s'B_s') and the sparse Cholesky factor of G G'.
+     *
+     * <b>Distributed multipliers</b> (DecompositionParameters::
+     * distributed_multipliers, the default on more than one process): a
+     * row of B belongs to the process of the lowest-numbered subdomain it
+     * touches (a gluing row to the first of its two; all rows of a contact
+     * node to one process, the lowest over the node's rows), and the QP
+     * runs on dealii::TrilinosWrappers::MPI::Vector with these owners.  F
+     * lambda reads the rows its subdomains touch from their owners and adds
+     * B_s u_s into them (MultiplierExchange: messages between the
+     * processes that share rows, of the shared rows only); G~ lambda is a
+     * sum of n_modes() numbers over the processes, G~'y the owned columns
+     * of G.  The preconditioners, the recovery and the Coulomb bounds
+     * gather the whole vector (once per application; the preconditioners'
+     * scaling (B B')^{-1} is one replicated factor).
+     *
+     * <b>Replicated multipliers</b> (one process, or `QP vectors =
+     * replicated'): every process keeps lambda, d and c, and F lambda is
+     * the sum over the owned subdomains followed by one MPI_Allreduce of the
+     * multiplier vector; the QP runs on dealii::Vector on every process in
+     * lockstep (the reductions give every process the same bits).  Either
+     * way the result does not depend on the number of processes beyond
+     * round-off.  The recovered field
      * is assembled from the owned subdomains and summed over the processes:
      * every process gets the whole field of every body (the mesh is
      * replicated, parallel::shared, and each process writes its cells).
@@ -114,8 +132,10 @@ namespace dualcontact
     class TFETIDual : public contact::DualFormulation<dim>
     {
     public:
-      using VectorType = dealii::Vector<double>;
+      using VectorType        = dealii::Vector<double>;
+      using DistributedVector = dealii::TrilinosWrappers::MPI::Vector;
       using contact::DualFormulation<dim>::recover;
+      using contact::DualFormulation<dim>::update_slip_bounds;
 
       /**
        * Cuts the bodies (counts from @p parameters), assembles and
@@ -143,6 +163,28 @@ namespace dualcontact
               const bool require_determined = true) const override;
       const std::vector<unsigned int> &
       contact_nodes_per_process() const override;
+
+      /** @name Distributed multipliers (see "Processes") */
+      /** @{ */
+      bool
+      is_distributed() const override;
+      void
+      initialize_multipliers(DistributedVector &lambda) const override;
+      void
+      gather(const DistributedVector &lambda, VectorType &whole) const override;
+      qp::Problem<DistributedVector>
+      make_distributed_problem() const override;
+      void
+      update_slip_bounds(const DistributedVector &lambda) override;
+      bool
+      recover(const DistributedVector             &lambda,
+              std::vector<dealii::Vector<double>> &displacements,
+              const bool require_determined = true) const override;
+      /** dst = F src on distributed multipliers (collective). */
+      void
+      apply_F(DistributedVector &dst, const DistributedVector &src) const;
+      /** @} */
+
       double
       scale() const override;
       const std::string &
@@ -289,12 +331,33 @@ namespace dualcontact
         const std::function<std::unique_ptr<fem::StiffnessSolver>()>
           &make_solver);
 
-      /** w_s = B_s' lambda for every owned subdomain. */
+      /**
+       * Which process owns which multipliers (see "Processes"), the
+       * neighbour lists of the exchange and the distributed d and e~.
+       * Collective.
+       */
       void
-      apply_Bt(const VectorType &lambda, std::vector<VectorType> &w) const;
-      /** lambda += B_s u_s over the owned subdomains (no reduction). */
+      distribute_multipliers();
+      /**
+       * w_s = B_s' lambda for every owned subdomain, lambda(r) at
+       * @p lambda[r], or with @p relevant at @p lambda[relevant[s][e]]
+       * for the e-th entry of B_s (the exchange's relevant rows).
+       */
       void
-      add_B(const std::vector<VectorType> &u, VectorType &lambda) const;
+      apply_Bt(
+        const double                                 *lambda,
+        std::vector<VectorType>                      &w,
+        const std::vector<std::vector<unsigned int>> *relevant = nullptr) const;
+      /** lambda += B_s u_s over the owned subdomains (no reduction),
+       *  indexed as apply_Bt(). */
+      void
+      add_B(
+        const std::vector<VectorType>                &u,
+        double                                       *lambda,
+        const std::vector<std::vector<unsigned int>> *relevant = nullptr) const;
+      /** dst := the owned entries of @p whole. */
+      void
+      extract_owned(const VectorType &whole, DistributedVector &dst) const;
       /** u_s = K_s^# w_s for every owned subdomain. */
       void
       apply_K_inverse(const std::vector<VectorType> &w,
@@ -327,6 +390,19 @@ namespace dualcontact
       double                    scale_ = 1;
       std::string               operator_description_;
       std::vector<unsigned int> nodes_per_process_;
+
+      /** Distributed multipliers: the owned rows (ascending, the order of
+       *  the distributed vectors' entries), the exchange, and per owned
+       *  subdomain and entry of B_s the entry's relevant row. */
+      bool                                   distributed_ = false;
+      dealii::IndexSet                       owned_multipliers_;
+      std::vector<unsigned int>              owned_rows_;
+      std::unique_ptr<MultiplierExchange>    exchange_;
+      std::vector<std::vector<unsigned int>> relevant_index_;
+      dealii::IndexSet                       owned_modes_;
+      std::unique_ptr<DistributedVector>     d_distributed_;
+      std::unique_ptr<DistributedVector>     e_distributed_;
+      mutable std::vector<double>            relevant_values_;
 
       double                          decomposition_time_ = 0, setup_time_ = 0;
       mutable double                  solve_time_         = 0;

@@ -92,6 +92,13 @@ namespace dualcontact
         decomposition::DecompositionParameters parameters =
           decomposition_parameters_;
         parameters.preconditioner = qp_parameters_.preconditioner;
+        // `QP vectors = automatic': distributed on more than one process
+        using Vectors = contact::DualProblemParameters::Vectors;
+        parameters.distributed_multipliers =
+          dual_parameters_.vectors == Vectors::distributed ||
+          (dual_parameters_.vectors == Vectors::automatic &&
+           dealii::Utilities::MPI::job_supports_mpi() &&
+           dealii::Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD) > 1);
         dual_ = std::make_unique<decomposition::TFETIDual<dim>>(
           bodies,
           *contact_,

@@ -26,8 +26,8 @@ relative tolerance TOLERANCE (default 1e-8) for the reals:
     processes (contact.multipliers_per_process, contact_nodes_per_process:
     N counts adding up to n_multipliers and n_nodes, two or more of them
     positive; a METIS subdomain may hold no contact node); with TFETI
-    (method = tfeti) dealii::Vector<double> replicated on every process
-    and the subdomains split over the processes
+    (method = tfeti) likewise (the rows of B on the processes of their
+    subdomains), and the subdomains split over the processes
     (decomposition.subdomains_per_process: N counts adding up to
     n_subdomains, each positive when there are at least N subdomains),
     the glued field continuous (relative_interface_jump below TOLERANCE);
@@ -187,32 +187,29 @@ def compare(check, tolerance, ranks, first, second):
     n_nodes = sum(v[0] for k, v in r2.items()
                   if re.match(r"pair_\d+\.n_nodes$", k))
     decomposition = c2.get("decomposition", {"method": "none"})
+    # the multipliers on distributed vectors, split over the processes
+    # (undecomposed: by contact node; TFETI: by the subdomains' rows)
+    check(c2.get("qp_vectors") == "dealii::TrilinosWrappers::MPI::Vector"
+          and len(per_process) == ranks
+          and sum(1 for n in per_process if n > 0) >= 2
+          and sum(per_process) == c2["n_multipliers"]
+          and len(nodes_per_process) == ranks
+          and sum(nodes_per_process) == n_nodes,
+          f"{ranks} processes: the QP ran on {c2.get('qp_vectors')}, "
+          f"multipliers per process {per_process} (of "
+          f"{c2['n_multipliers']}), contact nodes per process "
+          f"{nodes_per_process} (of {n_nodes:g})")
     if decomposition["method"] == "tfeti":
         subdomains = decomposition.get("subdomains_per_process", [])
         n_subdomains = decomposition["n_subdomains"]
-        check(c2.get("qp_vectors") == "dealii::Vector<double>"
-              and per_process == [c2["n_multipliers"]]
-              and len(subdomains) == ranks
+        check(len(subdomains) == ranks
               and sum(subdomains) == n_subdomains
               and (n_subdomains < ranks or min(subdomains) > 0),
-              f"{ranks} processes, TFETI: the QP ran on "
-              f"{c2.get('qp_vectors')} (replicated), multipliers "
-              f"{per_process} (of {c2['n_multipliers']}), subdomains per "
-              f"process {subdomains} (of {n_subdomains})")
+              f"{ranks} processes, TFETI: subdomains per process "
+              f"{subdomains} (of {n_subdomains})")
         jump = decomposition["relative_interface_jump"]
         check(jump <= tolerance, f"{ranks} processes, TFETI: relative "
               f"interface jump {jump:.2e}")
-    else:
-        check(c2.get("qp_vectors") == "dealii::TrilinosWrappers::MPI::Vector"
-              and len(per_process) == ranks
-              and sum(1 for n in per_process if n > 0) >= 2
-              and sum(per_process) == c2["n_multipliers"]
-              and len(nodes_per_process) == ranks
-              and sum(nodes_per_process) == n_nodes,
-              f"{ranks} processes: the QP ran on {c2.get('qp_vectors')}, "
-              f"multipliers per process {per_process} (of "
-              f"{c2['n_multipliers']}), contact nodes per process "
-              f"{nodes_per_process} (of {n_nodes:g})")
 
     exact = re.compile(r"pair_\d+\.n_(nodes|separated|stick|slip|contact)$")
     real = re.compile(r"(pair_\d+\.(normal_force|tangential_force|"
