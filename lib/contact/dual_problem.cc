@@ -57,8 +57,8 @@ namespace dualcontact
         "distributed: dealii::TrilinosWrappers::MPI::Vector, the "
         "multipliers of each contact node (normal and tangential) on the "
         "process owning the node's first slave dof (TFETI: every row of B, "
-        "gluing and Dirichlet ones too, on the process of the lowest "
-        "subdomain it touches); F products gather what they need. The "
+        "gluing and Dirichlet ones too, on the process of a subdomain it "
+        "touches); F products gather what they need. The "
         "working set (`subsection Working set') runs on replicated vectors "
         "only. automatic: distributed when run on more than one MPI "
         "process, else replicated.");

@@ -743,44 +743,61 @@ namespace dualcontact
     {
       const unsigned int n_rows  = n_multipliers();
       const unsigned int n_nodes = this->n_contact_nodes();
-      // the lowest subdomain whose B_s touches each row (over all
-      // processes: each knows its own subdomains' entries)
-      std::vector<unsigned int> lowest(n_rows, invalid);
+      // the lowest and the highest subdomain whose B_s touches each row
+      // (over all processes: each knows its own subdomains' entries; the
+      // highest as the lowest of invalid - s)
+      std::vector<unsigned int> lowest(n_rows, invalid),
+        highest(n_rows, invalid);
       for (const unsigned int s : owned_)
         for (const Entry &entry : rows_->entries(s))
-          lowest[entry.row] = std::min(lowest[entry.row], s);
+        {
+          lowest[entry.row]  = std::min(lowest[entry.row], s);
+          highest[entry.row] = std::min(highest[entry.row], invalid - 1 - s);
+        }
       if (n_processes_ > 1)
-      {
-        const int ierr = MPI_Allreduce(MPI_IN_PLACE,
-                                       lowest.data(),
-                                       lowest.size(),
-                                       MPI_UNSIGNED,
-                                       MPI_MIN,
-                                       communicator_);
-        AssertThrowMPI(ierr);
-      }
+        for (auto *v : {&lowest, &highest})
+        {
+          const int ierr = MPI_Allreduce(MPI_IN_PLACE,
+                                         v->data(),
+                                         v->size(),
+                                         MPI_UNSIGNED,
+                                         MPI_MIN,
+                                         communicator_);
+          AssertThrowMPI(ierr);
+        }
+      // A row between subdomains goes to its lowest one on even rows and
+      // to its highest on odd ones: a chain of gluing rows alternates, so
+      // each subdomain gets about half of its interface rows (the lowest
+      // alone would give subdomain 0 all of its rows and the last one none).
+      std::vector<unsigned int> chosen(n_rows, invalid);
+      for (unsigned int r = 0; r < n_rows; ++r)
+        if (lowest[r] != invalid)
+          chosen[r] = r % 2 == 0 ? lowest[r] : invalid - 1 - highest[r];
       // a contact node's rows stay together (its friction set is one
       // block of the QP): the lowest subdomain over all of them
       for (unsigned int node = 0; node < n_nodes; ++node)
       {
-        const int j = this->frictional_index(node);
-        if (j < 0)
-          continue;
-        const unsigned int first = n_nodes + (dim - 1) * j;
-        unsigned int       m     = lowest[node];
-        for (unsigned int k = 0; k < dim - 1; ++k)
-          m = std::min(m, lowest[first + k]);
-        lowest[node] = m;
-        for (unsigned int k = 0; k < dim - 1; ++k)
-          lowest[first + k] = m;
+        unsigned int m = lowest[node];
+        const int    j = this->frictional_index(node);
+        if (j >= 0)
+          for (unsigned int k = 0; k < dim - 1; ++k)
+            m = std::min(m, lowest[n_nodes + (dim - 1) * j + k]);
+        chosen[node] = m;
+        if (j >= 0)
+          for (unsigned int k = 0; k < dim - 1; ++k)
+            chosen[n_nodes + (dim - 1) * j + k] = m;
       }
+      lowest.clear();
+      lowest.shrink_to_fit();
+      highest.clear();
+      highest.shrink_to_fit();
       // a row no subdomain touches (a contact node whose dofs are all
       // prescribed) goes to process 0
       std::vector<unsigned int> row_owner(n_rows);
       for (unsigned int r = 0; r < n_rows; ++r)
-        row_owner[r] = lowest[r] == invalid ? 0 : owner_[lowest[r]];
-      lowest.clear();
-      lowest.shrink_to_fit();
+        row_owner[r] = chosen[r] == invalid ? 0 : owner_[chosen[r]];
+      chosen.clear();
+      chosen.shrink_to_fit();
 
       owned_multipliers_.set_size(n_rows);
       owned_rows_.clear();

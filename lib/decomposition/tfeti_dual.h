@@ -102,9 +102,10 @@ namespace dualcontact
      *
      * <b>Distributed multipliers</b> (DecompositionParameters::
      * distributed_multipliers, the default on more than one process): a
-     * row of B belongs to the process of the lowest-numbered subdomain it
-     * touches (a gluing row to the first of its two; all rows of a contact
-     * node to one process, the lowest over the node's rows), and the QP
+     * row of B belongs to the process of one subdomain it touches (of
+     * the lowest on even rows, of the highest on odd ones, so that a chain
+     * of gluing rows alternates; all rows of a contact node to the lowest
+     * subdomain over the node's rows), and the QP
      * runs on dealii::TrilinosWrappers::MPI::Vector with these owners.  F
      * lambda reads the rows its subdomains touch from their owners and adds
      * B_s u_s into them (MultiplierExchange: messages between the
