@@ -959,7 +959,12 @@ namespace dualcontact
             y(k) = src.begin()[k];
           coarse_->orthonormalize_transpose(y);
         }
-        sum_over_processes(y);
+        if (n_processes_ > 1)
+        {
+          const int ierr =
+            MPI_Bcast(y.data(), y.size(), MPI_DOUBLE, 0, communicator_);
+          AssertThrowMPI(ierr);
+        }
         if (dst.size() != n_multipliers())
           initialize_multipliers(dst);
         coarse_->Tvmult_columns(y, owned_rows_, dst.begin());

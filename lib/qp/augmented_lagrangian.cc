@@ -82,10 +82,22 @@ namespace dualcontact
     AugmentedLagrangian<VectorType>::inner_hessian(VectorType       &dst,
                                                    const VectorType &src)
     {
-      outer_hessian(dst, src);
-      ++stats.n_hessian_products;
       eq.vmult(Bx, src);
       eq.Tvmult(BtBx, Bx);
+      if (coarse_projector)
+      {
+        // P A P src + rho B'B src with P src = src - B'B src: the B'B src
+        // of the projection is the penalty's (one application of B and B'
+        // less per product: each is a reduction under MPI and a coarse
+        // solve in TFETI)
+        projected_src = src;
+        projected_src -= BtBx;
+        problem.hessian(dst, projected_src);
+        project(dst);
+      }
+      else
+        problem.hessian(dst, src);
+      ++stats.n_hessian_products;
       dst.add(rho, BtBx);
     }
 
