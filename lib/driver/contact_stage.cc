@@ -148,6 +148,13 @@ namespace dualcontact
           nodes << (nodes.str().empty() ? "" : ", ") << n;
         details.push_back("Multipliers distributed by contact node: " +
                           nodes.str() + " nodes per process");
+        // the working set selects rows of the whole multiplier vector
+        // (ContactSolver::solve_on_working_set): said, not skipped silently
+        if (working_set_parameters_.enabled && dual_->n_contact_nodes() > 0)
+          details.push_back(
+            "Working set (`subsection Dual problem/Working set'): not used, "
+            "the QP runs on distributed vectors (`set QP vectors = "
+            "replicated' uses it)");
       }
     }
 
