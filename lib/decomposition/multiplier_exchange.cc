@@ -105,42 +105,13 @@ namespace dualcontact
 
       std::vector<std::vector<double>> sent(neighbours_.size()),
         received(neighbours_.size());
-      std::vector<MPI_Request> requests;
-      requests.reserve(2 * neighbours_.size());
       for (unsigned int n = 0; n < neighbours_.size(); ++n)
       {
-        const Neighbour &neighbour = neighbours_[n];
-        received[n].resize(neighbour.ghosts.size());
-        if (!received[n].empty())
-        {
-          requests.emplace_back();
-          const int ierr = MPI_Irecv(received[n].data(),
-                                     received[n].size(),
-                                     MPI_DOUBLE,
-                                     neighbour.rank,
-                                     import_tag,
-                                     communicator_,
-                                     &requests.back());
-          AssertThrowMPI(ierr);
-        }
-        for (const unsigned int l : neighbour.owned)
+        for (const unsigned int l : neighbours_[n].owned)
           sent[n].push_back(own[l]);
-        if (!sent[n].empty())
-        {
-          requests.emplace_back();
-          const int ierr = MPI_Isend(sent[n].data(),
-                                     sent[n].size(),
-                                     MPI_DOUBLE,
-                                     neighbour.rank,
-                                     import_tag,
-                                     communicator_,
-                                     &requests.back());
-          AssertThrowMPI(ierr);
-        }
+        received[n].resize(neighbours_[n].ghosts.size());
       }
-      const int ierr =
-        MPI_Waitall(requests.size(), requests.data(), MPI_STATUSES_IGNORE);
-      AssertThrowMPI(ierr);
+      swap_with_neighbours(sent, received, import_tag);
       for (unsigned int n = 0; n < neighbours_.size(); ++n)
         for (unsigned int g = 0; g < neighbours_[n].ghosts.size(); ++g)
           values[neighbours_[n].ghosts[g]] = received[n][g];
@@ -164,34 +135,49 @@ namespace dualcontact
       // every run with the same processes)
       std::vector<std::vector<double>> sent(neighbours_.size()),
         received(neighbours_.size());
+      for (unsigned int n = 0; n < neighbours_.size(); ++n)
+      {
+        for (const unsigned int i : neighbours_[n].ghosts)
+          sent[n].push_back(values[i]);
+        received[n].resize(neighbours_[n].owned.size());
+      }
+      swap_with_neighbours(sent, received, export_tag);
+      for (unsigned int n = 0; n < neighbours_.size(); ++n)
+        for (unsigned int k = 0; k < neighbours_[n].owned.size(); ++k)
+          own[neighbours_[n].owned[k]] += received[n][k];
+    }
+
+
+    void
+    MultiplierExchange::swap_with_neighbours(
+      const std::vector<std::vector<double>> &sent,
+      std::vector<std::vector<double>>       &received,
+      const int                               tag) const
+    {
       std::vector<MPI_Request> requests;
       requests.reserve(2 * neighbours_.size());
       for (unsigned int n = 0; n < neighbours_.size(); ++n)
       {
-        const Neighbour &neighbour = neighbours_[n];
-        received[n].resize(neighbour.owned.size());
         if (!received[n].empty())
         {
           requests.emplace_back();
           const int ierr = MPI_Irecv(received[n].data(),
                                      received[n].size(),
                                      MPI_DOUBLE,
-                                     neighbour.rank,
-                                     export_tag,
+                                     neighbours_[n].rank,
+                                     tag,
                                      communicator_,
                                      &requests.back());
           AssertThrowMPI(ierr);
         }
-        for (const unsigned int i : neighbour.ghosts)
-          sent[n].push_back(values[i]);
         if (!sent[n].empty())
         {
           requests.emplace_back();
           const int ierr = MPI_Isend(sent[n].data(),
                                      sent[n].size(),
                                      MPI_DOUBLE,
-                                     neighbour.rank,
-                                     export_tag,
+                                     neighbours_[n].rank,
+                                     tag,
                                      communicator_,
                                      &requests.back());
           AssertThrowMPI(ierr);
@@ -200,9 +186,6 @@ namespace dualcontact
       const int ierr =
         MPI_Waitall(requests.size(), requests.data(), MPI_STATUSES_IGNORE);
       AssertThrowMPI(ierr);
-      for (unsigned int n = 0; n < neighbours_.size(); ++n)
-        for (unsigned int k = 0; k < neighbours_[n].owned.size(); ++k)
-          own[neighbours_[n].owned[k]] += received[n][k];
     }
   } // namespace decomposition
 } // namespace dualcontact

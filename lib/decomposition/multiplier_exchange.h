@@ -71,6 +71,13 @@ namespace dualcontact
         std::vector<unsigned int> owned;
       };
 
+      /** Sends @p sent[n] to neighbour n and receives @p received[n]
+       *  (sized by the caller) from it, with message tag @p tag. */
+      void
+      swap_with_neighbours(const std::vector<std::vector<double>> &sent,
+                           std::vector<std::vector<double>>       &received,
+                           const int                               tag) const;
+
       MPI_Comm                  communicator_;
       dealii::IndexSet          owned_;
       std::vector<unsigned int> relevant_;
