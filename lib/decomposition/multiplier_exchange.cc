@@ -76,13 +76,6 @@ namespace dualcontact
     }
 
 
-    const std::vector<unsigned int> &
-    MultiplierExchange::relevant_rows() const
-    {
-      return relevant_;
-    }
-
-
     unsigned int
     MultiplierExchange::relevant_index(const unsigned int row) const
     {

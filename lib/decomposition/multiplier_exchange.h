@@ -38,10 +38,8 @@ namespace dualcontact
                          const std::vector<unsigned int> &relevant_owner,
                          const MPI_Comm                   communicator);
 
-      /** The relevant rows (sorted). */
-      const std::vector<unsigned int> &
-      relevant_rows() const;
-      /** Position of relevant row @p row in relevant_rows(). */
+      /** Position of relevant row @p row among the (sorted) relevant
+       *  rows: the index into import()'s and export_add()'s values. */
       unsigned int
       relevant_index(const unsigned int row) const;
 
@@ -62,7 +60,7 @@ namespace dualcontact
 
     private:
       /** One neighbour: the relevant rows it owns that this process reads
-       *  (positions in relevant_rows()), and the rows this process owns
+       *  (positions among the relevant rows), and the rows this process owns
        *  that it reads (positions in the owned vector). */
       struct Neighbour
       {

@@ -27,6 +27,32 @@ namespace dualcontact
       const unsigned int invalid = std::numeric_limits<unsigned int>::max();
 
       /**
+       * The parts of TFETI's QP that do not depend on the vectors'
+       * distribution (make_problem(), make_distributed_problem()): the
+       * bound on lambda_max of the scaled F (the power iteration's estimate
+       * approaches from below), and what G~'s rows are.
+       */
+      template <typename V>
+      void
+      describe_scaled_problem(qp::Problem<V>             &problem,
+                              qp::EqualityConstraints<V> &equality,
+                              const unsigned int          n_modes)
+      {
+        problem.lambda_max     = 1.05;
+        equality.n_constraints = n_modes;
+        equality.norm_sq       = 1.; // ||G~||^2 = lambda_max(G~ G~') = 1
+        // G~ G~' = L^-1 P G G' P' L^-T = I: SMALSE-M may use the coarse
+        // projector
+        equality.orthonormal_rows = true;
+        // rho = 0.1 lambda_max(F) unless the .prm says otherwise: on the
+        // brick 4.4 times fewer products than 1 with friction, 1.5 times
+        // with 128 subdomains (doc/benchmarks/tfeti.md, "Penalty factor of
+        // the coarse projector")
+        equality.projector_penalty_factor = 0.1;
+        problem.semidefinite              = true;
+      }
+
+      /**
        * The concatenation, in process order, of @p local of every process
        * of @p communicator (on every process).
        */
@@ -607,8 +633,6 @@ namespace dualcontact
       };
       problem.b = d_;
       problem.b /= scale_;
-      // the power iteration's estimate approaches from below
-      problem.lambda_max = 1.05;
       // the lumped (Dirichlet) preconditioner of F / s is s Q B K B' Q
       // (s Q B S B' Q): one operator for every free set, the solver zeroes
       // the active entries
@@ -644,18 +668,9 @@ namespace dualcontact
         coarse_->orthonormalize_transpose(y);
         coarse_->Tvmult(dst, y);
       };
-      equality->c             = e_orthonormal_;
-      equality->n_constraints = coarse_->n_modes();
-      equality->norm_sq       = 1.; // ||G~||^2 = lambda_max(G~ G~') = 1
-      // G~ G~' = L^-1 P G G' P' L^-T = I: SMALSE-M may use the coarse projector
-      equality->orthonormal_rows = true;
-      // rho = 0.1 lambda_max(F) unless the .prm says otherwise: on the
-      // brick 4.4 times fewer products than 1 with friction, 1.5 times
-      // with 128 subdomains (doc/benchmarks/tfeti.md, "Penalty factor of
-      // the coarse projector")
-      equality->projector_penalty_factor = 0.1;
-      problem.equality                   = equality;
-      problem.semidefinite               = true;
+      equality->c = e_orthonormal_;
+      describe_scaled_problem(problem, *equality, coarse_->n_modes());
+      problem.equality = equality;
       return problem;
     }
 
@@ -744,24 +759,24 @@ namespace dualcontact
       const unsigned int n_rows  = n_multipliers();
       const unsigned int n_nodes = this->n_contact_nodes();
       // the lowest and the highest subdomain whose B_s touches each row
-      // (over all processes: each knows its own subdomains' entries; the
-      // highest as the lowest of invalid - s)
-      std::vector<unsigned int> lowest(n_rows, invalid),
-        highest(n_rows, invalid);
+      // (over all processes: each knows its own subdomains' entries; highest
+      // is read only where lowest says some subdomain touches the row)
+      std::vector<unsigned int> lowest(n_rows, invalid), highest(n_rows, 0);
       for (const unsigned int s : owned_)
         for (const Entry &entry : rows_->entries(s))
         {
           lowest[entry.row]  = std::min(lowest[entry.row], s);
-          highest[entry.row] = std::min(highest[entry.row], invalid - 1 - s);
+          highest[entry.row] = std::max(highest[entry.row], s);
         }
       if (n_processes_ > 1)
-        for (auto *v : {&lowest, &highest})
+        for (const auto &[v, op] : {std::make_pair(&lowest, MPI_MIN),
+                                    std::make_pair(&highest, MPI_MAX)})
         {
           const int ierr = MPI_Allreduce(MPI_IN_PLACE,
                                          v->data(),
                                          v->size(),
                                          MPI_UNSIGNED,
-                                         MPI_MIN,
+                                         op,
                                          communicator_);
           AssertThrowMPI(ierr);
         }
@@ -772,7 +787,7 @@ namespace dualcontact
       std::vector<unsigned int> chosen(n_rows, invalid);
       for (unsigned int r = 0; r < n_rows; ++r)
         if (lowest[r] != invalid)
-          chosen[r] = r % 2 == 0 ? lowest[r] : invalid - 1 - highest[r];
+          chosen[r] = r % 2 == 0 ? lowest[r] : highest[r];
       // a contact node's rows stay together (its friction set is one
       // block of the QP): the lowest subdomain over all of them
       for (unsigned int node = 0; node < n_nodes; ++node)
@@ -902,7 +917,6 @@ namespace dualcontact
       };
       problem.b = *d_distributed_;
       problem.b /= scale_;
-      problem.lambda_max = 1.05; // as make_problem()
       // the preconditioners act on the whole vector (their scaling
       // (B B')^{-1} is one replicated factor): gathered, applied, the owned
       // part kept
@@ -938,7 +952,19 @@ namespace dualcontact
       {
         VectorType partial(coarse_->n_modes());
         coarse_->add_columns(partial, owned_rows_, src.begin());
-        sum_over_processes(partial);
+        if (n_processes_ > 1)
+        {
+          // only process 0 holds the coarse vectors
+          const int ierr =
+            MPI_Reduce(rank_ == 0 ? MPI_IN_PLACE : partial.data(),
+                       partial.data(),
+                       partial.size(),
+                       MPI_DOUBLE,
+                       MPI_SUM,
+                       0,
+                       communicator_);
+          AssertThrowMPI(ierr);
+        }
         if (dst.size() != coarse_->n_modes())
           dst.reinit(owned_modes_, communicator_);
         if (rank_ == 0)
@@ -969,13 +995,9 @@ namespace dualcontact
           initialize_multipliers(dst);
         coarse_->Tvmult_columns(y, owned_rows_, dst.begin());
       };
-      equality->c                        = *e_distributed_;
-      equality->n_constraints            = coarse_->n_modes();
-      equality->norm_sq                  = 1.;
-      equality->orthonormal_rows         = true;
-      equality->projector_penalty_factor = 0.1; // as make_problem()
-      problem.equality                   = equality;
-      problem.semidefinite               = true;
+      equality->c = *e_distributed_;
+      describe_scaled_problem(problem, *equality, coarse_->n_modes());
+      problem.equality = equality;
       return problem;
     }
 
