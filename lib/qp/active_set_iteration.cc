@@ -112,8 +112,9 @@ namespace dualcontact
         x_prev.reinit(x);
         g_prev.reinit(x);
       }
-      projected_cg =
-        prm.expansion == "projected-cg" && !variant.barzilai_borwein && !weak;
+      // MPGP-BB too: its BB expansion is then the fall-back when the
+      // projected CG step does not lower the cost below the half-step's
+      projected_cg = prm.expansion == "projected-cg" && !weak;
 
       // preconditioning in face changes only the CG steps on the free set
       // (active blocks stay fixed: apply_preconditioner() zeroes them), so

@@ -357,6 +357,18 @@ namespace dualcontact
     }
 
 
+    template <typename VectorType>
+    typename SeparableSet<VectorType>::size_type
+    SeparableSet<VectorType>::n_constrained_unknowns() const
+    {
+      return n_blocks(BlockType::bound) * blocks::Bound::n_components +
+             n_blocks(BlockType::box) * blocks::Box::n_components +
+             n_blocks(BlockType::disc) * blocks::Disc::n_components +
+             n_blocks(BlockType::ellipse) * blocks::Ellipse::n_components +
+             n_blocks(BlockType::cone) * blocks::Cone::n_components;
+    }
+
+
     // ======================== the active set ============================
 
     template <typename VectorType>

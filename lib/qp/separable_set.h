@@ -151,6 +151,10 @@ namespace dualcontact
       /// True if every block is a bound or box (what MPRGP accepts).
       bool
       only_bounds_and_boxes() const;
+      /// Global number of unknowns in blocks (the rest of x is
+      /// unconstrained), after finalize().
+      size_type
+      n_constrained_unknowns() const;
 
       /**
        * Calls @p f(index, lower, upper) for every bound block (upper =

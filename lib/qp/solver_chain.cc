@@ -13,6 +13,20 @@ namespace dualcontact
 {
   namespace qp
   {
+    namespace
+    {
+      /// Does @p problem have constraints and unknowns outside their
+      /// blocks (TFETI's gluing and Dirichlet multipliers)?
+      template <typename VectorType>
+      bool
+      has_unconstrained_unknowns(const Problem<VectorType> &problem)
+      {
+        return problem.constraints != nullptr &&
+               problem.constraints->n_constrained_unknowns() < problem.b.size();
+      }
+    } // namespace
+
+
     template <typename VectorType>
     SolverChain<VectorType>::SolverChain(
       const SolverParameters  &parameters,
@@ -57,22 +71,38 @@ namespace dualcontact
         parameters.preconditioner != thesis.preconditioner ||
         parameters.proportioning_step != thesis.proportioning_step;
       if (chosen_by_user)
-        parameters.auto_chain.settings = "given";
-      if (chosen_by_user || name != "mprgp" || problem.equality != nullptr ||
-          problem.hessian_storage != HessianStorage::sparse_matrix)
-        return parameters;
-      // PERMON's best MPGP setting, and ours without a preconditioner
-      // (doc/benchmarks/membrane.md, parts 2 and "Defaults (issue 20)")
-      parameters.gamma     = 2.;
-      parameters.expansion = "projected-cg";
-      if (problem.free_set_preconditioner)
       {
-        // the AMG in face with the trials that keep its whole step from
-        // over-activating, and the preconditioned release
-        parameters.projected_cg_trials          = 8;
-        parameters.projected_cg_gradient_factor = 1.25;
-        parameters.preconditioner               = "amg";
-        parameters.proportioning_step           = "preconditioned";
+        parameters.auto_chain.settings = "given";
+        return parameters;
+      }
+      if (name == "mprgp" && problem.equality == nullptr &&
+          problem.hessian_storage == HessianStorage::sparse_matrix)
+      {
+        // PERMON's best MPGP setting, and ours without a preconditioner
+        // (doc/benchmarks/membrane.md, parts 2 and "Defaults (issue 20)")
+        parameters.gamma     = 2.;
+        parameters.expansion = "projected-cg";
+        if (problem.free_set_preconditioner)
+        {
+          // the AMG in face with the trials that keep its whole step from
+          // over-activating, and the preconditioned release
+          parameters.projected_cg_trials          = 8;
+          parameters.projected_cg_gradient_factor = 1.25;
+          parameters.preconditioner               = "amg";
+          parameters.proportioning_step           = "preconditioned";
+        }
+      }
+      else if ((name == "mpgp-bb" || name == "mpgp") &&
+               has_unconstrained_unknowns(problem))
+      {
+        // TFETI's dual: its gluing and Dirichlet multipliers are free, and
+        // the CG steps they drive are cut short by the first contact block
+        // near its boundary; the whole step projected moves them on and
+        // activates those blocks at once (doc/benchmarks/tfeti.md,
+        // "Projected-CG expansion on TFETI")
+        parameters.expansion = "projected-cg";
+        if (name == "mpgp-bb")
+          parameters.gamma = 2.;
       }
       return parameters;
     }
@@ -88,7 +118,7 @@ namespace dualcontact
       const std::string &name = parameters.solver;
       if (name == "mprgp" || name == "mpgp" || name == "mpgp-bb")
         s << " gamma=" << parameters.gamma;
-      if (name == "mprgp" || name == "mpgp")
+      if (name == "mprgp" || name == "mpgp" || name == "mpgp-bb")
       {
         s << ", expansion=" << parameters.expansion;
         if (parameters.expansion == "projected-cg")

@@ -81,8 +81,14 @@ namespace dualcontact
        *   Gamma = 2 and Expansion = projected-cg (PERMON's best setting;
        *   the membrane at h = 400: 2947 iterations against 10,000+ with
        *   the thesis' defaults);
+       * - MPGP-BB and MPGP on a problem with constraints and unknowns
+       *   outside them (TFETI's dual, whose gluing and Dirichlet
+       *   multipliers are free): Expansion = projected-cg, and Gamma = 2
+       *   for MPGP-BB (brick 20 x 40 x 20 in 16 subdomains, 1e-6: 776
+       *   Hessian products against 1265; MPGP 4883 against 6734);
        * - everything else (a dense Hessian: the contact dual F, FCLIB's
-       *   W; an operator; the other solvers): the parameters given.
+       *   W; an operator without free unknowns; the other solvers): the
+       *   parameters given.
        * The measured settings replace only the thesis' table-14 values:
        * when any of Gamma, Expansion, Projected-CG trials, Projected-CG
        * gradient factor, Preconditioner and Proportioning step differs
@@ -96,8 +102,8 @@ namespace dualcontact
       /// "measured: gamma=2, expansion=projected-cg, ..." (or "given:
       /// ..."): the settings of @p parameters that @p parameters.solver
       /// uses (MPRGP: Gamma, expansion, trials, gradient factor,
-      /// preconditioner, proportioning step; MPGP: the first four;
-      /// MPGP-BB: Gamma; others: the thesis' table-14 parameters, not
+      /// preconditioner, proportioning step; MPGP and MPGP-BB: the first
+      /// four; others: the thesis' table-14 parameters, not
       /// listed), as SolverStatistics::settings of each attempt.
       static std::string
       describe_settings(const SolverParameters &parameters);

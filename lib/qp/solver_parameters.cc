@@ -157,14 +157,16 @@ namespace dualcontact
       prm.declare_entry("Expansion",
                         d.expansion,
                         Selection("alpha-bar|projected-cg"),
-                        "MPRGP and MPGP: the step after a CG half-step. "
-                        "alpha-bar: thesis, the projected step of length "
-                        "alpha_bar along the free gradient (MPRGP) or the "
-                        "gradient (MPGP); projected-cg: the whole CG step "
-                        "projected onto the set, which adds many "
-                        "constraints at once (PERMON's projcg), replaced by "
-                        "the alpha-bar step whenever it would not lower the "
-                        "cost below that of the half-step. Unit: none.");
+                        "MPRGP, MPGP and MPGP-BB: the step after a CG "
+                        "half-step. alpha-bar: thesis, the projected step "
+                        "of length alpha_bar along the free gradient "
+                        "(MPRGP) or the gradient (MPGP), MPGP-BB's "
+                        "Barzilai-Borwein projection; projected-cg: the "
+                        "whole CG step projected onto the set, which adds "
+                        "many constraints at once (PERMON's projcg), "
+                        "replaced by the alpha-bar step whenever it would "
+                        "not lower the cost below that of the half-step. "
+                        "Unit: none.");
       prm.declare_entry("Projected-CG trials",
                         text(d.projected_cg_trials),
                         Integer(1),

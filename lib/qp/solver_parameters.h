@@ -219,13 +219,13 @@ namespace dualcontact
       /// Gamma > 0 of the proportioning test ||beta|| <= Gamma ||phi||
       /// (MPRGP, MPGP, MPGP-BB; table 14: 1)
       double gamma = 1.;
-      /// The expansion after a CG half-step of MPRGP and MPGP:
+      /// The expansion after a CG half-step of MPRGP, MPGP and MPGP-BB:
       /// "alpha-bar" (thesis, algorithm 7: P(x_{k+1/2} - alpha_bar d),
-      /// d = phi for MPRGP, g for MPGP) or "projected-cg" (P(x_k -
-      /// alpha_cg p), the whole CG step projected, PERMON's "projcg";
-      /// the alpha-bar expansion is done instead when it would not lower
-      /// the cost below that of the half-step).  Not used by MPGP-BB and
-      /// MwPGP.
+      /// d = phi for MPRGP, g for MPGP; MPGP-BB's Barzilai-Borwein
+      /// projection) or "projected-cg" (P(x_k - alpha_cg p), the whole CG
+      /// step projected, PERMON's "projcg"; the method's own expansion is
+      /// done instead when it would not lower the cost below that of the
+      /// half-step).  Not used by MwPGP.
       std::string expansion = "alpha-bar";
       /// The projected-CG expansion tries the step lengths t_k = alpha_f
       /// + (alpha_cg - alpha_f) 2^-k, k = 0, ..., this - 1 (alpha_f the

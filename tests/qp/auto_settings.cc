@@ -7,6 +7,11 @@
 //     projected-CG only; dense (the contact dual, FCLIB) and operator-only
 //     Hessians, equality constraints, the fall-back solvers, `Auto/Settings
 //     = given' and a Gamma the user set -> the parameters given, unchanged;
+//     MPGP-BB and MPGP on ellipses beside unconstrained unknowns (TFETI's
+//     gluing multipliers), with equality constraints and an operator-only
+//     Hessian -> projected-CG (MPGP-BB also Gamma 2), the same ellipses
+//     without free unknowns -> the parameters given; and MPGP-BB with
+//     those settings solves that problem to its planted solution;
 //  2. the membrane of benchmark B4 (PERMON's variant, h = 100, n = 10,100,
 //     ||g^P|| <= 1e-6 ||b||) with the default parameters: the chain runs
 //     one attempt, mprgp with those settings, converged in at most 20
@@ -124,6 +129,48 @@ main(int argc, char **argv)
     check.check(thesis_settings(
                   chain.attempt_parameters(with_equality, "mprgp")),
                 "equality constraints (SMALSE-M): the parameters given");
+
+    // ellipses beside free unknowns (TFETI's dual) and without them
+    for (const unsigned int n_free : {12u, 0u})
+    {
+      const Planted P =
+        make_planted({BlockType::ellipse, BlockType::bound}, 20, n_free, 11);
+      Vec  layout(P.x_star.size());
+      auto tfeti_like            = make_problem(P.A, P.b, P.blocks, layout);
+      tfeti_like.equality        = std::make_shared<EqualityConstraints<Vec>>();
+      tfeti_like.hessian_storage = HessianStorage::operator_only;
+      const auto        bb    = chain.attempt_parameters(tfeti_like, "mpgp-bb");
+      const auto        pg    = chain.attempt_parameters(tfeti_like, "mpgp");
+      const std::string label = std::to_string(n_free) + " free unknowns: ";
+      if (n_free > 0)
+      {
+        check.check(bb.gamma == 2. && bb.expansion == "projected-cg" &&
+                      bb.projected_cg_trials == 1 &&
+                      bb.preconditioner == "none" &&
+                      bb.auto_chain.settings == "measured" &&
+                      contains(SolverChain<Vec>::describe_settings(bb),
+                               "expansion=projected-cg"),
+                    label + "mpgp-bb with Gamma 2 and projected-CG (" +
+                      SolverChain<Vec>::describe_settings(bb) + ")");
+        check.check(pg.gamma == 1. && pg.expansion == "projected-cg",
+                    label + "mpgp with projected-CG (" +
+                      SolverChain<Vec>::describe_settings(pg) + ")");
+        // MPGP-BB with these settings reaches the planted solution
+        SolverParameters run = bb;
+        run.tolerance        = 1e-10;
+        Vec        x(P.x_star.size());
+        auto       plain = make_problem(P.A, P.b, P.blocks, layout);
+        const auto s     = create<Vec>("mpgp-bb", run)->solve(plain, x);
+        check.check(s.converged() &&
+                      distance(x, P.x_star) <= 1e-8 * (1. + norm(P.x_star)),
+                    label + "mpgp-bb with them: " + to_string(s.reason) +
+                      " in " + std::to_string(s.iterations) +
+                      " iterations, |x - x*| = " + sci(distance(x, P.x_star)));
+      }
+      else
+        check.check(thesis_settings(bb) && thesis_settings(pg),
+                    label + "the parameters given");
+    }
 
     SolverParameters given    = prm;
     given.auto_chain.settings = "given";

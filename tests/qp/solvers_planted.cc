@@ -5,9 +5,9 @@
 // multipliers are chosen, b = A x* + sum mu_j n_j(x*).  Solved from x0 = 0
 // to ||g^P|| <= 1e-10 ||b||; checks: converged, ||x - x*|| <= 1e-8 (1 +
 // ||x*||), KKT residuals small, statistics consistent (iterations = sum of
-// kinds, products counted); MPRGP and MPGP also with the projected-CG
-// expansion (parameter `expansion`).  Then ellipses with axis ratios up to 1e4
-// under each of the three stopping criteria.
+// kinds, products counted); MPRGP, MPGP and MPGP-BB also with the
+// projected-CG expansion (parameter `expansion`).  Then ellipses with axis
+// ratios up to 1e4 under each of the three stopping criteria.
 #include "planted_problems.h"
 
 #include <qp/solver_factory.h>
@@ -87,12 +87,14 @@ main()
   // projected-CG expansions: accepted ones (half-steps without a
   // fall-back to alpha_bar), so that the test exercises them
   unsigned int n_projected_cg = 0;
-  // "name/expansion": MPRGP and MPGP also with the projected-CG expansion
+  // "name/expansion": MPRGP, MPGP and MPGP-BB also with the projected-CG
+  // expansion
   for (const std::string config : {"mprgp",
                                    "mprgp/projected-cg",
                                    "mpgp",
                                    "mpgp/projected-cg",
                                    "mpgp-bb",
+                                   "mpgp-bb/projected-cg",
                                    "mwpgp"})
     for (const Case &c :
          (config.rfind("mprgp", 0) == 0 ? bound_sets : all_sets))
@@ -123,7 +125,8 @@ main()
                   << to_string(stats.reason) << std::endl;
         const std::string tag =
           config + "/" + c.name + "/" + std::to_string(seed) + ": ";
-        if (prm.expansion == "projected-cg")
+        // (MPGP-BB's n_fall_back also counts its rejected BB steps)
+        if (prm.expansion == "projected-cg" && solver != "mpgp-bb")
           n_projected_cg += stats.n_half_steps - stats.n_fall_back;
         check.verbose = false;
         check_planted_solution(check, tag, stats, P, x);
