@@ -164,9 +164,9 @@ namespace dualcontact
                         "Barzilai-Borwein projection; projected-cg: the "
                         "whole CG step projected onto the set, which adds "
                         "many constraints at once (PERMON's projcg), "
-                        "replaced by the alpha-bar step whenever it would "
-                        "not lower the cost below that of the half-step. "
-                        "Unit: none.");
+                        "replaced by the method's alpha-bar expansion "
+                        "whenever it would not lower the cost below that of "
+                        "the half-step. Unit: none.");
       prm.declare_entry("Projected-CG trials",
                         text(d.projected_cg_trials),
                         Integer(1),
