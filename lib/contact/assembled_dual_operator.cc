@@ -199,7 +199,7 @@ namespace dualcontact
       // the whole src, then the owned rows of F (= columns, F is
       // symmetric and column-major) by runs of consecutive rows
       const std::vector<unsigned int> &owned_rows = owners.owned_rows();
-      owners.gather(src, work_lambda_);
+      owners.layout().gather(src, work_lambda_);
       const types::blas_int m = m_, one = 1;
       const double          alpha = 1., beta = 0.;
       for (unsigned int k = 0; k < owned_rows.size();)

@@ -281,7 +281,7 @@ namespace dualcontact
     const IndexSet &
     DualProblem<dim>::locally_owned_multipliers() const
     {
-      return distribution_->locally_owned();
+      return distribution_->layout().locally_owned();
     }
 
 
@@ -305,7 +305,10 @@ namespace dualcontact
     void
     DualProblem<dim>::initialize_multipliers(DistributedVector &lambda) const
     {
-      distribution_->initialize(lambda);
+      AssertThrow(distribution_->is_distributed(),
+                  ExcMessage("DualProblem: distributed multipliers asked "
+                             "for a replicated dual problem."));
+      distribution_->layout().initialize(lambda);
     }
 
 
@@ -314,7 +317,7 @@ namespace dualcontact
     DualProblem<dim>::gather(const DistributedVector &lambda,
                              VectorType              &whole) const
     {
-      distribution_->gather(lambda, whole);
+      distribution_->layout().gather(lambda, whole);
     }
 
 
@@ -346,7 +349,7 @@ namespace dualcontact
       // comes from the one process that owns it
       const unsigned int  n_frictional = frictional_nodes_.size();
       std::vector<double> first(n_frictional, 0.), second(n_frictional, 0.);
-      const IndexSet     &owned = distribution_->locally_owned();
+      const IndexSet     &owned = distribution_->layout().locally_owned();
       for (const unsigned int j : distribution_->owned_frictional())
       {
         const unsigned int      node = frictional_nodes_[j];

@@ -150,7 +150,7 @@ namespace dualcontact
           partial[owned_modes_.nth_index_in_set(l)] = src.begin()[l];
         Utilities::MPI::sum(partial, owners.communicator(), total);
         if (dst.size() != n_multipliers)
-          owners.initialize(dst);
+          owners.layout().initialize(dst);
         for (unsigned int l = 0; l < owned_rows.size(); ++l)
         {
           double value = 0;

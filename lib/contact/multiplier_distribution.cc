@@ -23,7 +23,6 @@ namespace dualcontact
     {
       const unsigned int n_nodes = contact.n_nodes();
       const unsigned int m = n_nodes + (dim - 1) * frictional_nodes.size();
-      n_multipliers_       = m;
       if (!distributed_)
       {
         // one process owns all rows, in order (recover() runs the loop of
@@ -32,9 +31,7 @@ namespace dualcontact
         std::iota(owned_nodes_.begin(), owned_nodes_.end(), 0u);
         owned_frictional_.resize(frictional_nodes.size());
         std::iota(owned_frictional_.begin(), owned_frictional_.end(), 0u);
-        owned_rows_.resize(m);
-        std::iota(owned_rows_.begin(), owned_rows_.end(), 0u);
-        owned_multipliers_ = complete_index_set(m);
+        layout_ = MultiplierLayout(m);
         nodes_per_process_.assign(1, n_nodes);
         multipliers_per_process_.assign(1, m);
         return;
@@ -43,8 +40,8 @@ namespace dualcontact
         Utilities::MPI::job_supports_mpi() ?
           Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD) :
           1;
-      communicator_           = MPI_COMM_WORLD;
-      const unsigned int rank = Utilities::MPI::this_mpi_process(communicator_);
+      const MPI_Comm     communicator = MPI_COMM_WORLD;
+      const unsigned int rank = Utilities::MPI::this_mpi_process(communicator);
 
       // a node belongs to the process owning its first slave dof, if the
       // bodies are partitioned (every node claimed exactly once); else
@@ -60,7 +57,7 @@ namespace dualcontact
                     1 :
                     0;
       }
-      Utilities::MPI::sum(mine, communicator_, claims);
+      Utilities::MPI::sum(mine, communicator, claims);
       const bool partitioned =
         std::all_of(claims.begin(),
                     claims.end(),
@@ -80,19 +77,15 @@ namespace dualcontact
           owned_frictional_.push_back(frictional_index[i]);
       }
 
-      owned_multipliers_ = IndexSet(m);
-      for (const unsigned int i : owned_nodes_)
-        owned_multipliers_.add_index(i);
+      std::vector<unsigned int> owned_rows = owned_nodes_;
       for (const unsigned int j : owned_frictional_)
-        owned_multipliers_.add_range(n_nodes + (dim - 1) * j,
-                                     n_nodes + (dim - 1) * (j + 1));
-      owned_multipliers_.compress();
-      for (const auto r : owned_multipliers_)
-        owned_rows_.push_back(r);
+        for (unsigned int k = 0; k < dim - 1; ++k)
+          owned_rows.push_back(n_nodes + (dim - 1) * j + k);
+      layout_ = MultiplierLayout(m, std::move(owned_rows), communicator);
       nodes_per_process_ = Utilities::MPI::all_gather(
-        communicator_, static_cast<unsigned int>(owned_nodes_.size()));
+        communicator, static_cast<unsigned int>(owned_nodes_.size()));
       multipliers_per_process_ = Utilities::MPI::all_gather(
-        communicator_, static_cast<unsigned int>(owned_rows_.size()));
+        communicator, static_cast<unsigned int>(layout_.owned_rows().size()));
     }
 
 
@@ -106,21 +99,14 @@ namespace dualcontact
     MPI_Comm
     MultiplierDistribution::communicator() const
     {
-      return communicator_;
-    }
-
-
-    const IndexSet &
-    MultiplierDistribution::locally_owned() const
-    {
-      return owned_multipliers_;
+      return layout_.communicator();
     }
 
 
     const std::vector<unsigned int> &
     MultiplierDistribution::owned_rows() const
     {
-      return owned_rows_;
+      return layout_.owned_rows();
     }
 
 
@@ -152,32 +138,10 @@ namespace dualcontact
     }
 
 
-    void
-    MultiplierDistribution::initialize(DistributedVector &lambda) const
+    const MultiplierLayout &
+    MultiplierDistribution::layout() const
     {
-      AssertThrow(distributed_,
-                  ExcMessage("DualProblem: distributed multipliers asked "
-                             "for a replicated dual problem."));
-      lambda.reinit(owned_multipliers_, communicator_);
-    }
-
-
-    void
-    MultiplierDistribution::gather(const DistributedVector &lambda,
-                                   Vector<double>          &whole) const
-    {
-      AssertDimension(lambda.locally_owned_size(), owned_rows_.size());
-      whole.reinit(n_multipliers_);
-      for (unsigned int k = 0; k < owned_rows_.size(); ++k)
-        whole(owned_rows_[k]) = lambda.begin()[k];
-      // each entry is owned by one process: the sum is the entry itself
-      const int ierr = MPI_Allreduce(MPI_IN_PLACE,
-                                     whole.begin(),
-                                     whole.size(),
-                                     MPI_DOUBLE,
-                                     MPI_SUM,
-                                     communicator_);
-      AssertThrowMPI(ierr);
+      return layout_;
     }
 
 

@@ -6,6 +6,7 @@
 #include <deal.II/lac/vector.h>
 
 #include <contact/contact_discretization.h>
+#include <contact/multiplier_layout.h>
 #include <fem/elastic_body.h>
 
 #include <vector>
@@ -46,9 +47,6 @@ namespace dualcontact
       /** MPI_COMM_WORLD if distributed, else MPI_COMM_SELF. */
       MPI_Comm
       communicator() const;
-      /** The owned multipliers as an index set of all of them. */
-      const dealii::IndexSet &
-      locally_owned() const;
       /** The owned multipliers' global indices, in local order. */
       const std::vector<unsigned int> &
       owned_rows() const;
@@ -66,20 +64,14 @@ namespace dualcontact
       const std::vector<unsigned int> &
       multipliers_per_process() const;
 
-      /** A distributed vector of multipliers, zero (collective). */
-      void
-      initialize(DistributedVector &lambda) const;
-      /** The whole vector of multipliers on every process (collective). */
-      void
-      gather(const DistributedVector &lambda,
-             dealii::Vector<double>  &whole) const;
+      /** The owned rows and the moves between the whole vector and the
+       *  owned part (MultiplierLayout::initialize() and gather()). */
+      const MultiplierLayout &
+      layout() const;
 
     private:
-      unsigned int              n_multipliers_ = 0;
-      bool                      distributed_   = false;
-      MPI_Comm                  communicator_  = MPI_COMM_SELF;
-      dealii::IndexSet          owned_multipliers_;
-      std::vector<unsigned int> owned_rows_;
+      bool                      distributed_ = false;
+      MultiplierLayout          layout_;
       std::vector<unsigned int> owned_nodes_, owned_frictional_;
       std::vector<unsigned int> nodes_per_process_, multipliers_per_process_;
     };

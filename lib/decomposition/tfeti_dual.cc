@@ -468,14 +468,15 @@ namespace dualcontact
                             const DistributedVector &src) const
     {
       Assert(distributed_, ExcInternalError());
-      exchange_->import(src, relevant_values_);
-      apply_Bt(relevant_values_.data(), work_, &relevant_index_);
+      const MultiplierExchange &exchange = ownership_->exchange();
+      exchange.import(src, relevant_values_);
+      apply_Bt(relevant_values_.data(), work_, &ownership_->relevant_index());
       apply_K_inverse(work_, work_x_);
       relevant_values_.assign(relevant_values_.size(), 0.);
-      add_B(work_x_, relevant_values_.data(), &relevant_index_);
+      add_B(work_x_, relevant_values_.data(), &ownership_->relevant_index());
       if (dst.size() != n_multipliers())
         initialize_multipliers(dst);
-      exchange_->export_add(relevant_values_, dst);
+      exchange.export_add(relevant_values_, dst);
     }
 
 
@@ -756,98 +757,22 @@ namespace dualcontact
     void
     TFETIDual<dim>::distribute_multipliers()
     {
-      const unsigned int n_rows  = n_multipliers();
-      const unsigned int n_nodes = this->n_contact_nodes();
-      // the lowest and the highest subdomain whose B_s touches each row
-      // (over all processes: each knows its own subdomains' entries; highest
-      // is read only where lowest says some subdomain touches the row)
-      std::vector<unsigned int> lowest(n_rows, invalid), highest(n_rows, 0);
-      for (const unsigned int s : owned_)
-        for (const Entry &entry : rows_->entries(s))
-        {
-          lowest[entry.row]  = std::min(lowest[entry.row], s);
-          highest[entry.row] = std::max(highest[entry.row], s);
-        }
-      if (n_processes_ > 1)
-        for (const auto &[v, op] : {std::make_pair(&lowest, MPI_MIN),
-                                    std::make_pair(&highest, MPI_MAX)})
-        {
-          const int ierr = MPI_Allreduce(MPI_IN_PLACE,
-                                         v->data(),
-                                         v->size(),
-                                         MPI_UNSIGNED,
-                                         op,
-                                         communicator_);
-          AssertThrowMPI(ierr);
-        }
-      // A row between subdomains goes to its lowest one on even rows and
-      // to its highest on odd ones: a chain of gluing rows alternates, so
-      // each subdomain gets about half of its interface rows (the lowest
-      // alone would give subdomain 0 all of its rows and the last one none).
-      std::vector<unsigned int> chosen(n_rows, invalid);
-      for (unsigned int r = 0; r < n_rows; ++r)
-        if (lowest[r] != invalid)
-          chosen[r] = r % 2 == 0 ? lowest[r] : highest[r];
-      // a contact node's rows stay together (its friction set is one
-      // block of the QP): the lowest subdomain over all of them
+      const unsigned int                     n_nodes = this->n_contact_nodes();
+      std::vector<std::vector<unsigned int>> node_rows(n_nodes);
       for (unsigned int node = 0; node < n_nodes; ++node)
       {
-        unsigned int m = lowest[node];
-        const int    j = this->frictional_index(node);
+        node_rows[node].push_back(node);
+        const int j = this->frictional_index(node);
         if (j >= 0)
           for (unsigned int k = 0; k < dim - 1; ++k)
-            m = std::min(m, lowest[n_nodes + (dim - 1) * j + k]);
-        chosen[node] = m;
-        if (j >= 0)
-          for (unsigned int k = 0; k < dim - 1; ++k)
-            chosen[n_nodes + (dim - 1) * j + k] = m;
+            node_rows[node].push_back(n_nodes + (dim - 1) * j + k);
       }
-      lowest.clear();
-      lowest.shrink_to_fit();
-      highest.clear();
-      highest.shrink_to_fit();
-      // a row no subdomain touches (a contact node whose dofs are all
-      // prescribed) goes to process 0
-      std::vector<unsigned int> row_owner(n_rows);
-      for (unsigned int r = 0; r < n_rows; ++r)
-        row_owner[r] = chosen[r] == invalid ? 0 : owner_[chosen[r]];
-      chosen.clear();
-      chosen.shrink_to_fit();
-
-      owned_multipliers_.set_size(n_rows);
-      owned_rows_.clear();
-      for (unsigned int r = 0; r < n_rows; ++r)
-        if (row_owner[r] == rank_)
-          owned_rows_.push_back(r);
-      owned_multipliers_.add_indices(owned_rows_.begin(), owned_rows_.end());
-      owned_multipliers_.compress();
-
-      std::vector<unsigned int> relevant = owned_rows_;
-      for (const unsigned int s : owned_)
-        for (const Entry &entry : rows_->entries(s))
-          relevant.push_back(entry.row);
-      std::sort(relevant.begin(), relevant.end());
-      relevant.erase(std::unique(relevant.begin(), relevant.end()),
-                     relevant.end());
-      std::vector<unsigned int> relevant_owner(relevant.size());
-      for (unsigned int i = 0; i < relevant.size(); ++i)
-        relevant_owner[i] = row_owner[relevant[i]];
-      exchange_ = std::make_unique<MultiplierExchange>(owned_multipliers_,
-                                                       relevant,
-                                                       relevant_owner,
-                                                       communicator_);
-      relevant_index_.assign(subdomains_.size(), {});
-      for (const unsigned int s : owned_)
-        for (const Entry &entry : rows_->entries(s))
-          relevant_index_[s].push_back(exchange_->relevant_index(entry.row));
-
-      std::vector<unsigned int> nodes(n_processes_, 0);
-      for (unsigned int node = 0; node < n_nodes; ++node)
-        ++nodes[row_owner[node]];
-      nodes_per_process_ = nodes;
+      ownership_ = std::make_unique<MultiplierOwnership<dim>>(
+        *rows_, owner_, owned_, node_rows, communicator_);
+      nodes_per_process_ = ownership_->nodes_per_process();
 
       d_distributed_ = std::make_unique<DistributedVector>();
-      extract_owned(d_, *d_distributed_);
+      ownership_->layout().extract(d_, *d_distributed_);
       // the coarse space's vectors (n_modes() numbers) live on process 0
       owned_modes_.set_size(coarse_->n_modes());
       if (rank_ == 0)
@@ -872,7 +797,7 @@ namespace dualcontact
     TFETIDual<dim>::initialize_multipliers(DistributedVector &lambda) const
     {
       Assert(distributed_, ExcInternalError());
-      lambda.reinit(owned_multipliers_, communicator_);
+      ownership_->layout().initialize(lambda);
     }
 
 
@@ -882,22 +807,7 @@ namespace dualcontact
                            VectorType              &whole) const
     {
       Assert(distributed_, ExcInternalError());
-      whole.reinit(n_multipliers());
-      for (unsigned int l = 0; l < owned_rows_.size(); ++l)
-        whole(owned_rows_[l]) = lambda.begin()[l];
-      sum_over_processes(whole);
-    }
-
-
-    template <int dim>
-    void
-    TFETIDual<dim>::extract_owned(const VectorType  &whole,
-                                  DistributedVector &dst) const
-    {
-      if (dst.size() != n_multipliers())
-        initialize_multipliers(dst);
-      for (unsigned int l = 0; l < owned_rows_.size(); ++l)
-        dst.begin()[l] = whole(owned_rows_[l]);
+      ownership_->layout().gather(lambda, whole);
     }
 
 
@@ -931,7 +841,7 @@ namespace dualcontact
                                         whole,
                                         has_dirichlet_preconditioner());
             result *= scale_;
-            extract_owned(result, dst);
+            ownership_->layout().extract(result, dst);
           };
         };
 
@@ -939,7 +849,7 @@ namespace dualcontact
       // together)
       auto             set = std::make_shared<qp::SeparableSet<V>>();
       std::vector<int> owned_index(n_multipliers(), -1);
-      for (const unsigned int r : owned_rows_)
+      for (const unsigned int r : ownership_->layout().owned_rows())
         owned_index[r] = r;
       this->add_contact_blocks(*set, owned_index);
       set->finalize(problem.b);
@@ -951,7 +861,9 @@ namespace dualcontact
       equality->vmult = [this](V &dst, const V &src)
       {
         VectorType partial(coarse_->n_modes());
-        coarse_->add_columns(partial, owned_rows_, src.begin());
+        coarse_->add_columns(partial,
+                             ownership_->layout().owned_rows(),
+                             src.begin());
         if (n_processes_ > 1)
         {
           // only process 0 holds the coarse vectors
@@ -993,7 +905,9 @@ namespace dualcontact
         }
         if (dst.size() != n_multipliers())
           initialize_multipliers(dst);
-        coarse_->Tvmult_columns(y, owned_rows_, dst.begin());
+        coarse_->Tvmult_columns(y,
+                                ownership_->layout().owned_rows(),
+                                dst.begin());
       };
       equality->c = *e_distributed_;
       describe_scaled_problem(problem, *equality, coarse_->n_modes());

@@ -11,7 +11,7 @@
 #include <decomposition/constraint_rows.h>
 #include <decomposition/decomposition_parameters.h>
 #include <decomposition/interface_schur_complement.h>
-#include <decomposition/multiplier_exchange.h>
+#include <decomposition/multiplier_ownership.h>
 #include <decomposition/multiplier_scaling.h>
 #include <decomposition/subdomain.h>
 
@@ -333,8 +333,8 @@ namespace dualcontact
           &make_solver);
 
       /**
-       * Which process owns which multipliers (see "Processes"), the
-       * neighbour lists of the exchange and the distributed d and e~.
+       * Which process owns which multipliers (MultiplierOwnership), and
+       * the distributed d and e~.
        * Collective.
        */
       void
@@ -356,9 +356,6 @@ namespace dualcontact
         const std::vector<VectorType>                &u,
         double                                       *lambda,
         const std::vector<std::vector<unsigned int>> *relevant = nullptr) const;
-      /** dst := the owned entries of @p whole. */
-      void
-      extract_owned(const VectorType &whole, DistributedVector &dst) const;
       /** u_s = K_s^# w_s for every owned subdomain. */
       void
       apply_K_inverse(const std::vector<VectorType> &w,
@@ -392,18 +389,14 @@ namespace dualcontact
       std::string               operator_description_;
       std::vector<unsigned int> nodes_per_process_;
 
-      /** Distributed multipliers: the owned rows (ascending, the order of
-       *  the distributed vectors' entries), the exchange, and per owned
-       *  subdomain and entry of B_s the entry's relevant row. */
-      bool                                   distributed_ = false;
-      dealii::IndexSet                       owned_multipliers_;
-      std::vector<unsigned int>              owned_rows_;
-      std::unique_ptr<MultiplierExchange>    exchange_;
-      std::vector<std::vector<unsigned int>> relevant_index_;
-      dealii::IndexSet                       owned_modes_;
-      std::unique_ptr<DistributedVector>     d_distributed_;
-      std::unique_ptr<DistributedVector>     e_distributed_;
-      mutable std::vector<double>            relevant_values_;
+      /** Distributed multipliers: the owned rows, the exchange, and per
+       *  owned subdomain and entry of B_s the entry's relevant row. */
+      bool                                      distributed_ = false;
+      std::unique_ptr<MultiplierOwnership<dim>> ownership_;
+      dealii::IndexSet                          owned_modes_;
+      std::unique_ptr<DistributedVector>        d_distributed_;
+      std::unique_ptr<DistributedVector>        e_distributed_;
+      mutable std::vector<double>               relevant_values_;
 
       double                          decomposition_time_ = 0, setup_time_ = 0;
       mutable double                  solve_time_         = 0;
