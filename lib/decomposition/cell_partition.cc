@@ -6,7 +6,9 @@
 
 #include <decomposition/cell_partition.h>
 
+#include <algorithm>
 #include <limits>
+#include <numeric>
 
 namespace dualcontact
 {
@@ -14,11 +16,85 @@ namespace dualcontact
   {
     using namespace dealii;
 
+    namespace
+    {
+      /**
+       * Cuts @p cells (indices into @p centres, reordered in place) into
+       * @p n_parts parts numbered from @p first_part into @p part.
+       */
+      template <int dim>
+      void
+      bisect(const std::vector<Point<dim>>            &centres,
+             const std::vector<unsigned int>::iterator begin,
+             const std::vector<unsigned int>::iterator end,
+             const unsigned int                        n_parts,
+             const unsigned int                        first_part,
+             std::vector<unsigned int>                &part)
+      {
+        if (n_parts == 1)
+        {
+          for (auto c = begin; c != end; ++c)
+            part[*c] = first_part;
+          return;
+        }
+        Point<dim> low = centres[*begin], high = centres[*begin];
+        for (auto c = begin; c != end; ++c)
+          for (unsigned int d = 0; d < dim; ++d)
+          {
+            low[d]  = std::min(low[d], centres[*c][d]);
+            high[d] = std::max(high[d], centres[*c][d]);
+          }
+        unsigned int axis = 0;
+        for (unsigned int d = 1; d < dim; ++d)
+          if (high[d] - low[d] > high[axis] - low[axis])
+            axis = d;
+        // a strict order (the other coordinates, then the index, break
+        // ties), so that a cut through a layer of equal centres is the
+        // same on every process
+        const auto before =
+          [&centres, axis](const unsigned int a, const unsigned int b)
+        {
+          for (unsigned int k = 0; k < dim; ++k)
+          {
+            const unsigned int d = (axis + k) % dim;
+            if (centres[a][d] != centres[b][d])
+              return centres[a][d] < centres[b][d];
+          }
+          return a < b;
+        };
+        const unsigned int n_first = n_parts / 2;
+        const auto         n_cells = static_cast<unsigned long>(end - begin);
+        const auto middle = begin + (n_cells * n_first + n_parts / 2) / n_parts;
+        std::nth_element(begin, middle, end, before);
+        bisect(centres, begin, middle, n_first, first_part, part);
+        bisect(
+          centres, middle, end, n_parts - n_first, first_part + n_first, part);
+      }
+    } // namespace
+
+
     template <int dim>
     std::vector<unsigned int>
-    partition_cells(const Triangulation<dim> &triangulation,
-                    const unsigned int        n_parts,
-                    const std::string        &body_name)
+    bisect_cells(const Triangulation<dim> &triangulation,
+                 const unsigned int        n_parts)
+    {
+      const unsigned int      n_cells = triangulation.n_active_cells();
+      std::vector<Point<dim>> centres(n_cells);
+      for (const auto &cell : triangulation.active_cell_iterators())
+        centres[cell->active_cell_index()] = cell->center();
+      std::vector<unsigned int> order(n_cells), part(n_cells, 0);
+      std::iota(order.begin(), order.end(), 0u);
+      bisect(centres, order.begin(), order.end(), n_parts, 0, part);
+      return part;
+    }
+
+
+    template <int dim>
+    std::vector<unsigned int>
+    partition_cells(const Triangulation<dim>                  &triangulation,
+                    const unsigned int                         n_parts,
+                    const DecompositionParameters::Partitioner partitioner,
+                    const std::string                         &body_name)
     {
       const unsigned int n_cells = triangulation.n_active_cells();
       const std::string  parameters =
@@ -29,26 +105,29 @@ namespace dualcontact
                              " cells and cannot be cut into " +
                              std::to_string(n_parts) + " subdomains " +
                              parameters + "."));
-      DynamicSparsityPattern connectivity;
-      GridTools::get_face_connectivity_of_cells(triangulation, connectivity);
-      SparsityPattern graph;
-      graph.copy_from(connectivity);
-
       std::vector<unsigned int> part(n_cells, 0);
-      if (n_parts > 1)
+      if (partitioner == DecompositionParameters::Partitioner::bisection)
+        part = bisect_cells(triangulation, n_parts);
+      else if (n_parts > 1)
+      {
+        DynamicSparsityPattern connectivity;
+        GridTools::get_face_connectivity_of_cells(triangulation, connectivity);
+        SparsityPattern graph;
+        graph.copy_from(connectivity);
         SparsityTools::partition(graph,
                                  n_parts,
                                  part,
                                  SparsityTools::Partitioner::metis);
+      }
       std::vector<unsigned int> size(n_parts, 0);
       for (const unsigned int p : part)
         ++size[p];
       for (unsigned int p = 0; p < n_parts; ++p)
-        AssertThrow(size[p] > 0,
-                    ExcMessage("METIS left subdomain " + std::to_string(p + 1) +
-                               " of " + std::to_string(n_parts) + " of " +
-                               body_name + " empty: ask for fewer subdomains " +
-                               parameters + "."));
+        AssertThrow(
+          size[p] > 0,
+          ExcMessage("The partitioner left subdomain " + std::to_string(p + 1) +
+                     " of " + std::to_string(n_parts) + " of " + body_name +
+                     " empty: ask for fewer subdomains " + parameters + "."));
 
       // The pieces of every part connected through whole faces, by
       // breadth-first search from the lowest unvisited cell, numbered by
@@ -98,10 +177,16 @@ namespace dualcontact
     template std::vector<unsigned int>
     partition_cells(const Triangulation<2> &,
                     const unsigned int,
+                    const DecompositionParameters::Partitioner,
                     const std::string &);
     template std::vector<unsigned int>
     partition_cells(const Triangulation<3> &,
                     const unsigned int,
+                    const DecompositionParameters::Partitioner,
                     const std::string &);
+    template std::vector<unsigned int>
+    bisect_cells(const Triangulation<2> &, const unsigned int);
+    template std::vector<unsigned int>
+    bisect_cells(const Triangulation<3> &, const unsigned int);
   } // namespace decomposition
 } // namespace dualcontact

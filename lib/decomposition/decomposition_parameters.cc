@@ -41,6 +41,18 @@ namespace dualcontact
         "subdomain'. A part that METIS leaves in pieces (cells joined by "
         "an edge or a vertex only, or a refined cell beside a coarser one) "
         "becomes one subdomain per piece, so a body may get more.");
+      prm.declare_entry(
+        "Partitioner",
+        "metis",
+        Patterns::Selection("metis|bisection"),
+        "Method = tfeti: how a body's cells are cut into subdomains. metis: "
+        "METIS on the graph of cells that share a face (fewest cut faces; "
+        "the parts' boundaries may be jagged). bisection: recursive "
+        "coordinate bisection of the cell centres, each cut across the "
+        "longest extent of the cells it divides, at the quantile that "
+        "gives both sides cells in proportion to their parts (box-shaped "
+        "subdomains on a box). Either way a part in pieces becomes one "
+        "subdomain per piece.");
       prm.declare_entry("Cells per subdomain",
                         "4096",
                         Patterns::Integer(1),
@@ -64,6 +76,9 @@ namespace dualcontact
       method                 = name == "none"  ? Method::none :
                                name == "tfeti" ? Method::tfeti :
                                                  Method::automatic;
+      partitioner            = prm.get("Partitioner") == "bisection" ?
+                                 Partitioner::bisection :
+                                 Partitioner::metis;
       subdomains_per_body.clear();
       for (const std::string &entry :
            Utilities::split_string_list(prm.get("Subdomains per body")))

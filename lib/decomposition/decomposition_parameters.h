@@ -31,6 +31,17 @@ namespace dualcontact
        * empty: from cells_per_subdomain.
        */
       std::vector<unsigned int> subdomains_per_body;
+      /** How the cells of a body are cut into subdomains. */
+      enum class Partitioner
+      {
+        /** METIS on the graph of cells that share a face */
+        metis,
+        /** recursive coordinate bisection of the cell centres (each cut
+         *  across the longest extent, at the quantile of the parts on
+         *  either side) */
+        bisection
+      };
+      Partitioner partitioner = Partitioner::metis;
       /** Target number of cells per subdomain when no count is given. */
       unsigned int cells_per_subdomain = 4096;
       /**

@@ -214,8 +214,10 @@ namespace dualcontact
           parameters.n_subdomains(b, body.triangulation().n_active_cells());
         // every process partitions (so that an error is thrown on every
         // process alike) and takes the first one's partition
-        std::vector<unsigned int> part =
-          partition_cells(body.triangulation(), n_parts, body.name());
+        std::vector<unsigned int> part = partition_cells(body.triangulation(),
+                                                         n_parts,
+                                                         parameters.partitioner,
+                                                         body.name());
         if (n_processes_ > 1)
           part = Utilities::MPI::broadcast(communicator_, part, 0);
         const unsigned int n_pieces =

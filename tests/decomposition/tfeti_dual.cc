@@ -28,6 +28,11 @@
 //     contact face lifts; the working set drops the rows that rounds of
 //     rising precision find open (their columns leave G): the same answer
 //     as undecomposed and as with the rows kept, in fewer inner iterations.
+//  K. the bisection partitioner: on boxes of cells (3D 4 x 8 x 4 into 16
+//     parts, 2D 8 x 8 into 4) every part fills the box of its cells'
+//     centres (box-shaped parts); the parts' sizes differ by at most one
+//     cell (also into 6 parts, which cannot all be boxes); A's brick cut by
+//     bisection into 16 subdomains gives the undecomposed answer.
 // Checks: displacements to 1e-8 relative (largest nodal difference over
 // the largest displacement), contact forces (every multiplier, relative to
 // the largest) to 1e-6, the copies of every interface dof agree to 1e-8 of
@@ -44,6 +49,7 @@
 
 #include <contact/contact_solver.h>
 #include <contact/dual_problem.h>
+#include <decomposition/cell_partition.h>
 #include <decomposition/interface_schur_complement.h>
 #include <decomposition/tfeti_dual.h>
 #include <fem/cholmod_solver.h>
@@ -199,15 +205,18 @@ namespace
    */
   template <int dim>
   void
-  compare(const std::string                                &name,
-          const std::vector<const fem::ElasticBody<dim> *> &bodies,
-          const std::vector<contact::ContactPair<dim>>     &pairs,
-          const std::vector<unsigned int>                  &counts,
-          const std::string                                &solver,
-          const std::function<void(const decomposition::TFETIDual<dim> &)>
-                                              &inspect = {},
-          const contact::WorkingSetParameters &working_set =
-            contact::WorkingSetParameters())
+  compare(
+    const std::string                                                &name,
+    const std::vector<const fem::ElasticBody<dim> *>                 &bodies,
+    const std::vector<contact::ContactPair<dim>>                     &pairs,
+    const std::vector<unsigned int>                                  &counts,
+    const std::string                                                &solver,
+    const std::function<void(const decomposition::TFETIDual<dim> &)> &inspect =
+      {},
+    const contact::WorkingSetParameters &working_set =
+      contact::WorkingSetParameters(),
+    const decomposition::DecompositionParameters::Partitioner partitioner =
+      decomposition::DecompositionParameters::Partitioner::metis)
   {
     std::cout << name << std::endl;
     const contact::ContactDiscretization<dim>    contact(bodies, pairs);
@@ -238,6 +247,7 @@ namespace
     {
       decomposition::DecompositionParameters parameters;
       parameters.subdomains_per_body = {count};
+      parameters.partitioner         = partitioner;
       decomposition::TFETIDual<dim> tfeti(bodies,
                                           contact,
                                           parameters,
@@ -965,6 +975,81 @@ namespace
           "  J. fewer inner iterations with the separated rows dropped",
           dropped);
   }
+
+
+  /**
+   * K. bisect_cells() on the box @p lower - @p upper of @p subdivisions
+   * cells into @p n_parts parts: the sizes differ by at most one cell,
+   * and, if @p boxes, every part fills the box spanned by its cells'
+   * centres.
+   */
+  template <int dim>
+  void
+  bisection_parts(const std::vector<unsigned int> &subdivisions,
+                  const Point<dim>                &upper,
+                  const unsigned int               n_parts,
+                  const bool                       boxes)
+  {
+    Triangulation<dim> triangulation;
+    GridGenerator::subdivided_hyper_rectangle(triangulation,
+                                              subdivisions,
+                                              Point<dim>(),
+                                              upper);
+    const std::vector<unsigned int> part =
+      decomposition::bisect_cells(triangulation, n_parts);
+    std::vector<Point<dim>>   low(n_parts), high(n_parts);
+    std::vector<unsigned int> size(n_parts, 0);
+    for (const auto &cell : triangulation.active_cell_iterators())
+    {
+      const unsigned int p = part[cell->active_cell_index()];
+      const Point<dim>   c = cell->center();
+      if (size[p]++ == 0)
+        low[p] = high[p] = c;
+      for (unsigned int d = 0; d < dim; ++d)
+      {
+        low[p][d]  = std::min(low[p][d], c[d]);
+        high[p][d] = std::max(high[p][d], c[d]);
+      }
+    }
+    unsigned int n_not_boxes = 0;
+    for (unsigned int p = 0; p < n_parts; ++p)
+    {
+      unsigned int in_box = 1;
+      for (unsigned int d = 0; d < dim; ++d)
+        in_box *= static_cast<unsigned int>(std::round(
+                    (high[p][d] - low[p][d]) / (upper[d] / subdivisions[d]))) +
+                  1;
+      n_not_boxes += in_box != size[p];
+    }
+    const std::string label = "  K. " + std::to_string(dim) + "D box into " +
+                              std::to_string(n_parts) + " parts: ";
+    if (boxes)
+      check(n_not_boxes == 0, label + "parts that are not boxes", n_not_boxes);
+    const auto [smallest, largest] =
+      std::minmax_element(size.begin(), size.end());
+    check(*smallest > 0 && *largest - *smallest <= 1,
+          label + "largest minus smallest part [cells]",
+          *largest - *smallest);
+  }
+
+
+  void
+  bisection()
+  {
+    std::cout << "K. bisection partitioner" << std::endl;
+    bisection_parts<3>({4, 8, 4}, Point<3>(1, 2, 1), 16, true);
+    bisection_parts<3>({4, 8, 4}, Point<3>(1, 2, 1), 6, false);
+    bisection_parts<2>({8, 8}, Point<2>(1, 1), 4, true);
+    const auto body = brick_body();
+    compare<3>("K. brick 4 x 8 x 4 cut by bisection",
+               {body.get()},
+               {brick_pair()},
+               {16},
+               "auto",
+               {},
+               contact::WorkingSetParameters(),
+               decomposition::DecompositionParameters::Partitioner::bisection);
+  }
 } // namespace
 
 
@@ -982,5 +1067,6 @@ main()
   bad_counts();
   hanging_nodes();
   separated_rows();
+  bisection();
   return test_tools::finish();
 }
