@@ -41,9 +41,9 @@ namespace dualcontact
          *  either side) */
         bisection
       };
-      Partitioner partitioner = Partitioner::metis;
+      Partitioner partitioner = Partitioner::bisection;
       /** Target number of cells per subdomain when no count is given. */
-      unsigned int cells_per_subdomain = 4096;
+      unsigned int cells_per_subdomain = 1000;
       /**
        * Limit [MB] of the estimated Cholesky factor of the whole stiffness
        * matrix for `automatic' (estimate_factor_megabytes()).
