@@ -19,8 +19,9 @@ namespace dualcontact
     namespace
     {
       /**
-       * Cuts @p cells (indices into @p centres, reordered in place) into
-       * @p n_parts parts numbered from @p first_part into @p part.
+       * Cuts the cells [@p begin, @p end) (indices into @p centres,
+       * reordered in place) into @p n_parts parts, numbered from
+       * @p first_part in @p part.
        */
       template <int dim>
       void
