@@ -2,6 +2,8 @@
 
 #include <decomposition/constraint_rows.h>
 
+#include <cmath>
+
 namespace dualcontact
 {
   namespace decomposition
@@ -11,7 +13,8 @@ namespace dualcontact
       const std::vector<const fem::ElasticBody<dim> *> &bodies,
       const contact::ContactDiscretization<dim>        &contact,
       const std::vector<unsigned int>                  &frictional_nodes,
-      const Layout                                     &layout)
+      const Layout                                     &layout,
+      const Gluing                                      gluing)
         : bodies_(bodies)
         , kept_here_(layout.kept_here)
         , entries_(layout.dofs.size())
@@ -31,7 +34,7 @@ namespace dualcontact
           for (unsigned int l = 0; l < layout.dofs[s].size(); ++l)
             copies[b][layout.dofs[s][l]].push_back({s, l});
       }
-      add_gluing_rows(copies, layout);
+      add_gluing_rows(copies, layout, gluing);
       add_dirichlet_rows(copies);
     }
 
@@ -90,23 +93,14 @@ namespace dualcontact
       const std::vector<
         std::vector<std::vector<std::pair<unsigned int, unsigned int>>>>
                    &copies,
-      const Layout &layout)
+      const Layout &layout,
+      const Gluing  gluing)
     {
-      // a chain through the copies of every dof that is not prescribed
-      // (hanging dofs too)
+      // the copies of every dof that is not prescribed (hanging dofs too)
       for (unsigned int b = 0; b < bodies_.size(); ++b)
         for (unsigned int i = 0; i < copies[b].size(); ++i)
           if (!prescribed(b, i))
-            for (unsigned int k = 0; k + 1 < copies[b][i].size(); ++k)
-            {
-              const unsigned int row = add_row(0.);
-              add_entry(copies[b][i][k].first, row, copies[b][i][k].second, 1.);
-              add_entry(copies[b][i][k + 1].first,
-                        row,
-                        copies[b][i][k + 1].second,
-                        -1.);
-              ++n_gluing_;
-            }
+            add_copy_rows(copies[b][i], gluing);
       // hanging-node rows, counted with the gluing rows (see the class
       // documentation for why rows)
       for (unsigned int b = 0; b < bodies_.size(); ++b)
@@ -123,6 +117,34 @@ namespace dualcontact
           }
           ++n_gluing_;
         }
+    }
+
+
+    template <int dim>
+    void
+    ConstraintRows<dim>::add_copy_rows(
+      const std::vector<std::pair<unsigned int, unsigned int>> &copies,
+      const Gluing                                              gluing)
+    {
+      for (unsigned int j = 1; j < copies.size(); ++j)
+      {
+        const unsigned int row = add_row(0.);
+        if (gluing == Gluing::chain)
+        {
+          add_entry(copies[j - 1].first, row, copies[j - 1].second, 1.);
+          add_entry(copies[j].first, row, copies[j].second, -1.);
+        }
+        else
+        {
+          // Helmert's row j: orthogonal to the rows before it and to
+          // (1, ..., 1), the glued motion, and of unit norm
+          const double scale = 1. / std::sqrt(j * (j + 1.));
+          for (unsigned int i = 0; i < j; ++i)
+            add_entry(copies[i].first, row, copies[i].second, scale);
+          add_entry(copies[j].first, row, copies[j].second, -(j * scale));
+        }
+        ++n_gluing_;
+      }
     }
 
 

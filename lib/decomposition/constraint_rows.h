@@ -3,6 +3,7 @@
 #include <deal.II/base/types.h>
 
 #include <contact/contact_discretization.h>
+#include <decomposition/decomposition_parameters.h>
 #include <fem/elastic_body.h>
 
 #include <utility>
@@ -59,11 +60,13 @@ namespace dualcontact
         /** Per subdomain, whether this process keeps its entries. */
         const std::vector<bool> &kept_here;
       };
+      using Gluing = DecompositionParameters::Gluing;
 
       ConstraintRows(const std::vector<const fem::ElasticBody<dim> *> &bodies,
                      const contact::ContactDiscretization<dim>        &contact,
                      const std::vector<unsigned int> &frictional_nodes,
-                     const Layout                    &layout);
+                     const Layout                    &layout,
+                     const Gluing                     gluing);
 
       /** All rows: contact, gluing (with hanging-node), Dirichlet. */
       unsigned int
@@ -90,7 +93,14 @@ namespace dualcontact
         const std::vector<
           std::vector<std::vector<std::pair<unsigned int, unsigned int>>>>
                      &copies,
-        const Layout &layout);
+        const Layout &layout,
+        const Gluing  gluing);
+      /** The k - 1 rows gluing the k copies (subdomain, local dof) of one
+       *  dof. */
+      void
+      add_copy_rows(
+        const std::vector<std::pair<unsigned int, unsigned int>> &copies,
+        const Gluing                                              gluing);
       void
       add_dirichlet_rows(
         const std::vector<

@@ -42,6 +42,18 @@ namespace dualcontact
         bisection
       };
       Partitioner partitioner = Partitioner::bisection;
+      /** The rows that glue the copies of a dof shared by k subdomains. */
+      enum class Gluing
+      {
+        /** k - 1 rows u_j - u_{j+1} = 0 through the copies in subdomain
+         *  order (entries +1, -1) */
+        chain,
+        /** k - 1 orthonormal rows spanning the same space (Helmert's:
+         *  row j = (u_1 + ... + u_j - j u_{j+1}) / sqrt(j (j + 1))), so
+         *  that B B' = I on the gluing rows of a dof */
+        orthonormal
+      };
+      Gluing gluing = Gluing::chain;
       /** Target number of cells per subdomain when no count is given. */
       unsigned int cells_per_subdomain = 1000;
       /**

@@ -265,6 +265,9 @@ namespace dualcontact
       /** G and the sparse factor of G G' (sizes, set-up time). */
       const CoarseProblem &
       coarse_problem() const;
+      /** The rows of B (entries of the owned subdomains only). */
+      const ConstraintRows<dim> &
+      constraint_rows() const;
       /**
        * Largest |u_s(i) - u_t(i)| over the copies of a dof at the last
        * recover() [m], and relative to the largest |u| there.
@@ -384,8 +387,10 @@ namespace dualcontact
       VectorType                     e_;
       VectorType                     e_orthonormal_;
 
-      VectorType                d_;
-      double                    scale_ = 1;
+      VectorType d_;
+      double     scale_ = 1;
+      /** Products F x the estimate of lambda_max(F) = scale_ took. */
+      unsigned int              scale_products_ = 0;
       std::string               operator_description_;
       std::vector<unsigned int> nodes_per_process_;
 

@@ -33,6 +33,11 @@
 //     centres (box-shaped parts); the parts' sizes differ by at most one
 //     cell (also into 6 parts, which cannot all be boxes); A's brick cut by
 //     bisection into 16 subdomains gives the undecomposed answer.
+//  L. gluing rows: on A's brick cut by bisection into 8 boxes (a dof
+//     shared by 8 subdomains) Helmert's orthonormal rows have
+//     B B' = I on the gluing rows and the chain's do not; both kinds sum
+//     to zero over the copies of their dof (they span the same space) and
+//     give the undecomposed answer.
 // Checks: displacements to 1e-8 relative (largest nodal difference over
 // the largest displacement), contact forces (every multiplier, relative to
 // the largest) to 1e-6, the copies of every interface dof agree to 1e-8 of
@@ -57,6 +62,7 @@
 #include <test_tools.h>
 
 #include <iostream>
+#include <map>
 #include <set>
 #include <sstream>
 #include <tuple>
@@ -205,18 +211,17 @@ namespace
    */
   template <int dim>
   void
-  compare(
-    const std::string                                                &name,
-    const std::vector<const fem::ElasticBody<dim> *>                 &bodies,
-    const std::vector<contact::ContactPair<dim>>                     &pairs,
-    const std::vector<unsigned int>                                  &counts,
-    const std::string                                                &solver,
-    const std::function<void(const decomposition::TFETIDual<dim> &)> &inspect =
-      {},
-    const contact::WorkingSetParameters &working_set =
-      contact::WorkingSetParameters(),
-    const decomposition::DecompositionParameters::Partitioner partitioner =
-      decomposition::DecompositionParameters::Partitioner::metis)
+  compare(const std::string                                &name,
+          const std::vector<const fem::ElasticBody<dim> *> &bodies,
+          const std::vector<contact::ContactPair<dim>>     &pairs,
+          const std::vector<unsigned int>                  &counts,
+          const std::string                                &solver,
+          const std::function<void(const decomposition::TFETIDual<dim> &)>
+                                              &inspect = {},
+          const contact::WorkingSetParameters &working_set =
+            contact::WorkingSetParameters(),
+          const decomposition::DecompositionParameters &base =
+            decomposition::DecompositionParameters())
   {
     std::cout << name << std::endl;
     const contact::ContactDiscretization<dim>    contact(bodies, pairs);
@@ -245,9 +250,8 @@ namespace
 
     for (const unsigned int count : counts)
     {
-      decomposition::DecompositionParameters parameters;
-      parameters.subdomains_per_body = {count};
-      parameters.partitioner         = partitioner;
+      decomposition::DecompositionParameters parameters = base;
+      parameters.subdomains_per_body                    = {count};
       decomposition::TFETIDual<dim> tfeti(bodies,
                                           contact,
                                           parameters,
@@ -1040,7 +1044,10 @@ namespace
     bisection_parts<3>({4, 8, 4}, Point<3>(1, 2, 1), 16, true);
     bisection_parts<3>({4, 8, 4}, Point<3>(1, 2, 1), 6, false);
     bisection_parts<2>({8, 8}, Point<2>(1, 1), 4, true);
-    const auto body = brick_body();
+    const auto                             body = brick_body();
+    decomposition::DecompositionParameters parameters;
+    parameters.partitioner =
+      decomposition::DecompositionParameters::Partitioner::bisection;
     compare<3>("K. brick 4 x 8 x 4 cut by bisection",
                {body.get()},
                {brick_pair()},
@@ -1048,7 +1055,93 @@ namespace
                "auto",
                {},
                contact::WorkingSetParameters(),
-               decomposition::DecompositionParameters::Partitioner::bisection);
+               parameters);
+  }
+
+
+  /**
+   * The largest |(B B')_rs - delta_rs| over the gluing rows r, s of
+   * @p tfeti (one process: every subdomain's entries are here), and the
+   * largest |sum of a gluing row's entries| (zero: each row is orthogonal to
+   * the glued motion of its dof's copies, which all have value 1 there).
+   */
+  std::pair<double, double>
+  gluing_gram_defect(const decomposition::TFETIDual<3> &tfeti)
+  {
+    const auto        &rows  = tfeti.constraint_rows();
+    const unsigned int first = tfeti.n_contact_multipliers();
+    const unsigned int last  = first + tfeti.n_gluing_multipliers();
+    // per (subdomain, local dof): the gluing rows through it and their values
+    std::map<std::pair<unsigned int, unsigned int>,
+             std::vector<std::pair<unsigned int, double>>>
+                        columns;
+    std::vector<double> row_sum(rows.n_rows(), 0.);
+    for (unsigned int s = 0; s < tfeti.n_subdomains(); ++s)
+      for (const auto &entry : rows.entries(s))
+        if (entry.row >= first && entry.row < last)
+        {
+          columns[{s, entry.local}].push_back({entry.row, entry.value});
+          row_sum[entry.row] += entry.value;
+        }
+    std::map<std::pair<unsigned int, unsigned int>, double> gram;
+    for (const auto &[column, entries] : columns)
+      for (const auto &[r, a] : entries)
+        for (const auto &[t, b] : entries)
+          gram[{r, t}] += a * b;
+    double defect = 0., sum = 0.;
+    for (unsigned int r = first; r < last; ++r)
+    {
+      sum    = std::max(sum, std::abs(row_sum[r]));
+      defect = std::max(defect, std::abs(gram[{r, r}] - 1.));
+    }
+    for (const auto &[rt, value] : gram)
+      if (rt.first != rt.second)
+        defect = std::max(defect, std::abs(value));
+    return {defect, sum};
+  }
+
+
+  /** L. Chain and orthonormal gluing rows. */
+  void
+  gluing_rows()
+  {
+    std::cout << "L. gluing rows" << std::endl;
+    using Gluing    = decomposition::DecompositionParameters::Gluing;
+    const auto body = brick_body();
+    for (const Gluing gluing : {Gluing::chain, Gluing::orthonormal})
+    {
+      const std::string name =
+        gluing == Gluing::chain ? "chain" : "orthonormal";
+      decomposition::DecompositionParameters parameters;
+      parameters.partitioner =
+        decomposition::DecompositionParameters::Partitioner::bisection;
+      parameters.gluing = gluing;
+      compare<3>(
+        "L. brick 4 x 8 x 4, 8 boxes, " + name + " gluing rows",
+        {body.get()},
+        {brick_pair()},
+        {8},
+        "auto",
+        [&](const decomposition::TFETIDual<3> &tfeti)
+        {
+          const auto [defect, sum] = gluing_gram_defect(tfeti);
+          if (gluing == Gluing::orthonormal)
+            check(defect < 1e-14,
+                  "  orthonormal: largest |B B' - I| on the gluing "
+                  "rows",
+                  defect);
+          else
+            check(defect >= 1.,
+                  "  chain: largest |B B' - I| on the gluing rows (2 on the "
+                  "diagonal)",
+                  defect);
+          check(sum < 1e-14,
+                "  " + name + ": largest |row sum| of a gluing row",
+                sum);
+        },
+        contact::WorkingSetParameters(),
+        parameters);
+    }
   }
 } // namespace
 
@@ -1068,5 +1161,6 @@ main()
   hanging_nodes();
   separated_rows();
   bisection();
+  gluing_rows();
   return test_tools::finish();
 }
