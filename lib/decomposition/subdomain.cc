@@ -63,11 +63,21 @@ namespace dualcontact
 
     template <int dim>
     void
-    Subdomain<dim>::apply_generalized_inverse(Vector<double>       &x,
-                                              const Vector<double> &b) const
+    Subdomain<dim>::apply_pseudoinverse(Vector<double>       &x,
+                                        const Vector<double> &b) const
     {
       Assert(solver_, ExcMessage("Subdomain: factorize() first."));
-      solver_->solve(x, b);
+      const std::vector<Vector<double>> &R = modes_->modes();
+      // the range of K_s is the orthogonal complement of its kernel R
+      const auto remove_kernel = [&R](Vector<double> &v)
+      {
+        for (const Vector<double> &r : R)
+          v.add(-(r * v), r);
+      };
+      projected_ = b;
+      remove_kernel(projected_);
+      solver_->solve(x, projected_);
+      remove_kernel(x);
     }
 
 

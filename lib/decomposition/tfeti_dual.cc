@@ -29,26 +29,30 @@ namespace dualcontact
       /**
        * The parts of TFETI's QP that do not depend on the vectors'
        * distribution (make_problem(), make_distributed_problem()): the
-       * bound on lambda_max of the scaled F (the power iteration's estimate
-       * approaches from below), and what G~'s rows are.
+       * bounds on lambda_max of the scaled F and of the scaled P F P (F / s
+       * with s = lambda_max(P F P); Lanczos' estimates approach from below,
+       * hence 5 % more), and what G~'s rows are.
        */
       template <typename V>
       void
       describe_scaled_problem(qp::Problem<V>             &problem,
                               qp::EqualityConstraints<V> &equality,
-                              const unsigned int          n_modes)
+                              const unsigned int          n_modes,
+                              const double                lambda_max_ratio)
       {
-        problem.lambda_max     = 1.05;
-        equality.n_constraints = n_modes;
-        equality.norm_sq       = 1.; // ||G~||^2 = lambda_max(G~ G~') = 1
+        problem.lambda_max            = 1.05 * lambda_max_ratio;
+        equality.projected_lambda_max = 1.05;
+        equality.n_constraints        = n_modes;
+        equality.norm_sq              = 1.; // ||G~||^2 = lambda_max(G~ G~') = 1
         // G~ G~' = L^-1 P G G' P' L^-T = I: SMALSE-M may use the coarse
         // projector
         equality.orthonormal_rows = true;
-        // rho = 0.1 lambda_max(F) unless the .prm says otherwise: on the
-        // brick 4.4 times fewer products than 1 with friction, 1.5 times
-        // with 128 subdomains (doc/benchmarks/tfeti.md, "Penalty factor of
-        // the coarse projector")
-        equality.projector_penalty_factor = 0.1;
+        // rho = 3 lambda_max(P F P) unless the .prm says otherwise: on the
+        // friction brick (pseudoinverses, 1e-6) 788 / 865 / 1,023 products
+        // at level 20 in 8 and 64 subdomains and level 40 in 128, against
+        // 810 / - / not converged with 1 and 805 / 1,070 / 1,444 with 10
+        // (doc/benchmarks/tfeti.md, "Pseudoinverses")
+        equality.projector_penalty_factor = 3;
         problem.semidefinite              = true;
       }
 
@@ -156,20 +160,7 @@ namespace dualcontact
       for (unsigned int r = 0; r < n_multipliers(); ++r)
         d_(r) -= rows_->rhs(r);
 
-      // Lanczos, not the power iteration: every product is a solve with
-      // every subdomain's factor, and on the level-40 brick (128
-      // subdomains) the power iteration took 134 of them to settle to 1e-6
-      // where Lanczos' largest Ritz value takes NN
-      const qp::PowerIterationResult estimate =
-        qp::lanczos_lambda_max<VectorType>([this](VectorType       &dst,
-                                                  const VectorType &src)
-                                           { apply_F(dst, src); },
-                                           d_,
-                                           200,
-                                           1e-6,
-                                           1.0);
-      scale_          = estimate.estimate;
-      scale_products_ = estimate.n_products;
+      estimate_scale();
       AssertThrow(scale_ > 0 && std::isfinite(scale_),
                   ExcMessage("The TFETI dual operator F is zero or not "
                              "finite."));
@@ -200,9 +191,58 @@ namespace dualcontact
                           "between the processes that share rows" :
                           "), F lambda summed by MPI_Allreduce");
       }
-      description << "; lambda_max(F) by Lanczos in " << scale_products_
+      description << "; lambda_max(F) " << lambda_max_F_
+                  << ", lambda_max(P F P) " << scale_
+                  << " (the scale) by Lanczos in " << scale_products_
                   << " products";
       operator_description_ = description.str();
+    }
+
+
+    template <int dim>
+    void
+    TFETIDual<dim>::estimate_scale()
+    {
+      // Lanczos, not the power iteration: every product is a solve with
+      // every subdomain's factor, and on the level-40 brick (128
+      // subdomains) the power iteration took about 134 of them to settle
+      // to 1e-6 where Lanczos takes 30.  Two estimates: the QP is scaled by
+      // lambda_max(P F P), P = I - G~'G~, the operator SMALSE-M's coarse
+      // projector iterates with, because lambda_max(F) depends on the
+      // generalized inverses K_s^# (their fixing dofs) and P F P does not:
+      // on 3D Hertz in 35 subdomains (some of one refined cell) lambda_max(F)
+      // is 1.5e6 times lambda_max(P F P), and scaling by it made every step
+      // of the QP that much too short.  lambda_max(F) stays the bound for
+      // the penalty form (`Coarse projector = false').
+      const auto lanczos = [this](const auto &apply)
+      { return qp::lanczos_lambda_max<VectorType>(apply, d_, 200, 1e-6, 1.0); };
+      const qp::PowerIterationResult of_F = lanczos(
+        [this](VectorType &dst, const VectorType &src) { apply_F(dst, src); });
+      const qp::PowerIterationResult of_PFP = lanczos(
+        [this](VectorType &dst, const VectorType &src)
+        {
+          VectorType y = src;
+          project(y);
+          apply_F(dst, y);
+          project(dst);
+        });
+      lambda_max_F_   = of_F.estimate;
+      scale_          = of_PFP.estimate;
+      scale_products_ = of_F.n_products + of_PFP.n_products;
+    }
+
+
+    template <int dim>
+    void
+    TFETIDual<dim>::project(VectorType &v) const
+    {
+      // v - G~'G~ v
+      VectorType coarse(coarse_->n_modes()), correction(v.size());
+      coarse_->vmult(coarse, v);
+      coarse_->orthonormalize(coarse);
+      coarse_->orthonormalize_transpose(coarse);
+      coarse_->Tvmult(correction, coarse);
+      v -= correction;
     }
 
 
@@ -455,7 +495,7 @@ namespace dualcontact
       for (const unsigned int s : owned_)
       {
         u[s].reinit(subdomains_[s]->n_dofs());
-        subdomains_[s]->apply_generalized_inverse(u[s], w[s]);
+        subdomains_[s]->apply_pseudoinverse(u[s], w[s]);
       }
       ++n_stiffness_solves_;
       solve_time_ += timer.wall_time();
@@ -682,7 +722,10 @@ namespace dualcontact
         coarse_->Tvmult(dst, y);
       };
       equality->c = e_orthonormal_;
-      describe_scaled_problem(problem, *equality, coarse_->n_modes());
+      describe_scaled_problem(problem,
+                              *equality,
+                              coarse_->n_modes(),
+                              lambda_max_F_ / scale_);
       problem.equality = equality;
       return problem;
     }
@@ -922,7 +965,10 @@ namespace dualcontact
                                 dst.begin());
       };
       equality->c = *e_distributed_;
-      describe_scaled_problem(problem, *equality, coarse_->n_modes());
+      describe_scaled_problem(problem,
+                              *equality,
+                              coarse_->n_modes(),
+                              lambda_max_F_ / scale_);
       problem.equality = equality;
       return problem;
     }

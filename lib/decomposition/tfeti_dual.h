@@ -316,6 +316,13 @@ namespace dualcontact
       /** G = R'B', e, and the coarse problem (sparse factor of G G'). */
       void
       build_coarse_problem();
+      /** scale_ = lambda_max(P F P) and lambda_max_F_ by Lanczos
+       *  (collective). */
+      void
+      estimate_scale();
+      /** v := P v = v - G~'G~ v, the coarse projector (collective). */
+      void
+      project(VectorType &v) const;
       /**
        * B B' (summed over the processes' entries) and its Cholesky factor:
        * the scaling of both preconditioners.
@@ -389,7 +396,9 @@ namespace dualcontact
 
       VectorType d_;
       double     scale_ = 1;
-      /** Products F x the estimate of lambda_max(F) = scale_ took. */
+      /** lambda_max(F) (the scale s = scale_ is lambda_max(P F P)). */
+      double lambda_max_F_ = 1;
+      /** Products F x the estimates of both took. */
       unsigned int              scale_products_ = 0;
       std::string               operator_description_;
       std::vector<unsigned int> nodes_per_process_;

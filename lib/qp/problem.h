@@ -44,6 +44,12 @@ namespace dualcontact
       /// `Projector penalty factor' is automatic: the formulation's
       /// measured choice (TFETI sets 0.1)
       double projector_penalty_factor = 1.;
+      /// lambda_max(P A P) with P = I - B'B (orthonormal rows only) if
+      /// known (0 = unknown): SMALSE-M's coarse projector then sets rho
+      /// and the inner step lengths from it instead of lambda_max(A),
+      /// which a generalized inverse in A can make larger by orders of
+      /// magnitude without changing P A P (TFETI)
+      double projected_lambda_max = 0.;
     };
 
     /**

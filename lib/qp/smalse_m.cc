@@ -60,13 +60,14 @@ namespace dualcontact
       prm.declare_entry("Projector penalty factor",
                         "automatic",
                         dealii::Patterns::Anything(),
-                        "rho = factor * lambda_max(A) with the coarse "
-                        "projector (`Penalty factor' is used without it): a "
-                        "number > 0, or automatic: the formulation's measured "
-                        "choice, 1 for the undecomposed dual's rigid-body "
-                        "modes, 0.1 for TFETI's coarse space "
-                        "(doc/benchmarks/tfeti.md, \"Penalty factor of the "
-                        "coarse projector\").");
+                        "rho = factor * lambda_max(P A P) with the coarse "
+                        "projector P (lambda_max(A) where the formulation "
+                        "does not know P A P's; `Penalty factor' is used "
+                        "without the projector): a number > 0, or "
+                        "automatic: the formulation's measured choice, 1 for "
+                        "the undecomposed dual's rigid-body modes, 3 for "
+                        "TFETI's coarse space (doc/benchmarks/tfeti.md, "
+                        "\"Pseudoinverses\").");
       prm.declare_entry("Equality tolerance factor",
                         "1",
                         dealii::Patterns::Double(0.),
@@ -195,8 +196,13 @@ namespace dualcontact
                   dealii::ExcMessage("SMALSE-M: B and B' products needed"));
 
       // lambda_max(A) sets rho
-      const double lmax_A  = this->lambda_max(problem, stats);
-      const bool   project = eq.orthonormal_rows && smalse_prm.coarse_projector;
+      const bool project = eq.orthonormal_rows && smalse_prm.coarse_projector;
+      // lambda_max of what the inner solves see: A, or P A P with the
+      // projector where the formulation knows it (P A P + rho B'B has
+      // max(lambda_max(P A P), rho))
+      const double lmax_A = project && eq.projected_lambda_max > 0. ?
+                              eq.projected_lambda_max :
+                              this->lambda_max(problem, stats);
       // automatic (0): the factor the formulation measured for its rows
       const double projector_factor = smalse_prm.projector_penalty_factor > 0. ?
                                         smalse_prm.projector_penalty_factor :

@@ -11,7 +11,7 @@
 //  E. 3D two bodies: a block pressed onto a fixed block (non-matching
 //     meshes), frictionless, the master side cut too;
 //  F. the brick at 16 subdomains, SMALSE-M with and without the coarse
-//     projector P = I - G~'G~: the same answer, far fewer iterations;
+//     projector P = I - G~'G~: the same answer, fewer iterations;
 //  G. MPRGP with the lumped preconditioner Q B K B' Q, Q = (B B')^{-1},
 //     on a beam (gluing and Dirichlet rows only) and on E's scene: the
 //     same answer in fewer iterations;
@@ -549,8 +549,11 @@ namespace
               " the projector: " + results.back().reason + ", inner iterations",
             n);
     }
-    check(2 * iterations[0] <= iterations[1],
-          "  the projector at least halves the inner iterations",
+    // 336 against 546 with the pseudoinverses K_s^+ (with the fixing-dof
+    // K_s^#, whose F is far larger off the kernel of G, the penalty form
+    // needed 2 to 8 times the projector's)
+    check(4 * iterations[0] <= 3 * iterations[1],
+          "  the projector saves at least a quarter of the inner iterations",
           std::to_string(iterations[0]) + " against " +
             std::to_string(iterations[1]));
     const double difference =
