@@ -175,7 +175,7 @@ namespace dualcontact
         distribute_multipliers();
       std::ostringstream description;
       description << "TFETI, implicit: local solves with the factors of "
-                  << subdomains_.size() << " subdomains (K_s^# by "
+                  << subdomains_.size() << " subdomains (K_s^+ from "
                   << (owned_.empty() ? std::string("none on process 0") :
                                        subdomains_[owned_[0]]->solver().name())
                   << ")";
@@ -205,15 +205,14 @@ namespace dualcontact
     {
       // Lanczos, not the power iteration: every product is a solve with
       // every subdomain's factor, and on the level-40 brick (128
-      // subdomains) the power iteration took about 134 of them to settle
-      // to 1e-6 where Lanczos takes 30.  Two estimates: the QP is scaled by
+      // subdomains) the power iteration took 143 of them to settle to 1e-6
+      // where Lanczos takes 30.  Two estimates: the QP is scaled by
       // lambda_max(P F P), P = I - G~'G~, the operator SMALSE-M's coarse
-      // projector iterates with, because lambda_max(F) depends on the
-      // generalized inverses K_s^# (their fixing dofs) and P F P does not:
-      // on 3D Hertz in 35 subdomains (some of one refined cell) lambda_max(F)
-      // is 1.5e6 times lambda_max(P F P), and scaling by it made every step
-      // of the QP that much too short.  lambda_max(F) stays the bound for
-      // the penalty form (`Coarse projector = false').
+      // projector iterates with (with K^# in place of K^+, lambda_max(F)
+      // was 1.5e6 times it on 3D Hertz and made every step that much too
+      // short; with K^+ it is 1.03 to 1.24 times it).  lambda_max(F) stays
+      // the bound the penalty form (`Coarse projector = false') and the
+      // working set's reduced problems need.
       const auto lanczos = [this](const auto &apply)
       { return qp::lanczos_lambda_max<VectorType>(apply, d_, 200, 1e-6, 1.0); };
       const qp::PowerIterationResult of_F = lanczos(

@@ -34,16 +34,16 @@ namespace dualcontact
      *
      *   K = diag(K_s), f = [f_s], R = diag(R_s),
      *   B = [B_contact; B_gluing; B_dirichlet],
-     *   F = sum_s B_s K_s^# B_s',  d = B K^# f - c,  G = R'B',  e = R'f,
+     *   F = sum_s B_s K_s^+ B_s',  d = B K^+ f - c,  G = R'B',  e = R'f,
      *
      *   minimize 1/2 lambda'F lambda - lambda'd
      *   subject to lambda_N >= 0, lambda_T,i in the friction set of node i,
      *              G lambda = e,
      *
      * the gluing and Dirichlet multipliers free.  Every subdomain floats
-     * (K_s has the dim (dim + 1) / 2 rigid-body motions as kernel, K_s^#
-     * the fixing-dof generalized inverse), so G has that many rows per
-     * subdomain: the coarse problem.
+     * (K_s has the dim (dim + 1) / 2 rigid-body motions as kernel; K_s^+
+     * is its pseudoinverse, Subdomain::apply_pseudoinverse()), so G has
+     * that many rows per subdomain: the coarse problem.
      *
      * <b>Rows of B</b> (the multipliers in this order):
      *  - contact rows: the rows of contact::ContactDiscretization (B_N, and
@@ -51,10 +51,10 @@ namespace dualcontact
      *    the lowest-numbered subdomain that has it; c = [gap - B_N u_D;
      *    -B_T u_D] as in the undecomposed dual (the contact matrices have
      *    the Dirichlet dofs condensed out);
-     *  - gluing rows, non-redundant and not orthonormalized: a dof shared
-     *    by the subdomains s_1 < ... < s_k (not under a Dirichlet
-     *    condition) gets the k - 1 rows u_{s_j} - u_{s_j+1} = 0 (entries
-     *    +1, -1);
+     *  - gluing rows, non-redundant: a dof shared by the subdomains
+     *    s_1 < ... < s_k (not under a Dirichlet condition) gets k - 1 rows,
+     *    by default the chain u_{s_j} - u_{s_j+1} = 0 (entries +1, -1),
+     *    else Helmert's orthonormal rows (DecompositionParameters::Gluing);
      *  - Dirichlet rows: every copy of a dof under a Dirichlet condition
      *    gets its own row u_s = u_D (entry 1; c = u_D), and no gluing row
      *    (it would repeat the difference of two Dirichlet rows).
@@ -63,14 +63,17 @@ namespace dualcontact
      * <b>The QP</b> has the contact multipliers first, in the layout of
      * contact::DualFormulation, so the contact forces, friction sets, slip
      * bounds and the Coulomb loop are those of the undecomposed dual.  It is
-     * scaled as the undecomposed one: Hessian F / s and d / s with s =
-     * lambda_max(F) (power iteration), and G with orthonormal rows: G~ =
+     * scaled as the undecomposed one, Hessian F / s and d / s, but with
+     * s = lambda_max(P F P) (Lanczos; estimate_scale()), the operator
+     * SMALSE-M's coarse projector iterates with, and G with orthonormal
+     * rows: G~ =
      * L^{-1} P G, e~ = L^{-1} P e with P G G' P' = L L' (CoarseProblem:
      * G G' is sparse, factorized once by CHOLMOD; a singular G G' is a
      * rigid-body motion nothing holds).
      *
-     * <b>F</b> is applied by local solves: B_s' lambda, K_s^# (two
-     * triangular solves with the subdomain's factor), B_s.
+     * <b>F</b> is applied by local solves: B_s' lambda, K_s^+ (two
+     * triangular solves with the subdomain's factor, and the removal of
+     * the kernel before and after), B_s.
      *
      * <b>Preconditioner.</b> The problem supplies the lumped preconditioner
      * s Q B K B' Q or, when built, the Dirichlet one s Q B S B' Q
@@ -86,7 +89,7 @@ namespace dualcontact
      * `dirichlet' (SMALSE-M composes it with the coarse projector: P M P +
      * G~'G~ / rho).
      *
-     * <b>Recovery</b>: u_s = K_s^#(f_s - B_s'lambda) + R_s alpha_s, alpha
+     * <b>Recovery</b>: u_s = K_s^+(f_s - B_s'lambda) + R_s alpha_s, alpha
      * the least-squares solution of G_A' alpha = -(B u - c)_A over the rows
      * A that must hold with equality (gluing, Dirichlet, active contact
      * rows).  The field of a body takes every dof from its first copy;
@@ -366,7 +369,7 @@ namespace dualcontact
         const std::vector<VectorType>                &u,
         double                                       *lambda,
         const std::vector<std::vector<unsigned int>> *relevant = nullptr) const;
-      /** u_s = K_s^# w_s for every owned subdomain. */
+      /** u_s = K_s^+ w_s for every owned subdomain. */
       void
       apply_K_inverse(const std::vector<VectorType> &w,
                       std::vector<VectorType>       &u) const;
