@@ -167,6 +167,30 @@ namespace dualcontact
 
     template <int dim>
     void
+    AssembledDualOperator<dim>::subtract_symmetric_update(
+      const std::vector<unsigned int>  &rows,
+      const dealii::FullMatrix<double> &X,
+      const dealii::FullMatrix<double> &G)
+    {
+      const std::size_t  r = rows.size();
+      const unsigned int k = G.m();
+      AssertDimension(X.m(), r);
+      AssertDimension(X.n(), k);
+      AssertDimension(G.n(), r);
+      const std::size_t m = m_;
+      for (std::size_t q = 0; q < r; ++q)
+        for (std::size_t p = 0; p < r; ++p)
+        {
+          double update = 0;
+          for (unsigned int j = 0; j < k; ++j)
+            update += X(p, j) * G(j, q) + G(j, p) * X(q, j);
+          F_dense_[rows[q] * m + rows[p]] -= update;
+        }
+    }
+
+
+    template <int dim>
+    void
     AssembledDualOperator<dim>::vmult(VectorType       &dst,
                                       const VectorType &src) const
     {

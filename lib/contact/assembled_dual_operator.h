@@ -1,5 +1,7 @@
 #pragma once
 
+#include <deal.II/lac/full_matrix.h>
+
 #include <contact/contact_discretization.h>
 #include <contact/contact_rows.h>
 #include <contact/dual_operator.h>
@@ -43,6 +45,16 @@ namespace dualcontact
         const ContactRows<dim>                           &rows,
         std::vector<fem::StiffnessSolver::SchurFactor>   &schur,
         const std::vector<std::vector<unsigned int>>     &body_rows);
+
+      /**
+       * F(rows, rows) -= X G + G'X' (@p X: |rows| x k, @p G: k x |rows|),
+       * the rank-2k terms that make a floating body's B K^# B' its
+       * B K^+ B' (DualProblem).
+       */
+      void
+      subtract_symmetric_update(const std::vector<unsigned int>  &rows,
+                                const dealii::FullMatrix<double> &X,
+                                const dealii::FullMatrix<double> &G);
 
       void
       vmult(VectorType &dst, const VectorType &src) const override;

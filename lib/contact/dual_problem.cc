@@ -145,6 +145,7 @@ namespace dualcontact
       bool                                           assembled =
         parameters.form != DualProblemParameters::Operator::implicit;
       std::string implicit_description = "implicit (`set Operator = implicit')";
+      std::vector<const fem::GeneralizedInverse *> pseudoinverses(n_bodies);
       for (unsigned int b = 0; b < n_bodies; ++b)
       {
         const types::global_dof_index offset = contact.body_offset(b);
@@ -161,7 +162,8 @@ namespace dualcontact
           rigid_modes_.push_back(column);
         }
         auto solver = std::make_unique<fem::GeneralizedInverse>(
-          make_solver(), modes_.back()->fixing_dofs());
+          make_solver(), modes_.back()->fixing_dofs(), modes_.back()->modes());
+        pseudoinverses[b] = solver.get();
         if (b == 0 && assembled)
         {
           // The decision, once: every body gets the same kind of solver.
@@ -193,15 +195,21 @@ namespace dualcontact
         inverse_.add(std::move(solver));
       }
       if (assembled)
-        operator_ = std::make_unique<AssembledDualOperator<dim>>(
+      {
+        auto F = std::make_unique<AssembledDualOperator<dim>>(
           bodies_, contact, rows_, schur, body_rows);
+        for (unsigned int b = 0; b < n_bodies; ++b)
+          if (!pseudoinverses[b]->kernel().empty())
+            add_pseudoinverse_terms(b, *pseudoinverses[b], body_rows[b], *F);
+        operator_ = std::move(F);
+      }
       else
         operator_ =
           std::make_unique<ImplicitDualOperator<dim>>(rows_,
                                                       inverse_,
                                                       implicit_description);
 
-      // d = B K^# f - [c; -o_T]
+      // d = B K^+ f - [c; -o_T]
       Vector<double> u = load_;
       inverse_.apply(u);
       d_.reinit(n_multipliers());
@@ -232,6 +240,66 @@ namespace dualcontact
         d_);
 
       distribute_multipliers(parameters);
+    }
+
+
+    template <int dim>
+    double
+    DualProblem<dim>::projector_penalty_factor() const
+    {
+      // Measured on the floating scenes (products at factor 1 / 3 / 10;
+      // lib/contact/README.md, "Pseudoinverses"): bounds and boxes want
+      // rho well above lambda_max(P F P), whose few large eigenvalues the
+      // inner solvers' conjugate gradient steps absorb (3D Hertz 274 / 176
+      // / 140, the Tresca block 316 / 207 / 158); friction discs and
+      // ellipses want it at lambda_max(P F P), whose inner solves are
+      // projection steps that rho shortens (the Coulomb block 1,864 /
+      // 3,589 / 8,602).
+      const bool discs = dim == 3 && !frictional_nodes_.empty();
+      return discs ? 1. : 10.;
+    }
+
+
+    template <int dim>
+    void
+    DualProblem<dim>::add_pseudoinverse_terms(
+      const unsigned int               body,
+      const fem::GeneralizedInverse   &inverse,
+      const std::vector<unsigned int> &rows,
+      AssembledDualOperator<dim>      &F) const
+    {
+      const std::vector<Vector<double>> &R = inverse.kernel();
+      const unsigned int                 k = R.size(), r = rows.size();
+      const types::global_dof_index      offset = contact_.body_offset(body);
+      // W = B K^# R, G = R'B' (on the body's rows), C = R'K^#R
+      FullMatrix<double> W(r, k), G(k, r), C(k, k);
+      Vector<double>     stacked(contact_.n_dofs()), image,
+        row_values(n_multipliers());
+      const auto rows_of = [&](const Vector<double> &local)
+      {
+        for (unsigned int i = 0; i < local.size(); ++i)
+          stacked(offset + i) = local(i);
+        rows_.vmult(row_values, stacked);
+      };
+      for (unsigned int j = 0; j < k; ++j)
+      {
+        image.reinit(R[j].size());
+        inverse.solve_fixing_dofs(image, R[j]);
+        for (unsigned int i = 0; i < k; ++i)
+          C(i, j) = R[i] * image;
+        rows_of(image);
+        for (unsigned int q = 0; q < r; ++q)
+          W(q, j) = row_values(rows[q]);
+        rows_of(R[j]);
+        for (unsigned int q = 0; q < r; ++q)
+          G(j, q) = row_values(rows[q]);
+      }
+      // X = W - G'C / 2, so that W G + G'W' - G'C G = X G + G'X'
+      for (unsigned int q = 0; q < r; ++q)
+        for (unsigned int j = 0; j < k; ++j)
+          for (unsigned int i = 0; i < k; ++i)
+            W(q, j) -= 0.5 * G(i, q) * C(i, j);
+      F.subtract_symmetric_update(rows, W, G);
     }
 
 
@@ -396,8 +464,10 @@ namespace dualcontact
 
       if (!G_rows_.empty())
       {
-        problem.equality     = equalities_->constraints(n_multipliers());
-        problem.semidefinite = true;
+        auto equality = equalities_->constraints(n_multipliers());
+        equality->projector_penalty_factor = projector_penalty_factor();
+        problem.equality                   = equality;
+        problem.semidefinite               = true;
       }
       return problem;
     }
@@ -428,9 +498,11 @@ namespace dualcontact
 
       if (!G_rows_.empty())
       {
-        problem.equality =
+        auto equality =
           equalities_->distributed_constraints(*distribution_, n_multipliers());
-        problem.semidefinite = true;
+        equality->projector_penalty_factor = projector_penalty_factor();
+        problem.equality                   = equality;
+        problem.semidefinite               = true;
       }
       return problem;
     }

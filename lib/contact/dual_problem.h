@@ -7,6 +7,7 @@
 #include <deal.II/lac/trilinos_vector.h>
 #include <deal.II/lac/vector.h>
 
+#include <contact/assembled_dual_operator.h>
 #include <contact/contact_discretization.h>
 #include <contact/contact_rows.h>
 #include <contact/dual_formulation.h>
@@ -16,6 +17,7 @@
 #include <contact/rigid_body_fit.h>
 #include <contact/stiffness_inverse.h>
 #include <fem/elastic_body.h>
+#include <fem/generalized_inverse.h>
 #include <fem/rigid_body_modes.h>
 #include <fem/stiffness_solver.h>
 #include <qp/problem.h>
@@ -291,7 +293,7 @@ namespace dualcontact
       using DualFormulation<dim>::psi_second_;
 
       /**
-       * The two recover()s once u = B'lambda: u = K^#(f - u), plus the
+       * The two recover()s once u = B'lambda: u = K^+(f - u), plus the
        * rigid-body motion R alpha fitted so that the active rows hold, then
        * the bodies' parts.  @p lambda: the owned multipliers in the local
        * order of MultiplierDistribution::owned_rows() (replicated: all
@@ -312,6 +314,27 @@ namespace dualcontact
         const dealii::Vector<double>        &u,
         std::vector<dealii::Vector<double>> &displacements) const;
 
+      /**
+       * rho / lambda_max(P F P) of SMALSE-M's coarse projector when its
+       * `Projector penalty factor' is automatic: 10 for bounds and boxes,
+       * 1 for friction discs and ellipses (measured).
+       */
+      double
+      projector_penalty_factor() const;
+
+      /**
+       * Turns the rows @p rows of body @p body in the assembled F, which
+       * its Schur factor gives as B K^# B', into B K^+ B' (@p inverse:
+       * the body's; lib/contact/README.md, "Pseudoinverses").  With W =
+       * B K^# R, G = R'B' and C = R'K^#R on those rows, B K^+ B' =
+       * B K^# B' - W G - G'W' + G'C G: one K^# solve per rigid-body mode.
+       */
+      void
+      add_pseudoinverse_terms(const unsigned int               body,
+                              const fem::GeneralizedInverse   &inverse,
+                              const std::vector<unsigned int> &rows,
+                              AssembledDualOperator<dim>      &F) const;
+
       /** The owners of the multipliers (constructor, last). */
       void
       distribute_multipliers(const DualProblemParameters &parameters);
@@ -320,7 +343,8 @@ namespace dualcontact
       std::vector<std::unique_ptr<fem::RigidBodyModes<dim>>> modes_;
       /** B in the multipliers' layout. */
       ContactRows<dim> rows_;
-      /** K^# of the bodies (their factorized solvers). */
+      /** K^+ of the bodies (their factorized solvers; K^-1 where no
+       *  rigid-body mode is free). */
       StiffnessInverse<dim> inverse_;
       /** F: assembled or implicit. */
       std::unique_ptr<DualOperator<dim>> operator_;

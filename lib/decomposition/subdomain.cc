@@ -46,8 +46,9 @@ namespace dualcontact
     Subdomain<dim>::factorize(std::unique_ptr<fem::StiffnessSolver> solver)
     {
       std::vector<types::global_dof_index> fixing = modes_->fixing_dofs();
-      solver_ =
-        std::make_unique<fem::GeneralizedInverse>(std::move(solver), fixing);
+      solver_ = std::make_unique<fem::GeneralizedInverse>(std::move(solver),
+                                                          fixing,
+                                                          modes_->modes());
       solver_->initialize(stiffness_);
     }
 
@@ -67,17 +68,7 @@ namespace dualcontact
                                         const Vector<double> &b) const
     {
       Assert(solver_, ExcMessage("Subdomain: factorize() first."));
-      const std::vector<Vector<double>> &R = modes_->modes();
-      // the range of K_s is the orthogonal complement of its kernel R
-      const auto remove_kernel = [&R](Vector<double> &v)
-      {
-        for (const Vector<double> &r : R)
-          v.add(-(r * v), r);
-      };
-      projected_ = b;
-      remove_kernel(projected_);
-      solver_->solve(x, projected_);
-      remove_kernel(x);
+      solver_->solve(x, b);
     }
 
 

@@ -65,7 +65,8 @@ namespace dualcontact
       /**
        * x = K_s^+ b (local numbering), the Moore-Penrose pseudoinverse:
        * (I - R R') K_s^# (I - R R') b with the fixing-dof generalized
-       * inverse K_s^# and the orthonormal modes R = R_s.  Any generalized
+       * inverse K_s^# and the orthonormal modes R = R_s
+       * (fem::GeneralizedInverse given the kernel).  Any generalized
        * inverse gives TFETI the same P F P, but F, d and the projected
        * linear term differ by terms in G that cancel only in exact
        * arithmetic, and K^# can be larger than K^+ by orders of magnitude
@@ -112,9 +113,8 @@ namespace dualcontact
       dealii::SparseMatrix<double>                 stiffness_;
       dealii::Vector<double>                       load_;
       std::unique_ptr<fem::RigidBodyModes<dim>>    modes_;
-      std::unique_ptr<fem::StiffnessSolver>        solver_;
-      /** Scratch of apply_pseudoinverse(): b without its kernel part. */
-      mutable dealii::Vector<double> projected_;
+      /** K_s^+: a fem::GeneralizedInverse given R_s. */
+      std::unique_ptr<fem::StiffnessSolver> solver_;
     };
   } // namespace decomposition
 } // namespace dualcontact

@@ -6,10 +6,16 @@ namespace dualcontact
   {
     GeneralizedInverse::GeneralizedInverse(
       std::unique_ptr<StiffnessSolver>                    solver,
-      const std::vector<dealii::types::global_dof_index> &fixing_dofs)
+      const std::vector<dealii::types::global_dof_index> &fixing_dofs,
+      const std::vector<dealii::Vector<double>>          &kernel)
         : solver_(std::move(solver))
         , fixing_dofs_(fixing_dofs)
+        , kernel_(kernel)
     {
+      AssertThrow(kernel_.empty() || kernel_.size() == fixing_dofs_.size(),
+                  dealii::ExcMessage(
+                    "GeneralizedInverse: as many kernel vectors as fixing "
+                    "dofs are needed."));
     }
 
 
@@ -84,6 +90,38 @@ namespace dualcontact
     GeneralizedInverse::solve(dealii::Vector<double>       &x,
                               const dealii::Vector<double> &b) const
     {
+      if (kernel_.empty())
+      {
+        solve_fixing_dofs(x, b);
+        return;
+      }
+      // K^+ b = (I - R R') K^# (I - R R') b
+      range_part_ = b;
+      remove_kernel(range_part_);
+      solve_fixing_dofs(x, range_part_);
+      remove_kernel(x);
+    }
+
+
+    void
+    GeneralizedInverse::remove_kernel(dealii::Vector<double> &v) const
+    {
+      for (const dealii::Vector<double> &r : kernel_)
+        v.add(-(r * v), r);
+    }
+
+
+    const std::vector<dealii::Vector<double>> &
+    GeneralizedInverse::kernel() const
+    {
+      return kernel_;
+    }
+
+
+    void
+    GeneralizedInverse::solve_fixing_dofs(dealii::Vector<double>       &x,
+                                          const dealii::Vector<double> &b) const
+    {
       if (fixing_dofs_.empty())
         solver_->solve(x, b);
       else
@@ -104,7 +142,9 @@ namespace dualcontact
     std::string
     GeneralizedInverse::name() const
     {
-      return solver_->name() + " (generalized inverse, " +
+      return solver_->name() +
+             (kernel_.empty() ? " (generalized inverse, " :
+                                " (pseudoinverse, ") +
              std::to_string(fixing_dofs_.size()) + " fixing dofs)";
     }
   } // namespace fem
