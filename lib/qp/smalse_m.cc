@@ -64,10 +64,12 @@ namespace dualcontact
                         "projector P (lambda_max(A) where the formulation "
                         "does not know P A P's; `Penalty factor' is used "
                         "without the projector): a number > 0, or "
-                        "automatic: the formulation's measured choice, 1 for "
-                        "the undecomposed dual's rigid-body modes, 3 for "
-                        "TFETI's coarse space (doc/benchmarks/tfeti.md, "
-                        "\"Pseudoinverses\").");
+                        "automatic: the formulation's measured choice; for "
+                        "the undecomposed dual's rigid-body modes 10 with "
+                        "bounds and boxes, 1 with friction discs and "
+                        "ellipses (lib/contact/README.md, "
+                        "\"Pseudoinverses\"), 3 for TFETI's coarse space "
+                        "(doc/benchmarks/tfeti.md, \"Pseudoinverses\").");
       prm.declare_entry("Equality tolerance factor",
                         "1",
                         dealii::Patterns::Double(0.),
