@@ -91,8 +91,10 @@ namespace dualcontact
                     "under MPI. " +
                     io::parameter_location("Output", "FCLIB problem")));
 
-      scene_      = std::make_unique<Scene<dim>>(prm, parameter_file);
-      refinement_ = std::make_unique<ContactRefinement<dim>>(
+      // before anything runs BLAS: the factorizations, the dense F
+      blas_threads_ = fem::StiffnessSolver::apply_blas_threads(prm);
+      scene_        = std::make_unique<Scene<dim>>(prm, parameter_file);
+      refinement_   = std::make_unique<ContactRefinement<dim>>(
         prm, scene_->pair_parameters().size());
       // scenes with contact go through a dual; so do scenes without
       // contact that ask for TFETI (then the dual has only gluing and
@@ -230,7 +232,7 @@ namespace dualcontact
         console_ << ", " << n_pairs << " contact pair"
                  << (n_pairs == 1 ? "" : "s") << ", QP solver "
                  << contact_->qp_parameters().solver;
-      console_ << std::endl;
+      console_ << ", BLAS threads " << blas_threads_ << std::endl;
     }
 
 

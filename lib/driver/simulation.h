@@ -125,7 +125,9 @@ namespace dualcontact
       dealii::TimerOutput         timer_;
 
       /** Subsection `Output', read once. */
-      const OutputParameters            output_;
+      const OutputParameters output_;
+      /** OpenBLAS' threads and why ("2 (automatic: load average ...)"). */
+      std::string                       blas_threads_;
       std::unique_ptr<io::OutputFolder> output_folder_;
       std::unique_ptr<Scene<dim>>       scene_;
       /** Null for a scene without contact pairs. */

@@ -98,6 +98,16 @@ namespace dualcontact
       static void
       declare_parameters(dealii::ParameterHandler &prm);
 
+      /**
+       * Gives OpenBLAS the threads `BLAS threads` asks for (automatic:
+       * util::automatic_blas_threads()) and says what it did for the log,
+       * e.g. "2 (automatic: load average 0.12 on 2 cores)".  Throws,
+       * naming the parameter, on a value that is neither `automatic' nor
+       * a whole number >= 1.
+       */
+      static std::string
+      apply_blas_threads(dealii::ParameterHandler &prm);
+
       /** Create the solver chosen in the subsection `Stiffness solver`. */
       static std::unique_ptr<StiffnessSolver>
       create(dealii::ParameterHandler &prm);

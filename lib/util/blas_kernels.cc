@@ -1,8 +1,14 @@
 #include <util/blas_kernels.h>
 
 #include <dlfcn.h>
+#include <sched.h>
+#include <unistd.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdlib>
+#include <iomanip>
+#include <sstream>
 
 namespace dualcontact
 {
@@ -70,6 +76,31 @@ namespace dualcontact
         openblas_function<void (*)(int)>("openblas_set_num_threads");
       if (set != nullptr)
         set(n);
+    }
+
+
+    BlasThreadChoice
+    automatic_blas_threads(const unsigned int n_processes)
+    {
+      if (n_processes > 1)
+        return {1, "one per process under MPI"};
+      for (const char *variable : {"OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS"})
+        if (const char *value = std::getenv(variable); value != nullptr)
+          return {0, std::string(variable) + "=" + value + " set by the user"};
+      cpu_set_t cpus;
+      CPU_ZERO(&cpus);
+      const int cores = sched_getaffinity(0, sizeof(cpus), &cpus) == 0 ?
+                          CPU_COUNT(&cpus) :
+                          static_cast<int>(sysconf(_SC_NPROCESSORS_ONLN));
+      double    load  = 0;
+      if (getloadavg(&load, 1) != 1)
+        load = 0;
+      const int idle =
+        static_cast<int>(std::floor(std::max(cores, 1) - load + 0.5));
+      std::ostringstream reason;
+      reason << "automatic: load average " << std::fixed << std::setprecision(2)
+             << load << " on " << cores << " core" << (cores == 1 ? "" : "s");
+      return {std::clamp(idle, 1, std::max(cores, 1)), reason.str()};
     }
 
 

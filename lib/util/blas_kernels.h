@@ -72,6 +72,31 @@ namespace dualcontact
      */
     void
     set_blas_threads(const int n);
+
+    /**
+     * What `Stiffness solver / BLAS threads = automatic` gives OpenBLAS:
+     * the number of threads (0: leave OpenBLAS as it is) and why.
+     */
+    struct BlasThreadChoice
+    {
+      int         threads = 0;
+      std::string reason;
+    };
+
+    /**
+     * One thread per process under MPI (@p n_processes > 1); the user's
+     * OPENBLAS_NUM_THREADS or OMP_NUM_THREADS where set (threads 0);
+     * otherwise the cores of this process' CPU set that the load average
+     * leaves idle, rounded, at least one.  Why not simply every core:
+     * OpenBLAS' threads wait for work by spinning, so on cores that other
+     * processes keep busy they take the time slices of the thread that has
+     * the work.  Measured on 2 cores (inputs/hertz_3d.prm, 26,127 dofs):
+     * idle, 1.33 s with one thread, 1.23 s with two; beside two busy
+     * processes 1.63 s with one, 21.9 s with two (factorization 0.6 ->
+     * 12.5 s, QP 0.002 -> 0.93 s); lib/util/README.md.
+     */
+    BlasThreadChoice
+    automatic_blas_threads(const unsigned int n_processes);
   } // namespace util
 } // namespace dualcontact
 
