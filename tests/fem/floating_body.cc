@@ -4,7 +4,9 @@
 // orthonormal and K R = 0; the fixing-dof generalized inverse gives u with
 // K u = f (f is balanced, so in the range of K); the strain energy equals the
 // closed form of uniaxial stress sigma^2 V / (2 E') (E' = E in 3D,
-// E / (1 - nu^2) in plane strain); K K^# K v = K v for a random v.
+// E / (1 - nu^2) in plane strain); K K^# K v = K v for a random v; given
+// the kernel, the pseudoinverse K^+ (K K^+ b = b - R R'b, R'K^+ b = 0,
+// K^+ K v = v - R R'v, where K^# leaves a rigid motion).
 
 #include <deal.II/base/function.h>
 #include <deal.II/grid/grid_generator.h>
@@ -106,6 +108,53 @@ run(const unsigned int degree)
   check(Kw.l2_norm() < 1e-9 * Kv.l2_norm(),
         "||K K^# K v - K v|| / ||K v||",
         Kw.l2_norm() / Kv.l2_norm());
+
+  // Given the kernel, solve() applies the Moore-Penrose pseudoinverse
+  // K^+ = (I - R R') K^# (I - R R'): K K^+ b = b - R R'b for any b (not
+  // only balanced ones), R'K^+ b = 0, and K^+ K v = v - R R'v.  K^#
+  // answers with an extra rigid motion, so it fails the second.
+  fem::GeneralizedInverse pseudoinverse(std::make_unique<fem::CholmodSolver>(),
+                                        rbm.fixing_dofs(),
+                                        rbm.modes());
+  pseudoinverse.initialize(K);
+  const auto remove_kernel = [&rbm](Vector<double> &x)
+  {
+    for (const auto &r : rbm.modes())
+      x.add(-(r * x), r);
+  };
+  const auto largest_kernel_part = [&rbm](const Vector<double> &x)
+  {
+    double largest = 0;
+    for (const auto &r : rbm.modes())
+      largest = std::max(largest, std::abs(r * x) / x.l2_norm());
+    return largest;
+  };
+  Vector<double> b(body.n_dofs()), x(body.n_dofs()), Kx(body.n_dofs());
+  for (auto &entry : b)
+    entry = uniform(rng);
+  pseudoinverse.solve(x, b);
+  K.vmult(Kx, x);
+  Vector<double> range_part = b;
+  remove_kernel(range_part);
+  Kx -= range_part;
+  check(Kx.l2_norm() < 1e-9 * range_part.l2_norm(),
+        "||K K^+ b - (b - R R'b)|| / ||b - R R'b||",
+        Kx.l2_norm() / range_part.l2_norm());
+  check(largest_kernel_part(x) < 1e-12,
+        "max_k |r_k' K^+ b| / ||K^+ b||",
+        largest_kernel_part(x));
+  Vector<double> x_sharp(body.n_dofs());
+  pseudoinverse.solve_fixing_dofs(x_sharp, range_part);
+  check(largest_kernel_part(x_sharp) > 1e-3,
+        "K^# b carries a rigid motion: max_k |r_k' K^# b| / ||K^# b||",
+        largest_kernel_part(x_sharp));
+  pseudoinverse.solve(x, Kv);
+  Vector<double> expected_x = v;
+  remove_kernel(expected_x);
+  x -= expected_x;
+  check(x.l2_norm() < 1e-8 * expected_x.l2_norm(),
+        "||K^+ K v - (v - R R'v)|| / ||v - R R'v||",
+        x.l2_norm() / expected_x.l2_norm());
 }
 
 // Partially supported bodies: the kernel is what the supports allow.
