@@ -8,6 +8,7 @@
 #include <decomposition/multiplier_scaling.h>
 #include <decomposition/tfeti_dual.h>
 #include <fem/cholmod_solver.h>
+#include <fem/rigid_body_modes.h>
 #include <qp/power_iteration.h>
 #include <qp/separable_set.h>
 
@@ -38,7 +39,8 @@ namespace dualcontact
       describe_scaled_problem(qp::Problem<V>             &problem,
                               qp::EqualityConstraints<V> &equality,
                               const unsigned int          n_modes,
-                              const double                lambda_max_ratio)
+                              const double                lambda_max_ratio,
+                              const double projector_penalty_factor)
       {
         problem.lambda_max            = 1.05 * lambda_max_ratio;
         equality.projected_lambda_max = 1.05;
@@ -47,12 +49,9 @@ namespace dualcontact
         // G~ G~' = L^-1 P G G' P' L^-T = I: SMALSE-M may use the coarse
         // projector
         equality.orthonormal_rows = true;
-        // rho = 3 lambda_max(P F P) unless the .prm says otherwise: on the
-        // friction brick (pseudoinverses, 1e-6) 788 / 865 / 1,023 products
-        // at level 20 in 8 and 64 subdomains and level 40 in 128, against
-        // 810 / - / not converged with 1 and 805 / 1,070 / 1,444 with 10
-        // (doc/benchmarks/tfeti.md, "Pseudoinverses")
-        equality.projector_penalty_factor = 3;
+        // rho / lambda_max(P F P) unless the .prm says otherwise
+        // (TFETIDual::projector_penalty_factor())
+        equality.projector_penalty_factor = projector_penalty_factor;
         problem.semidefinite              = true;
       }
 
@@ -112,6 +111,10 @@ namespace dualcontact
                    body->hanging_node_constraints().is_constrained(line.index),
                  ExcInternalError());
 #endif
+      // a body whose Dirichlet conditions leave a rigid-body motion free
+      for (const auto *body : bodies_)
+        has_floating_body_ =
+          has_floating_body_ || fem::RigidBodyModes<dim>(*body).n_modes() > 0;
       Timer timer;
       decompose(parameters);
       decomposition_time_ = max_over_processes(timer.wall_time());
@@ -233,6 +236,22 @@ namespace dualcontact
       lambda_max_F_   = of_F.estimate;
       scale_          = of_PFP.estimate;
       scale_products_ = of_F.n_products + of_PFP.n_products;
+    }
+
+
+    template <int dim>
+    double
+    TFETIDual<dim>::projector_penalty_factor() const
+    {
+      // Measured (products at factor 1 / 3; doc/benchmarks/tfeti.md,
+      // "Pseudoinverses"): the friction brick, clamped, wants 3 (level 20
+      // in 8 subdomains 810 / 788, level 40 in 128 not converged / 1,023;
+      // 10: 805 and 1,444), and so do the 2D scenes (Tresca block 359 /
+      // 204, cylinder 622 / 396, two bodies 104 / 61); the 3D scenes with
+      // a floating body want 1 (3D Hertz 2,755 / 3,150, two Hertz bodies
+      // 6,070 / 7,305, stacked Tresca boxes 231 / 352, the Coulomb block
+      // at 20 x 20 x 5 6,521 / 16,337).
+      return dim == 3 && has_floating_body_ ? 1. : 3.;
     }
 
 
@@ -729,7 +748,8 @@ namespace dualcontact
       describe_scaled_problem(problem,
                               *equality,
                               coarse_->n_modes(),
-                              lambda_max_F_ / scale_);
+                              lambda_max_F_ / scale_,
+                              projector_penalty_factor());
       problem.equality = equality;
       return problem;
     }
@@ -972,7 +992,8 @@ namespace dualcontact
       describe_scaled_problem(problem,
                               *equality,
                               coarse_->n_modes(),
-                              lambda_max_F_ / scale_);
+                              lambda_max_F_ / scale_,
+                              projector_penalty_factor());
       problem.equality = equality;
       return problem;
     }

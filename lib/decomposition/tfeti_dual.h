@@ -319,6 +319,14 @@ namespace dualcontact
       /** G = R'B', e, and the coarse problem (sparse factor of G G'). */
       void
       build_coarse_problem();
+      /**
+       * rho / lambda_max(P F P) of SMALSE-M's coarse projector when its
+       * `Projector penalty factor' is automatic: 1 in 3D with a floating
+       * body, 3 otherwise (measured).
+       */
+      double
+      projector_penalty_factor() const;
+
       /** scale_ = lambda_max(P F P) and lambda_max_F_ by Lanczos
        *  (collective). */
       void
@@ -401,6 +409,8 @@ namespace dualcontact
       double     scale_ = 1;
       /** lambda_max(F) (the scale s = scale_ is lambda_max(P F P)). */
       double lambda_max_F_ = 1;
+      /** Whether a body has rigid-body modes (projector_penalty_factor()). */
+      bool has_floating_body_ = false;
       /** Products F x the estimates of both took. */
       unsigned int              scale_products_ = 0;
       std::string               operator_description_;

@@ -42,7 +42,7 @@ namespace dualcontact
       bool orthonormal_rows = false;
       /// rho / lambda_max(A) of SMALSE-M's coarse projector when its
       /// `Projector penalty factor' is automatic: the formulation's
-      /// measured choice (TFETI sets 3, the undecomposed dual 10 or 1)
+      /// measured choice (TFETI 3 or 1, the undecomposed dual 10 or 1)
       double projector_penalty_factor = 1.;
       /// lambda_max(P A P) with P = I - B'B (orthonormal rows only) if
       /// known (0 = unknown): SMALSE-M's coarse projector then sets rho

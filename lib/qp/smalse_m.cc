@@ -68,7 +68,8 @@ namespace dualcontact
                         "the undecomposed dual's rigid-body modes 10 with "
                         "bounds and boxes, 1 with friction discs and "
                         "ellipses (lib/contact/README.md, "
-                        "\"Pseudoinverses\"), 3 for TFETI's coarse space "
+                        "\"Pseudoinverses\"); for TFETI's coarse space 1 "
+                        "in 3D with a floating body, 3 otherwise "
                         "(doc/benchmarks/tfeti.md, \"Pseudoinverses\").");
       prm.declare_entry("Equality tolerance factor",
                         "1",
