@@ -141,10 +141,6 @@ main(int argc, char *argv[])
   {
     dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
     is_rank_0 = dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0;
-    // every process has its own BLAS: one thread each, so that N processes
-    // do not run N times as many threads as there are cores
-    if (dealii::Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD) > 1)
-      util::set_blas_threads(1);
     // what the console shows is kept for log.txt
     io::ConsoleLog             log(std::cout);
     dealii::ConditionalOStream console(log.stream(), is_rank_0);

@@ -15,9 +15,8 @@ main(int argc, char **argv)
   // OpenBLAS' threads on the cores the load leaves idle, unless the user
   // set OPENBLAS_NUM_THREADS / OMP_NUM_THREADS (util/blas_kernels.h: its
   // waiting threads spin and slow a busy machine down)
-  if (const auto choice = dualcontact::util::automatic_blas_threads(1);
-      choice.threads > 0)
-    dualcontact::util::set_blas_threads(choice.threads);
+  dualcontact::util::use_blas_threads(
+    dualcontact::util::automatic_blas_threads(1));
   try
   {
     const std::vector<std::string> arguments(argv + 1, argv + argc);

@@ -146,6 +146,7 @@ namespace dualcontact
         parameters.form != DualProblemParameters::Operator::implicit;
       std::string implicit_description = "implicit (`set Operator = implicit')";
       std::vector<const fem::GeneralizedInverse *> pseudoinverses(n_bodies);
+      std::vector<unsigned int>                    first_mode(n_bodies);
       for (unsigned int b = 0; b < n_bodies; ++b)
       {
         const types::global_dof_index offset = contact.body_offset(b);
@@ -154,6 +155,7 @@ namespace dualcontact
 
         modes_.push_back(
           std::make_unique<fem::RigidBodyModes<dim>>(*bodies_[b]));
+        first_mode[b] = rigid_modes_.size();
         for (const auto &mode : modes_.back()->modes())
         {
           Vector<double> column(n_dofs);
@@ -194,13 +196,24 @@ namespace dualcontact
           solver->initialize(bodies_[b]->stiffness_matrix());
         inverse_.add(std::move(solver));
       }
+      // G = R'B' (rows B r_k), e = R'f
+      e_.reinit(rigid_modes_.size());
+      for (unsigned int k = 0; k < rigid_modes_.size(); ++k)
+      {
+        VectorType row(n_multipliers());
+        rows_.vmult(row, rigid_modes_[k]);
+        G_rows_.push_back(row);
+        e_(k) = rigid_modes_[k] * load_;
+      }
+
       if (assembled)
       {
         auto F = std::make_unique<AssembledDualOperator<dim>>(
           bodies_, contact, rows_, schur, body_rows);
         for (unsigned int b = 0; b < n_bodies; ++b)
           if (!pseudoinverses[b]->kernel().empty())
-            add_pseudoinverse_terms(b, *pseudoinverses[b], body_rows[b], *F);
+            add_pseudoinverse_terms(
+              b, first_mode[b], *pseudoinverses[b], body_rows[b], *F);
         operator_ = std::move(F);
       }
       else
@@ -221,16 +234,6 @@ namespace dualcontact
         for (unsigned int k = 0; k + 1 < dim; ++k)
           d_(contact.n_nodes() + (dim - 1) * j + k) +=
             contact.tangential_offset()((dim - 1) * frictional_nodes_[j] + k);
-
-      // G = R'B' (rows B r_k), e = R'f
-      e_.reinit(rigid_modes_.size());
-      for (unsigned int k = 0; k < rigid_modes_.size(); ++k)
-      {
-        VectorType row(n_multipliers());
-        rows_.vmult(row, rigid_modes_[k]);
-        G_rows_.push_back(row);
-        e_(k) = rigid_modes_[k] * load_;
-      }
 
       // The transforms of the QP the solvers see: G with orthonormal rows,
       // and the scale of F.
@@ -264,6 +267,7 @@ namespace dualcontact
     void
     DualProblem<dim>::add_pseudoinverse_terms(
       const unsigned int               body,
+      const unsigned int               first_mode,
       const fem::GeneralizedInverse   &inverse,
       const std::vector<unsigned int> &rows,
       AssembledDualOperator<dim>      &F) const
@@ -271,28 +275,24 @@ namespace dualcontact
       const std::vector<Vector<double>> &R = inverse.kernel();
       const unsigned int                 k = R.size(), r = rows.size();
       const types::global_dof_index      offset = contact_.body_offset(body);
-      // W = B K^# R, G = R'B' (on the body's rows), C = R'K^#R
+      // W = B K^# R, G = R'B' (G_rows_ on the body's rows), C = R'K^#R
       FullMatrix<double> W(r, k), G(k, r), C(k, k);
       Vector<double>     stacked(contact_.n_dofs()), image,
         row_values(n_multipliers());
-      const auto rows_of = [&](const Vector<double> &local)
-      {
-        for (unsigned int i = 0; i < local.size(); ++i)
-          stacked(offset + i) = local(i);
-        rows_.vmult(row_values, stacked);
-      };
       for (unsigned int j = 0; j < k; ++j)
       {
         image.reinit(R[j].size());
         inverse.solve_fixing_dofs(image, R[j]);
         for (unsigned int i = 0; i < k; ++i)
           C(i, j) = R[i] * image;
-        rows_of(image);
+        for (unsigned int i = 0; i < image.size(); ++i)
+          stacked(offset + i) = image(i);
+        rows_.vmult(row_values, stacked);
         for (unsigned int q = 0; q < r; ++q)
+        {
           W(q, j) = row_values(rows[q]);
-        rows_of(R[j]);
-        for (unsigned int q = 0; q < r; ++q)
-          G(j, q) = row_values(rows[q]);
+          G(j, q) = G_rows_[first_mode + j](rows[q]);
+        }
       }
       // X = W - G'C / 2, so that W G + G'W' - G'C G = X G + G'X'
       for (unsigned int q = 0; q < r; ++q)

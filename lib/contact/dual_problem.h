@@ -328,9 +328,11 @@ namespace dualcontact
        * the body's; lib/contact/README.md, "Pseudoinverses").  With W =
        * B K^# R, G = R'B' and C = R'K^#R on those rows, B K^+ B' =
        * B K^# B' - W G - G'W' + G'C G: one K^# solve per rigid-body mode.
+       * The body's modes are G_rows_ from @p first_mode on.
        */
       void
       add_pseudoinverse_terms(const unsigned int               body,
+                              const unsigned int               first_mode,
                               const fem::GeneralizedInverse   &inverse,
                               const std::vector<unsigned int> &rows,
                               AssembledDualOperator<dim>      &F) const;

@@ -146,8 +146,7 @@ namespace dualcontact
                       "`automatic' or a whole number >= 1."));
         choice = {threads, "set in the input"};
       }
-      if (choice.threads > 0)
-        util::set_blas_threads(choice.threads);
+      util::use_blas_threads(choice);
       return std::to_string(util::blas_threads()) + " (" + choice.reason + ")";
     }
 

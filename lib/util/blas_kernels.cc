@@ -104,6 +104,14 @@ namespace dualcontact
     }
 
 
+    void
+    use_blas_threads(const BlasThreadChoice &choice)
+    {
+      if (choice.threads > 0)
+        set_blas_threads(choice.threads);
+    }
+
+
     std::string
     blas_kernel_choice()
     {

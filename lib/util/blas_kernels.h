@@ -97,6 +97,10 @@ namespace dualcontact
      */
     BlasThreadChoice
     automatic_blas_threads(const unsigned int n_processes);
+
+    /** Gives OpenBLAS @p choice's threads (nothing when they are 0). */
+    void
+    use_blas_threads(const BlasThreadChoice &choice);
   } // namespace util
 } // namespace dualcontact
 
