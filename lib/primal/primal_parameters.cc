@@ -68,6 +68,21 @@ namespace dualcontact
         "negative ones (report, lemma 7.2; safe for "
         "orthogonal rows), or all negative if the rows are "
         "orthogonal, else one (automatic).");
+      prm.declare_entry(
+        "CGC stopping test",
+        "relative",
+        dealii::Patterns::Selection(
+          qp::CGC<dealii::Vector<double>>::stopping_test_names.choices()),
+        "How CGC reads `CGC tolerance' (epsilon) and `CGC loose "
+        "tolerance': relative (the criterion ||g^P|| at most epsilon "
+        "||b||; a facet problem is solved at (loose) epsilon ||b||; a "
+        "multiplier below zero is released) or report (the tests of the "
+        "report, section 7 and remark 7.2, absolute in N and m: CG returns "
+        "when ||(I - P_J) g||^2 < epsilon or ||x^{k+1} - x^k|| / max(1, "
+        "||x^k||) < epsilon; a facet problem is solved when pg^{IT+1} / "
+        "max(1, pg^{IT}) < epsilon (pg the projected gradient at the start "
+        "of an outer iteration) or CG has just stopped on it; a multiplier "
+        "u_i is negative when u_i / max(1, max u) < -epsilon).");
       prm.declare_entry("Uzawa step factor",
                         "1.0",
                         dealii::Patterns::Double(0.),
@@ -123,6 +138,7 @@ namespace dualcontact
       cgc_loose_tolerance  = prm.get_double("CGC loose tolerance");
       cgc_loose_iterations = prm.get_integer("CGC loose iterations");
       cgc_release          = prm.get("CGC release");
+      cgc_stopping_test    = prm.get("CGC stopping test");
       uzawa_step_factor    = prm.get_double("Uzawa step factor");
       uzawa_step           = prm.get_double("Uzawa step");
       uzawa_tolerance      = prm.get_double("Uzawa tolerance");

@@ -39,6 +39,8 @@ namespace dualcontact
       /** Which constraints leave the facet at a negative multiplier:
        * one | all negative | automatic (see qp::CGC). */
       std::string cgc_release = "automatic";
+      /// `CGC stopping test': relative (to ||b||) or report (remark 7.2)
+      std::string cgc_stopping_test = "relative";
 
       /** Uzawa step rho = step factor / ||G K^{-1} G'|| (the Lipschitz
        * constant of the gradient of the dual function in mu; converges for

@@ -426,6 +426,8 @@ namespace dualcontact
       data.n_loose         = parameters_.cgc_loose_iterations;
       data.release =
         qp::CGC<VectorType>::release_names.value(parameters_.cgc_release);
+      data.stopping_test = qp::CGC<VectorType>::stopping_test_names.value(
+        parameters_.cgc_stopping_test);
       qp::CGC<VectorType> cgc(data);
 
       qp::SolverStatistics stats;

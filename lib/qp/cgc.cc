@@ -252,18 +252,20 @@ namespace dualcontact
         /**
          * Subroutine CG on the facet J: CG with the projected (and
          * preconditioned) gradient until ||P_J r|| <= tolerance, a new
-         * constraint is hit, the step becomes negligible or the iteration
-         * limit is reached.
+         * constraint is hit, the relative step is below step_tolerance or
+         * the iteration limit is reached.
          */
         CGExit
         cg(const std::vector<size_type> &J,
            const double                  tolerance,
+           const double                  step_tolerance,
            const bool                    force_step)
         {
           std::fill(in_facet.begin(), in_facet.end(), 0);
           for (const auto j : J)
             in_facet[j] = 1;
-          blocked_at_start = false;
+          blocked_at_start  = false;
+          hit_at_first_step = false;
           std::vector<double> u;
           double              rho_old = 0.;
           for (unsigned int k = 0;; ++k)
@@ -340,7 +342,8 @@ namespace dualcontact
               }
             if (!blocking.empty())
             {
-              blocked_at_start = k == 0 && alpha_max == 0.;
+              blocked_at_start  = k == 0 && alpha_max == 0.;
+              hit_at_first_step = k == 0;
               x.add(alpha_max, p);
               r.add(alpha_max, Cp);
               // put single-entry rows (bounds) exactly on the bound so
@@ -369,7 +372,7 @@ namespace dualcontact
             r.add(alpha, Cp);
             ++stats.n_cg;
             const double dd = alpha * p.l2_norm() / std::max(1., x.l2_norm());
-            if (dd < data.step_tolerance)
+            if (dd < step_tolerance)
               return CGExit::small_step;
           }
         }
@@ -388,6 +391,8 @@ namespace dualcontact
         /// the last cg() stopped at its first step with step length 0 (a
         /// row outside the facet, active at x, blocks the first direction)
         bool blocked_at_start = false;
+        /// the last cg() hit a row outside the facet in its first step
+        bool hit_at_first_step = false;
       };
     } // namespace
 
@@ -525,10 +530,14 @@ namespace dualcontact
       ++stats.n_hessian_products;
       run.r -= problem.b;
 
+      const bool   report = data.stopping_test == StoppingTest::report;
       const double absolute_tolerance = data.tolerance * stats.norm_b;
       const double strict             = data.strict_factor * absolute_tolerance;
       const double loose =
         std::max(data.loose_tolerance * stats.norm_b, absolute_tolerance);
+      // the report's epsilon of this outer iteration (remark 7.3)
+      const auto report_epsilon = [&](const bool loose_phase)
+      { return loose_phase ? data.loose_tolerance : data.tolerance; };
       const bool release_all =
         data.release == Release::all_negative ||
         (data.release == Release::automatic && run.orthogonal);
@@ -544,6 +553,8 @@ namespace dualcontact
       unsigned int           best_iteration = 0;
       bool                   strict_phase   = false;
       unsigned int           idle_outer     = 0;
+      double                 pg_previous    = 0.; // remark 7.2's pg^{IT}
+      bool                   cg_finished    = false;
       std::vector<double>    u;
       std::vector<size_type> J;
       for (unsigned int outer = 0;; ++outer)
@@ -559,10 +570,51 @@ namespace dualcontact
           stats.message = "the criterion became " + std::to_string(value);
           break;
         }
-        if (value <= absolute_tolerance)
+        const bool loose_phase = !strict_phase && outer < data.n_loose;
+        // the facet problem solved and the multipliers that count as
+        // negative, by the test in use
+        bool              facet_solved = false;
+        std::vector<char> negative(J.size(), 0);
+        bool              any_negative = false;
+        if (report)
         {
-          stats.reason = ConvergenceReason::converged;
-          break;
+          const double epsilon = report_epsilon(loose_phase);
+          // As printed the tests can disagree: CG returns at once when
+          // ||(I - P_J) g||^2 < epsilon while pg / max(1, pg^{IT}) stays
+          // above epsilon, and CGC would call it again forever.  A
+          // facet on which CG has just stopped by its own tests counts as
+          // solved too.
+          facet_solved =
+            norm_Pr / std::max(1., pg_previous) < epsilon || cg_finished;
+          pg_previous    = norm_Pr;
+          double u_scale = 1.;
+          for (const double u_k : u)
+            u_scale = std::max(u_scale, u_k);
+          for (std::size_t k = 0; k < J.size(); ++k)
+          {
+            negative[k]  = u[k] / u_scale < -epsilon;
+            any_negative = any_negative || negative[k];
+          }
+          if (facet_solved && !any_negative && epsilon <= data.tolerance)
+          {
+            // the report's epsilon is no bound on the criterion relative
+            // to ||b||: the record states the one reached
+            stats.tolerance = std::max(stats.tolerance, value / stats.norm_b);
+            stats.reason    = ConvergenceReason::converged;
+            break;
+          }
+        }
+        else
+        {
+          if (value <= absolute_tolerance)
+          {
+            stats.reason = ConvergenceReason::converged;
+            break;
+          }
+          facet_solved = norm_Pr <= (loose_phase ? loose : strict);
+          for (std::size_t k = 0; k < J.size(); ++k)
+            negative[k] = u[k] < 0.;
+          any_negative = norm_negative > 0.5 * absolute_tolerance;
         }
         if (stats.iterations >= data.max_iterations)
         {
@@ -586,12 +638,11 @@ namespace dualcontact
         }
         ++stats.n_outer;
 
-        double tolerance =
-          (!strict_phase && outer < data.n_loose) ? loose : strict;
-        std::vector<size_type> facet = J;
-        if (norm_Pr <= tolerance)
+        bool                   strict_next = !loose_phase;
+        std::vector<size_type> facet       = J;
+        if (facet_solved)
         {
-          if (norm_negative > 0.5 * absolute_tolerance)
+          if (any_negative)
           {
             // leave the facet of the negative multiplier(s)
             std::vector<size_type> kept;
@@ -609,7 +660,7 @@ namespace dualcontact
             for (std::size_t k = 0; k < J.size(); ++k)
             {
               const bool release = (release_all && !release_one_next) ?
-                                     u[k] < 0. :
+                                     negative[k] :
                                      k == most_negative;
               if (!release)
                 kept.push_back(J[k]);
@@ -622,13 +673,31 @@ namespace dualcontact
             // facet solved only loosely and the multipliers are
             // fine: from now on solve facets strictly (remark 7.3)
             strict_phase = true;
-            tolerance    = strict;
+            strict_next  = true;
           }
         }
 
+        // the report's CG returns at ||(I - P_J) g||^2 < epsilon and
+        // at a relative step below epsilon
+        const double epsilon = report_epsilon(!strict_next);
+        const double tolerance =
+          report ? std::sqrt(epsilon) : (strict_next ? strict : loose);
+        const double step_tolerance = report ? epsilon : data.step_tolerance;
         const unsigned int steps_before = stats.iterations;
-        const auto exit  = run.cg(facet, tolerance, facet.size() != J.size());
-        release_one_next = J.size() - facet.size() > 1 && run.blocked_at_start;
+        const auto         exit =
+          run.cg(facet, tolerance, step_tolerance, facet.size() != J.size());
+        // The report's multiplier test releases rows whose multipliers
+        // are negative by round-off only; such rows block the next
+        // direction after a step of round-off length and come back, and
+        // releasing all of them again would cycle (measured on the bridge
+        // at epsilon <= 1e-12): there a row hit in the first step counts
+        // as blocking.
+        // (kept over outer iterations without a release, which the
+        // report's facet test may put in between)
+        if (!report || facet.size() != J.size())
+          release_one_next =
+            J.size() - facet.size() > 1 &&
+            (run.blocked_at_start || (report && run.hit_at_first_step));
         OuterRecord record;
         record.n_active         = J.size();
         record.n_facet          = facet.size();
@@ -647,6 +716,8 @@ namespace dualcontact
         }
         else
           idle_outer = 0;
+        cg_finished = exit == Run<VectorType>::CGExit::facet_solved ||
+                      exit == Run<VectorType>::CGExit::small_step;
         if (exit == Run<VectorType>::CGExit::unbounded)
         {
           stats.reason = ConvergenceReason::unbounded;

@@ -79,9 +79,31 @@ namespace dualcontact
         automatic
       };
 
+      /// How the tolerances are read.
+      enum class StoppingTest
+      {
+        /// relative to ||b||: the criterion (above) at most tolerance ||b||
+        /// ends the solve, a facet problem is solved when ||(I - P_J) g||
+        /// is at most the (loose or strict) tolerance times ||b||, and a
+        /// multiplier is negative when it is below zero
+        relative,
+        /// the report's tests with epsilon = tolerance (loose_tolerance in
+        /// the first n_loose outer iterations, remark 7.3), in the units
+        /// of the problem: subroutine CG returns when ||(I - P_J) g||^2 <
+        /// epsilon or the relative step ||x^{k+1} - x^k|| / max(1,
+        /// ||x^k||) < epsilon; subroutine CGC takes a facet problem as
+        /// solved when pg^{IT+1} / max(1, pg^{IT}) < epsilon (pg^{IT} =
+        /// ||(I - P_J) g|| at the start of outer iteration IT, remark 7.2)
+        /// and a multiplier u_i as negative when u_i / max(1, max_J u) <
+        /// -epsilon; the solve ends on a solved facet without negative
+        /// multipliers
+        report
+      };
+
       struct AdditionalData
       {
-        /// stop when the criterion <= tolerance * ||b||
+        /// stop when the criterion <= tolerance * ||b|| (StoppingTest::
+        /// relative; the report's epsilon with StoppingTest::report)
         double tolerance = 1e-8;
         /// limit on CG steps (Hessian products)
         unsigned int max_iterations = 10000;
@@ -97,7 +119,8 @@ namespace dualcontact
         double active_tolerance = 1e-12;
         /// report's dd test: return from CG when the relative step
         /// ||x^{k+1} - x^k|| / max(1, ||x^k||) is below this
-        double step_tolerance = 1e-15;
+        double       step_tolerance = 1e-15;
+        StoppingTest stopping_test  = StoppingTest::relative;
         /// stop with `stagnation` if the criterion has not reached a new
         /// minimum for this many CG steps (0 = never)
         unsigned int stagnation_window = 2000;
@@ -105,6 +128,12 @@ namespace dualcontact
         /// multipliers (A_J A_J') u = -A_J g when rows are not orthogonal
         double       projection_tolerance      = 1e-13;
         unsigned int projection_max_iterations = 1000;
+      };
+
+      /// The names of StoppingTest (`Primal solver/CGC stopping test').
+      static constexpr util::EnumNames<StoppingTest, 2> stopping_test_names{
+        "CGC stopping test",
+        {{"relative", "report"}},
       };
 
       /// The names of Release (`Primal solver/CGC release').

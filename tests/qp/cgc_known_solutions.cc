@@ -8,7 +8,9 @@
 //     tolerance switched off (n_loose = 0);
 //  4. an SPS Hessian whose cost is unbounded along a free direction:
 //     reason "unbounded";
-//  5. an iteration limit of 3: reason "max_iterations", not converged.
+//  5. an iteration limit of 3: reason "max_iterations", not converged;
+//  6. the report's stopping tests (StoppingTest::report): a tight epsilon
+//     finds x*, a loose one stops CG earlier by the relative step test.
 // Asserts ||x - x*|| <= 1e-8 ||x*||, the criterion <= 1e-10 ||b||, the
 // returned multipliers close to the planted ones.
 #include "planted_problems.h"
@@ -190,6 +192,41 @@ main()
       max_u_error = std::max(max_u_error, std::abs(value - planted_u[row]));
     check(max_u_error < 1e-7,
           "coupled rows (" + variant + "): multipliers = planted ones");
+  }
+
+  // ---- 6. the report's stopping tests (remark 7.2) on the coupled rows:
+  //         with a tight epsilon they find x*; with epsilon = 1e-2 the
+  //         relative step test ||dx|| / max(1, ||x||) < epsilon ends CG
+  //         early, so fewer CG steps and a worse x
+  {
+    std::vector<unsigned int> steps;
+    std::vector<double>       errors;
+    for (const double epsilon : {1e-24, 1e-2})
+    {
+      CGC<Vec>::AdditionalData data;
+      data.stopping_test = CGC<Vec>::StoppingTest::report;
+      data.tolerance     = epsilon;
+      data.n_loose       = 0;
+      CGC<Vec>   cgc(data);
+      Vec        x(n);
+      const auto stats = cgc.solve(coupled, x);
+      std::cout << "     coupled/report, epsilon " << epsilon << ": "
+                << stats.iterations << " CG steps, " << stats.n_outer
+                << " outer, criterion " << stats.final_criterion << ", "
+                << to_string(stats.reason) << ", error " << distance(x, x_star)
+                << std::endl;
+      check(stats.reason == ConvergenceReason::converged && stats.converged(),
+            std::string("report's tests, epsilon ") +
+              (epsilon < 1e-3 ? "1e-24" : "1e-2") +
+              ": converged (the record's tolerance is the criterion "
+              "reached)");
+      steps.push_back(stats.iterations);
+      errors.push_back(distance(x, x_star));
+    }
+    check(errors[0] <= 1e-8 * x_star.l2_norm(),
+          "report's tests, epsilon 1e-24: ||x - x*|| <= 1e-8 ||x*||");
+    check(steps[1] < steps[0] && errors[1] > 1e3 * errors[0],
+          "report's tests, epsilon 1e-2: the step test stops CG earlier");
   }
 
   // ---- 4. unbounded: C = diag(1, 0), b = (0, 1), only x_0 >= -1
