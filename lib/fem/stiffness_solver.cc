@@ -74,8 +74,12 @@ namespace dualcontact
         "automatic",
         dealii::Patterns::Selection(CholmodSolver::ordering_names.choices()),
         "Fill-reducing ordering of CHOLMOD. automatic: CHOLMOD's default "
-        "(AMD, then METIS if AMD gives much fill); amd; metis; nested "
-        "dissection (CHOLMOD's NESDIS).");
+        "(AMD, then METIS if AMD gives much fill) for a body's factor, "
+        "nested dissection for TFETI's subdomains (their factors serve "
+        "hundreds of solves, and NESDIS' is the smallest: level-40 brick, "
+        "128 subdomains on two processes, 88.0 -> 71.7 ms a Hessian "
+        "product and 1.32 -> 1.13 GB a process against CHOLMOD's default); "
+        "amd; metis; nested dissection (CHOLMOD's NESDIS).");
       prm.declare_entry("CG tolerance",
                         "1e-12",
                         dealii::Patterns::Double(0., 1.),
