@@ -60,8 +60,10 @@ namespace dualcontact
         "gluing and Dirichlet ones too, on the process of a subdomain it "
         "touches); F products gather what they need. The "
         "working set (`subsection Working set') runs on replicated vectors "
-        "only. automatic: distributed when run on more than one MPI "
-        "process, else replicated.");
+        "only. automatic: distributed on more than one MPI process under "
+        "TFETI or with a distributed stiffness solver (mumps, amg); "
+        "replicated otherwise (one process, or cholmod / umfpack, which "
+        "factorize the whole matrix on every process).");
       prm.leave_subsection();
     }
 
@@ -318,10 +320,13 @@ namespace dualcontact
                   ExcMessage("`set QP vectors = distributed' in `subsection "
                              "Dual problem' needs MPI (Trilinos vectors), "
                              "which this program did not initialize."));
+      // automatic: distributed where the solves are (MUMPS, AMG); with a
+      // serial solver every process holds the whole factor, and the QP on
+      // replicated vectors is the one-process run, working set included
       const bool distributed =
         parameters.vectors == DualProblemParameters::Vectors::distributed ||
         (parameters.vectors == DualProblemParameters::Vectors::automatic &&
-         n_processes > 1);
+         n_processes > 1 && inverse_.is_distributed());
       distribution_ = std::make_unique<MultiplierDistribution>(
         bodies_, contact_, frictional_nodes_, frictional_index_, distributed);
       if (!distributed)

@@ -45,6 +45,17 @@ namespace dualcontact
 
 
     template <int dim>
+    bool
+    StiffnessInverse<dim>::is_distributed() const
+    {
+      for (const auto &solver : solvers_)
+        if (solver->is_distributed())
+          return true;
+      return false;
+    }
+
+
+    template <int dim>
     unsigned long
     StiffnessInverse<dim>::n_solves() const
     {

@@ -34,6 +34,11 @@ namespace dualcontact
       void
       apply(dealii::Vector<double> &x) const;
 
+      /** Whether a body's solver is spread over the processes (then
+       *  apply() is collective). */
+      bool
+      is_distributed() const;
+
       /** Number of apply() calls so far. */
       unsigned long
       n_solves() const;

@@ -81,8 +81,11 @@ namespace dualcontact
                         "8192",
                         Patterns::Double(0),
                         "Method = automatic: the largest estimated size [MB] "
-                        "of the Cholesky factor of one body's stiffness "
-                        "matrix for which the scene is not decomposed.");
+                        "of the Cholesky factors of one body's stiffness "
+                        "matrix on one machine for which the scene is not "
+                        "decomposed (under MPI with a serial `Stiffness "
+                        "solver/Solver' every process holds a copy: the "
+                        "factor times the processes on the machine).");
       prm.leave_subsection();
     }
 

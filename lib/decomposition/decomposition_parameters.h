@@ -91,8 +91,10 @@ namespace dualcontact
       n_subdomains(const unsigned int body, const unsigned int n_cells) const;
 
       /**
-       * The method `automatic' stands for: tfeti when the estimated factor
-       * (@p factor_megabytes) exceeds memory_limit, on any number of
+       * The method `automatic' stands for: tfeti when the estimated factors
+       * on this machine (@p factor_megabytes: the factor times its copies,
+       * one per process here with a serial solver) exceed memory_limit, on
+       * any number of
        * processes; none otherwise (also under MPI: without a dual
        * preconditioner TFETI is slower than the undecomposed dual where
        * that fits).

@@ -4,6 +4,7 @@
 #include <contact/friction_capacity.h>
 #include <driver/contact_stage.h>
 #include <primal/uzawa_cgc.h>
+#include <util/machine.h>
 
 #include <algorithm>
 #include <array>
@@ -33,6 +34,15 @@ namespace dualcontact
       working_set_parameters_.parse_parameters(prm);
       decomposition_parameters_.parse_parameters(prm);
       primal_parameters_.parse_parameters(prm);
+      // a serial solver under MPI holds the whole factor on every process:
+      // what `Memory limit' weighs is the machine's
+      prm.enter_subsection("Stiffness solver");
+      const std::string solver =
+        fem::StiffnessSolver::resolved_name(prm.get("Solver"));
+      prm.leave_subsection();
+      factor_copies_ = solver == "cholmod" || solver == "umfpack" ?
+                         util::processes_on_this_machine() :
+                         1;
     }
 
 
@@ -176,8 +186,9 @@ namespace dualcontact
       for (const auto *body : scene_.bodies())
         largest = std::max<double>(largest, body->n_dofs());
       return decomposition_parameters_.resolve(
-               decomposition::DecompositionParameters::
-                 estimate_factor_megabytes(dim, largest)) == Method::tfeti;
+               factor_copies_ * decomposition::DecompositionParameters::
+                                  estimate_factor_megabytes(dim, largest)) ==
+             Method::tfeti;
     }
 
 

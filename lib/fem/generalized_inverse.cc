@@ -33,6 +33,13 @@ namespace dualcontact
     }
 
 
+    bool
+    GeneralizedInverse::is_distributed() const
+    {
+      return solver_->is_distributed();
+    }
+
+
     void
     GeneralizedInverse::initialize_with_schur_factor(
       const dealii::SparseMatrix<double>                 &matrix,

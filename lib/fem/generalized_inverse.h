@@ -73,6 +73,9 @@ namespace dualcontact
       bool
       offers_schur_factor() const override;
 
+      bool
+      is_distributed() const override;
+
       /**
        * The Schur factor of the inner solver on @p dofs without the fixing
        * dofs (where K^# is zero): (K^#)_CC = L^{-T} L^{-1} on the kept dofs.

@@ -77,6 +77,15 @@ namespace dualcontact
       offers_schur_factor() const;
 
       /**
+       * Whether the factor is spread over the processes (MUMPS, AMG through
+       * Trilinos: solve() is collective).  A serial solver (CHOLMOD,
+       * UMFPACK) under MPI factorizes the whole matrix on every process,
+       * and every process solves on its own.
+       */
+      virtual bool
+      is_distributed() const;
+
+      /**
        * Like initialize(), and also compute the SchurFactor onto @p dofs
        * (distinct indices; their order is kept).  solve() works as after
        * initialize().  Throws unless offers_schur_factor().

@@ -212,6 +212,13 @@ namespace dualcontact
     }
 
 
+    bool
+    TrilinosSolver::is_distributed() const
+    {
+      return true;
+    }
+
+
     std::string
     TrilinosSolver::name() const
     {

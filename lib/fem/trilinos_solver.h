@@ -104,6 +104,10 @@ namespace dualcontact
       std::string
       name() const override;
 
+      /** True: the factor (or hierarchy) is spread over the processes. */
+      bool
+      is_distributed() const override;
+
       /** The rows of this process (after initialize()). */
       const dealii::IndexSet &
       locally_owned_rows() const;

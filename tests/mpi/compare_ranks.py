@@ -187,18 +187,29 @@ def compare(check, tolerance, ranks, first, second):
     n_nodes = sum(v[0] for k, v in r2.items()
                   if re.match(r"pair_\d+\.n_nodes$", k))
     decomposition = c2.get("decomposition", {"method": "none"})
-    # the multipliers on distributed vectors, split over the processes
-    # (undecomposed: by contact node; TFETI: by the subdomains' rows)
-    check(c2.get("qp_vectors") == "dealii::TrilinosWrappers::MPI::Vector"
-          and len(per_process) == ranks
-          and sum(1 for n in per_process if n > 0) >= 2
-          and sum(per_process) == c2["n_multipliers"]
-          and len(nodes_per_process) == ranks
-          and sum(nodes_per_process) == n_nodes,
-          f"{ranks} processes: the QP ran on {c2.get('qp_vectors')}, "
-          f"multipliers per process {per_process} (of "
-          f"{c2['n_multipliers']}), contact nodes per process "
-          f"{nodes_per_process} (of {n_nodes:g})")
+    serial = {b["stiffness_solver"]["name"] for b in s2.get("bodies", [])
+              if "stiffness_solver" in b} <= {"cholmod", "umfpack"}
+    if decomposition["method"] == "none" and serial:
+        # a serial solver: every process holds the whole factor, and the
+        # QP runs replicated, as on one process
+        check(c2.get("qp_vectors") == "dealii::Vector<double>"
+              and per_process == [c2["n_multipliers"]],
+              f"{ranks} processes, serial stiffness solver: the QP ran "
+              f"replicated on {c2.get('qp_vectors')}, multipliers per "
+              f"process {per_process} (of {c2['n_multipliers']})")
+    else:
+        # the multipliers on distributed vectors, split over the processes
+        # (undecomposed: by contact node; TFETI: by the subdomains' rows)
+        check(c2.get("qp_vectors") == "dealii::TrilinosWrappers::MPI::Vector"
+              and len(per_process) == ranks
+              and sum(1 for n in per_process if n > 0) >= 2
+              and sum(per_process) == c2["n_multipliers"]
+              and len(nodes_per_process) == ranks
+              and sum(nodes_per_process) == n_nodes,
+              f"{ranks} processes: the QP ran on {c2.get('qp_vectors')}, "
+              f"multipliers per process {per_process} (of "
+              f"{c2['n_multipliers']}), contact nodes per process "
+              f"{nodes_per_process} (of {n_nodes:g})")
     if decomposition["method"] == "tfeti":
         subdomains = decomposition.get("subdomains_per_process", [])
         n_subdomains = decomposition["n_subdomains"]
