@@ -123,7 +123,8 @@ namespace dualcontact
 
       /**
        * The solver `Solver = @p name' stands for: `automatic' is cholmod on
-       * one process and mumps under MPI; any other name is itself.
+       * any number of processes (under MPI every process factorizes the
+       * whole matrix); any other name is itself.
        */
       static std::string
       resolved_name(const std::string &name);
