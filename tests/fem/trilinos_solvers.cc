@@ -11,7 +11,10 @@
 //    them; a second solve reuses the factorization / hierarchy;
 //  - the rows default to an even split when none are given, and the
 //    distributed interface (Trilinos vectors) gives the same solution;
-//  - AMG-CG with an iteration limit of 2 reports that it did not converge.
+//  - AMG-CG with an iteration limit of 2 reports that it did not converge;
+//  - CHOLMOD (serial) gives every process the same bits, the Trilinos
+//    solvers say they are distributed, `Solver = automatic' is cholmod and
+//    util::processes_on_this_machine() counts every process of mpirun.
 
 #include <deal.II/base/mpi.h>
 #include <deal.II/distributed/shared_tria.h>
@@ -21,6 +24,7 @@
 #include <fem/cholmod_solver.h>
 #include <fem/elastic_body.h>
 #include <fem/trilinos_solver.h>
+#include <util/machine.h>
 
 #include <iostream>
 #include <sstream>
@@ -89,6 +93,13 @@ namespace
     fem::CholmodSolver cholmod;
     Vector<double>     reference;
     body.solve(cholmod, reference);
+    // CHOLMOD under MPI: every process factorizes the whole matrix and
+    // gets the same bits (`Solver = automatic' relies on it)
+    test_tools::check(!cholmod.is_distributed() &&
+                        spread_over_processes(reference) == 0,
+                      name + ", cholmod: serial, the same solution on every "
+                             "process",
+                      spread_over_processes(reference));
 
     for (const auto method : {fem::TrilinosSolver::Method::mumps,
                               fem::TrilinosSolver::Method::amg_cg})
@@ -96,6 +107,9 @@ namespace
       fem::TrilinosSolver::Parameters parameters;
       parameters.method = method;
       fem::TrilinosSolver solver(parameters);
+      test_tools::check(solver.is_distributed(),
+                        name + ", " + solver.name() + ": distributed",
+                        solver.is_distributed());
       solver.set_block_size(dim);
       solver.set_locally_owned_rows(body.dof_handler().locally_owned_dofs());
       Vector<double> u;
@@ -200,6 +214,17 @@ main(int argc, char *argv[])
   {
     check_body<3>("3D bar, Q2", 2);
     check_body<2>("2D plate, Q1", 1);
+    // `Solver = automatic' is cholmod on any number of processes, and
+    // `Memory limit' counts its copies: mpirun here puts every process on
+    // this machine
+    test_tools::check(fem::StiffnessSolver::resolved_name("automatic") ==
+                        "cholmod",
+                      "Solver = automatic",
+                      fem::StiffnessSolver::resolved_name("automatic"));
+    test_tools::check(util::processes_on_this_machine() ==
+                        Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD),
+                      "processes on this machine = processes",
+                      util::processes_on_this_machine());
   }
   catch (const std::exception &e)
   {
