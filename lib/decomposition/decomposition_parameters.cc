@@ -85,7 +85,11 @@ namespace dualcontact
                         "matrix on one machine for which the scene is not "
                         "decomposed (under MPI with a serial `Stiffness "
                         "solver/Solver' every process holds a copy: the "
-                        "factor times the processes on the machine).");
+                        "factor times the processes on the machine). Under "
+                        "MPI with `Solver = automatic' it also decides a "
+                        "body's solve outside the dual (a scene without "
+                        "contact): cholmod on every process within it, mumps "
+                        "beyond.");
       prm.leave_subsection();
     }
 

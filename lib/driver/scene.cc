@@ -1,9 +1,11 @@
 #include <deal.II/base/mpi.h>
 #include <deal.II/distributed/shared_tria.h>
 
+#include <decomposition/decomposition_parameters.h>
 #include <driver/scene.h>
 #include <fem/trilinos_solver.h>
 #include <io/file_locator.h>
+#include <util/machine.h>
 
 #include <cmath>
 #include <iomanip>
@@ -72,6 +74,19 @@ namespace dualcontact
 
       for (unsigned int b = 0; b < n_bodies; ++b)
         solvers_.push_back(fem::StiffnessSolver::create(prm));
+      // `Solver = automatic' under MPI: cholmod, a whole factor on every
+      // process, while those copies fit `Decomposition/Memory limit' on
+      // this machine; mumps, spread over the processes, beyond (setup())
+      prm.enter_subsection("Stiffness solver");
+      const bool automatic = prm.get("Solver") == "automatic";
+      prm.leave_subsection();
+      prm.enter_subsection("Decomposition");
+      factor_limit_ = prm.get_double("Memory limit");
+      prm.leave_subsection();
+      if (automatic && dealii::Utilities::MPI::job_supports_mpi() &&
+          dealii::Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD) > 1)
+        for (unsigned int b = 0; b < n_bodies; ++b)
+          spread_solvers_.push_back(fem::StiffnessSolver::create(prm, "mumps"));
 
       prm.enter_subsection("Dual problem");
       const double memory_limit = prm.get_double("Memory limit");
@@ -213,9 +228,33 @@ namespace dualcontact
                   std::to_string(static_cast<unsigned long>(owned.max)) +
                   " per process)";
         }
-        details.push_back(line);
+        const std::string solver_note = choose_solver(b, *body);
+        details.push_back(line + solver_note);
         bodies_.push_back(std::move(body));
       }
+    }
+
+
+    template <int dim>
+    std::string
+    Scene<dim>::choose_solver(const unsigned int           b,
+                              const fem::ElasticBody<dim> &body)
+    {
+      if (spread_solvers_.empty() || solvers_[b]->is_distributed())
+        return "";
+      const double copies = util::processes_on_this_machine();
+      const double megabytes =
+        copies *
+        decomposition::DecompositionParameters::estimate_factor_megabytes(
+          dim, body.n_dofs());
+      if (megabytes <= factor_limit_)
+        return "";
+      std::swap(solvers_[b], spread_solvers_[b]);
+      return ", stiffness solver mumps (cholmod's copies on the " +
+             std::to_string(static_cast<unsigned int>(copies)) +
+             " processes of this machine: about " +
+             std::to_string(std::llround(megabytes)) +
+             " MB, above `Decomposition/Memory limit')";
     }
 
 

@@ -186,8 +186,22 @@ namespace dualcontact
       std::vector<std::shared_ptr<dealii::Triangulation<dim>>> triangulations_;
       std::vector<std::unique_ptr<fem::ElasticBody<dim>>>      bodies_;
       std::vector<std::unique_ptr<fem::StiffnessSolver>>       solvers_;
-      std::vector<dealii::Vector<double>>                      displacements_;
-      std::vector<BodyResults>                                 results_;
+      /**
+       * Under MPI with `Solver = automatic': body @p b's cholmod copies on
+       * this machine against `Decomposition/Memory limit'; beyond it the
+       * body gets its mumps solver.  Returns what the log says of it (empty:
+       * nothing changed).  Collective.
+       */
+      std::string
+      choose_solver(const unsigned int b, const fem::ElasticBody<dim> &body);
+
+      /** Under MPI with `Solver = automatic': a mumps solver per body, for
+       *  a body whose cholmod copies would exceed factor_limit_ here. */
+      std::vector<std::unique_ptr<fem::StiffnessSolver>> spread_solvers_;
+      /** `Decomposition/Memory limit' [MB]. */
+      double                              factor_limit_ = 8192;
+      std::vector<dealii::Vector<double>> displacements_;
+      std::vector<BodyResults>            results_;
     };
   } // namespace driver
 } // namespace dualcontact

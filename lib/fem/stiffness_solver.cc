@@ -66,8 +66,9 @@ namespace dualcontact
         "automatic",
         dealii::Patterns::Selection("automatic|cholmod|umfpack|mumps|amg"),
         "How K^{-1} is applied. automatic: cholmod, on any number of "
-        "processes (beyond `Decomposition/Memory limit' TFETI takes "
-        "over). cholmod: supernodal sparse Cholesky "
+        "processes; beyond `Decomposition/Memory limit' (the factor's "
+        "copies on the machine) TFETI takes over in a contact scene, mumps "
+        "in a scene without contact. cholmod: supernodal sparse Cholesky "
         "(SuiteSparse CHOLMOD, long-integer interface), the fastest on one "
         "process in 2D and 3D. umfpack: sparse LU (deal.II's "
         "SparseDirectUMFPACK); fine in 2D, slow in 3D (190 s against 7 s for "
@@ -182,7 +183,17 @@ namespace dualcontact
     StiffnessSolver::create(dealii::ParameterHandler &prm)
     {
       prm.enter_subsection("Stiffness solver");
-      const std::string          solver   = resolved_name(prm.get("Solver"));
+      const std::string solver = resolved_name(prm.get("Solver"));
+      prm.leave_subsection();
+      return create(prm, solver);
+    }
+
+
+    std::unique_ptr<StiffnessSolver>
+    StiffnessSolver::create(dealii::ParameterHandler &prm,
+                            const std::string        &solver)
+    {
+      prm.enter_subsection("Stiffness solver");
       const std::string          ordering = prm.get("Ordering");
       TrilinosSolver::Parameters trilinos;
       trilinos.method = solver == "mumps" ? TrilinosSolver::Method::mumps :

@@ -121,6 +121,11 @@ namespace dualcontact
       static std::unique_ptr<StiffnessSolver>
       create(dealii::ParameterHandler &prm);
 
+      /** Create the solver @p solver (a name of `Solver' other than
+       *  automatic) with the other settings of `Stiffness solver'. */
+      static std::unique_ptr<StiffnessSolver>
+      create(dealii::ParameterHandler &prm, const std::string &solver);
+
       /**
        * The solver `Solver = @p name' stands for: `automatic' is cholmod on
        * any number of processes (under MPI every process factorizes the
