@@ -20,8 +20,11 @@ relative tolerance TOLERANCE (default 1e-8) for the reals:
     body and one pair press onto an axis-aligned plane) to TOLERANCE in
     both runs, when the scene has one body and one pair;
   - the dual QP ran on the vectors it should (statistics.json,
-    contact.qp_vectors): dealii::Vector<double> on 1 process; on N > 1
-    with the undecomposed dual (contact.decomposition.method = none)
+    contact.qp_vectors): dealii::Vector<double> on 1 process, and on
+    N > 1 with the undecomposed dual and a serial stiffness solver
+    (cholmod, umfpack: every process holds the whole factor; all
+    multipliers on every process); on N > 1 with the undecomposed dual
+    (contact.decomposition.method = none) and mumps or amg
     dealii::TrilinosWrappers::MPI::Vector, split over at least two
     processes (contact.multipliers_per_process, contact_nodes_per_process:
     N counts adding up to n_multipliers and n_nodes, two or more of them
