@@ -40,9 +40,9 @@ namespace dualcontact
       const std::string solver =
         fem::StiffnessSolver::resolved_name(prm.get("Solver"));
       prm.leave_subsection();
-      factor_copies_ = solver == "cholmod" || solver == "umfpack" ?
-                         util::processes_on_this_machine() :
-                         1;
+      factor_copies_ = fem::StiffnessSolver::spreads_over_processes(solver) ?
+                         1 :
+                         util::processes_on_this_machine();
     }
 
 

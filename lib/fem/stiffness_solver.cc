@@ -179,6 +179,13 @@ namespace dualcontact
     }
 
 
+    bool
+    StiffnessSolver::spreads_over_processes(const std::string &solver)
+    {
+      return solver == "mumps" || solver == "amg";
+    }
+
+
     std::unique_ptr<StiffnessSolver>
     StiffnessSolver::create(dealii::ParameterHandler &prm)
     {
@@ -204,7 +211,7 @@ namespace dualcontact
         prm.get_double("AMG aggregation threshold");
       trilinos.smoother_sweeps = prm.get_integer("AMG smoother sweeps");
       prm.leave_subsection();
-      if (solver == "mumps" || solver == "amg")
+      if (spreads_over_processes(solver))
         return std::make_unique<TrilinosSolver>(trilinos);
       // cholmod and umfpack under MPI: every process factorizes the whole
       // matrix (it holds the whole K anyway) and solves on its own

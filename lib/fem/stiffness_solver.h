@@ -135,6 +135,14 @@ namespace dualcontact
       resolved_name(const std::string &name);
 
       /**
+       * Whether the solver named @p solver (a resolved name) spreads its
+       * factor over the processes (mumps, amg; its is_distributed() is
+       * true); cholmod and umfpack hold the whole factor on every process.
+       */
+      static bool
+      spreads_over_processes(const std::string &solver);
+
+      /**
        * Where to tell about a long setup while it runs: a sparse
        * factorization cannot report its progress, so a direct solver calls
        * @p monitor before it (matrix order, factor size, flops and an
