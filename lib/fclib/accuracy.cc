@@ -33,11 +33,20 @@ namespace dualcontact
     double
     fclib_error(const LocalProblem &problem, const dealii::Vector<double> &r)
     {
-      const unsigned int     dim = problem.spacedim();
       dealii::Vector<double> u;
       problem.velocity(u, r);
-      double sum = 0;
-      double z[3];
+      return fclib_error(problem, r, u);
+    }
+
+
+    double
+    fclib_error(const LocalProblem           &problem,
+                const dealii::Vector<double> &r,
+                const dealii::Vector<double> &u)
+    {
+      const unsigned int dim = problem.spacedim();
+      double             sum = 0;
+      double             z[3];
       for (unsigned int i = 0; i < problem.n_contacts(); ++i)
       {
         const unsigned int first = dim * i;

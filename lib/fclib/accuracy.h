@@ -25,6 +25,16 @@ namespace dualcontact
     fclib_error(const LocalProblem &problem, const dealii::Vector<double> &r);
 
     /**
+     * The same measure for a velocity @p u given (u = W r + q of another
+     * problem with the cones of @p problem, e.g. a proximal one), with
+     * ||q|| of @p problem in the denominator.
+     */
+    double
+    fclib_error(const LocalProblem           &problem,
+                const dealii::Vector<double> &r,
+                const dealii::Vector<double> &u);
+
+    /**
      * P_K(z) for one cone of aperture @p mu, in place: @p z has the normal
      * component first and dim - 1 tangential ones (dim = 2 or 3).
      */

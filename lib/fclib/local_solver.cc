@@ -121,16 +121,26 @@ namespace dualcontact
                         "solver's `Power iteration safety factor' multiplies "
                         "it. Unit: none.");
       prm.declare_entry("Plain QP iterations in auto",
-                        "1000",
+                        "500",
                         dealii::Patterns::Integer(1),
                         "Proximal regularization = auto: iteration limit of "
                         "the plain loop's QPs (a QP that needs more counts "
                         "as failed and the proximal loop takes over).");
+      prm.declare_entry("Newton after a failed plain loop",
+                        "true",
+                        dealii::Patterns::Bool(),
+                        "Proximal regularization = auto: when the plain loop "
+                        "fails, the semismooth Newton method of model newton "
+                        "(subsection Newton) to an FCLIB error at most the "
+                        "Coulomb tolerance, from the cold start; the "
+                        "proximal QP loop runs only if it fails too.  false: "
+                        "the proximal QP loop at once.");
       prm.declare_entry("Proximal maximum iterations",
                         "5000",
                         dealii::Patterns::Integer(1),
                         "Limit of the proximal loop's iterations (the larger "
                         "of this and Coulomb/Maximum iterations).");
+      NewtonSolver::Parameters::declare_parameters(prm);
     }
 
 
@@ -158,6 +168,9 @@ namespace dualcontact
       proximal_max_iterations = prm.get_integer("Proximal maximum iterations");
       auto_plain_qp_max_iterations =
         prm.get_integer("Plain QP iterations in auto");
+      newton_after_plain_loop =
+        prm.get_bool("Newton after a failed plain loop");
+      newton.parse_parameters(prm);
       check();
     }
 
@@ -197,6 +210,7 @@ namespace dualcontact
     void
     LocalSolver::Parameters::check() const
     {
+      newton.check();
       AssertThrow(initial_qp_tolerance > 0 &&
                     std::isfinite(initial_qp_tolerance),
                   dealii::ExcMessage("Initial QP tolerance must be > 0"));
@@ -292,6 +306,9 @@ namespace dualcontact
           // beyond a few thousand unknowns not worth a second dense matrix
           scaled_W_ = problem.delassus().scaled_dense_symmetric(scale_);
       }
+      AssertThrow(parameters.model != Model::newton,
+                  dealii::ExcMessage("model newton is solved by "
+                                     "fclib::NewtonSolver, not by QPs"));
       AssertThrow((parameters.model != Model::cone &&
                    parameters.model != Model::desaxce_fixed_point) ||
                     problem.spacedim() == 3,
@@ -572,20 +589,54 @@ namespace dualcontact
           result.proximal_reason = "off (auto: the plain loop converged)";
         else
         {
-          result.proximal_reason = "on (auto: the plain loop failed after " +
-                                   std::to_string(result.qp_statistics.size()) +
-                                   " QPs: " + result.reason + ")";
-          // from the last iterate whose QP converged (the start if none)
-          if (result.last_good.size() == r.size())
-            r = result.last_good;
+          const std::string failure =
+            "the plain loop failed after " +
+            std::to_string(result.qp_statistics.size()) +
+            " QPs: " + result.reason;
+          if (parameters_.newton_after_plain_loop &&
+              solve_by_newton(start, r, result))
+            result.proximal_reason =
+              "off (auto: " + failure + "; the Newton method solved it)";
           else
-            r = start;
-          run_loop(r, true, result);
+          {
+            result.proximal_reason =
+              "on (auto: " + failure +
+              (parameters_.newton_after_plain_loop ?
+                 "; the Newton method failed: " + result.newton.reason :
+                 std::string()) +
+              ")";
+            // from the last iterate whose QP converged (the start if none)
+            if (result.last_good.size() == r.size())
+              r = result.last_good;
+            else
+              r = start;
+            run_loop(r, true, result);
+          }
         }
       }
       result.fclib_error = fclib_error(problem_, r);
       result.wall_time   = timer.wall_time();
       return result;
+    }
+
+
+    bool
+    LocalSolver::solve_by_newton(const dealii::Vector<double> &start,
+                                 dealii::Vector<double>       &r,
+                                 Result                       &result) const
+    {
+      NewtonSolver::Parameters newton_parameters = parameters_.newton;
+      newton_parameters.tolerance = coulomb_parameters_.tolerance;
+      const NewtonSolver     newton(problem_, newton_parameters);
+      dealii::Vector<double> x(start);
+      result.newton = newton.solve(x);
+      result.hessian_products += result.newton.products;
+      if (!result.newton.converged)
+        return false;
+      r                = x;
+      result.converged = true;
+      result.reason    = result.newton.reason;
+      return true;
     }
 
 

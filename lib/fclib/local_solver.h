@@ -5,6 +5,7 @@
 
 #include <contact/contact_solver.h>
 #include <fclib/local_problem.h>
+#include <fclib/newton_solver.h>
 #include <qp/solver_base.h>
 #include <qp/solver_parameters.h>
 #include <qp/solver_statistics.h>
@@ -44,13 +45,19 @@ namespace dualcontact
        * the previous iterate (u = W r + q).  A fixed point solves the
        * Coulomb problem exactly (its conditions are De Saxce's).  3D only.
        */
-      desaxce_fixed_point
+      desaxce_fixed_point,
+      /**
+       * No QPs: the semismooth Newton method on Alart and Curnier's
+       * equations inside a proximal point loop (fclib::NewtonSolver), which
+       * solves the Coulomb problem exactly and stops on the FCLIB error.
+       */
+      newton
     };
 
-    /** The names of Model: "coulomb", "cone", "desaxce". */
-    inline constexpr util::EnumNames<Model, 3> model_names{
+    /** The names of Model: "coulomb", "cone", "desaxce", "newton". */
+    inline constexpr util::EnumNames<Model, 4> model_names{
       "model",
-      {{"coulomb", "cone", "desaxce"}},
+      {{"coulomb", "cone", "desaxce", "newton"}},
     };
 
     /** The first iterate of the Coulomb fixed point from a zero start. */
@@ -199,15 +206,32 @@ namespace dualcontact
         unsigned int proximal_max_iterations = 5000;
         /**
          * Proximal::automatic: iteration limit of the plain loop's QPs (a
-         * QP that stalls on a singular W is cut short; the proximal loop
-         * takes over).
+         * QP that stalls on a singular W is cut short; the Newton method
+         * or the proximal loop takes over).
          * 1000 (was 2000): Capsules' first (bonded) QP never converges and
          * cost 2000 iterations; the largest plain QP that converges on the 8
-         * FCLIB files takes 823 (spheres-in-a-box at 1e-8); with 500 that
-         * file got 11% more products, with 250 PerioBox at 1e-8 left the
-         * plain loop (doc/fclib.md, issue 20).
+         * FCLIB files takes 823 (spheres-in-a-box at 1e-8).
+         * 500 (was 1000) since the Newton method follows a failed plain
+         * loop: a stalled QP hands over to Newton sooner (Capsules at 1e-8
+         * 35.5 -> 27.6 ms, spheres-in-a-box 166 -> 141 ms, the others
+         * unchanged); with 250 PerioBox at 1e-8 and spheres-in-a-box at
+         * 1e-4 leave the plain loop too (6.1 -> 14.6 ms, 22 -> 38 ms)
+         * (doc/fclib.md, issue 20).
          */
-        unsigned int auto_plain_qp_max_iterations = 1000;
+        unsigned int auto_plain_qp_max_iterations = 500;
+        /**
+         * Proximal::automatic: after a failed plain loop, the semismooth
+         * Newton method (NewtonSolver, with `newton`'s settings, to an
+         * FCLIB error at most the Coulomb tolerance) before the proximal
+         * QP loop, which runs only if Newton fails too.  The plain loop
+         * fails on the rigid-body files whose Coulomb fixed point contracts
+         * slowly (Capsules, spheres-in-a-box); there Newton takes 36 / 123
+         * steps where the proximal QP loop took 1,004 / 897 QPs
+         * (doc/fclib.md, issue 20).
+         */
+        bool newton_after_plain_loop = true;
+        /** The Newton method's settings (subsection `Newton`). */
+        NewtonSolver::Parameters newton;
 
         /** Top-level entries of fclibsolve's .prm. */
         static void
@@ -241,6 +265,8 @@ namespace dualcontact
         /** Whether the proximal term was on, and why. */
         bool        proximal = false;
         std::string proximal_reason;
+        /** The Newton method after a failed plain loop (steps 0: not run). */
+        NewtonSolver::Result newton;
         /** The last iterate whose QP converged (empty: none yet). */
         dealii::Vector<double> last_good;
         /** Sum of the QP iterations. */
@@ -287,6 +313,17 @@ namespace dualcontact
       run_loop(dealii::Vector<double> &r,
                const bool              proximal,
                Result                 &result) const;
+
+      /**
+       * Proximal::automatic after a failed plain loop: the Newton method
+       * from @p start to an FCLIB error at most the Coulomb tolerance
+       * (result.newton); true, with @p r its solution and result converged,
+       * if it converged (else @p r is left as it was).
+       */
+      bool
+      solve_by_newton(const dealii::Vector<double> &start,
+                      dealii::Vector<double>       &r,
+                      Result                       &result) const;
 
       /** The state of one run_loop() (local_solver.cc). */
       struct Loop;

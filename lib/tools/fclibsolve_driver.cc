@@ -6,6 +6,7 @@
 #include <fclib/accuracy.h>
 #include <fclib/fclib_file.h>
 #include <fclib/local_solver.h>
+#include <fclib/newton_solver.h>
 #include <io/parameter_file.h>
 #include <qp/solver_factory.h>
 #include <qp/solver_parameters.h>
@@ -197,6 +198,9 @@ namespace dualcontact
         }
         if (o.tol)
           settings.qp.tolerance = *o.tol;
+        // model newton stops on the FCLIB error at the QPs' tolerance
+        settings.loop.newton.tolerance = settings.qp.tolerance;
+        settings.loop.newton.check();
         if (o.max_iter)
           settings.qp.max_iterations = *o.max_iter;
         if (o.coulomb_tol)
@@ -332,6 +336,13 @@ namespace dualcontact
         if (!result.perturbations.empty())
           out << "  last perturbation of q ||rho dr + W_a dr|| / ||q|| "
               << result.perturbations.back() << "\n";
+        if (result.newton.steps > 0)
+          out << "  Newton method after the plain loop: "
+              << (result.newton.converged ? "converged" : "failed") << " in "
+              << result.newton.steps << " steps ("
+              << result.newton.proximal_iterations << " proximal problems, "
+              << result.newton.products << " products with W, "
+              << result.newton.wall_time << " s)\n";
         if (!result.coulomb_changes.empty())
           out << "  Coulomb iterations " << result.coulomb_changes.size()
               << ", last relative change of psi "
@@ -390,7 +401,10 @@ namespace dualcontact
         summary["time_s"]           = result.wall_time;
         summary["coulomb_changes"]  = result.coulomb_changes;
         summary["fclib_error"]      = result.fclib_error;
-        summary["last_qp"] = result.qp_statistics.back().to_json(false);
+        summary["last_qp"]      = result.qp_statistics.back().to_json(false);
+        summary["newton_steps"] = result.newton.steps;
+        summary["newton_converged"] = result.newton.converged;
+        summary["newton_time_s"]    = result.newton.wall_time;
         // (--tol alone sets it too)
         summary["coulomb_tolerance"] = settings.coulomb.tolerance;
         // per QP of the loop: iterations, products, tolerance, criterion
@@ -401,6 +415,54 @@ namespace dualcontact
                          s.tolerance,
                          s.final_criterion});
         summary["qps"] = qps;
+      }
+
+
+      /** The outcome of model newton, printed. */
+      void
+      print_newton_result(const NewtonSolver::Result &result,
+                          const Settings             &settings,
+                          std::ostream               &out)
+      {
+        out << "model newton (Alart-Curnier, proximal point), tolerance "
+            << settings.loop.newton.tolerance << " on the FCLIB error\n";
+        out << std::setprecision(6);
+        out << (result.converged ? "converged" : "NOT converged") << ": "
+            << result.reason << "\n"
+            << "  Newton steps " << result.steps << ", proximal problems "
+            << result.proximal_iterations << ", products with W "
+            << result.products << ", step halvings " << result.halvings
+            << ", time " << result.wall_time << " s\n";
+        if (!result.sigmas.empty())
+          out << "  sigma / mean W_nn first " << result.sigmas.front()
+              << ", last " << result.sigmas.back() << "\n";
+        out << "  FCLIB error " << std::scientific << result.fclib_error
+            << std::defaultfloat << "\n";
+      }
+
+
+      /** The outcome of model newton in the JSON summary (the keys of
+       *  add_result() where they mean the same). */
+      void
+      add_newton_result(const NewtonSolver::Result &result,
+                        const Settings             &settings,
+                        nlohmann::json             &summary)
+      {
+        summary["model"]               = "newton";
+        summary["tolerance"]           = settings.loop.newton.tolerance;
+        summary["converged"]           = result.converged;
+        summary["reason"]              = result.reason;
+        summary["newton_steps"]        = result.steps;
+        summary["proximal"]            = result.proximal_iterations > 0;
+        summary["proximal_iterations"] = result.proximal_iterations;
+        summary["sigmas"]              = result.sigmas;
+        summary["errors"]              = result.errors;
+        summary["halvings"]            = result.halvings;
+        summary["n_qp"]                = 0;
+        summary["iterations"]          = result.steps;
+        summary["hessian_products"]    = result.products;
+        summary["time_s"]              = result.wall_time;
+        summary["fclib_error"]         = result.fclib_error;
       }
 
 
@@ -428,23 +490,31 @@ namespace dualcontact
              "u = W r + q.\n"
              "Options (they override a .prm):\n"
              "  --prm FILE.prm        parameters: Model, subsections `QP "
-             "solver' and `Coulomb'\n"
+             "solver', `Coulomb' and\n"
+             "                        `Newton'\n"
              "  --set \"Subsection/Entry=value\"  one parameter of them, "
              "after the .prm (repeatable;\n"
              "                        e.g. --set \"Coulomb/Tolerance=1e-6\", "
              "--set \"QP solver/Solver=mpgp-bb\")\n"
-             "  --model coulomb|cone|desaxce  Coulomb fixed point over "
-             "Tresca QPs (default), the\n"
-             "                        cone QP (a convex relaxation, 3D only) "
-             "or the fixed point\n"
-             "                        of De Saxce's shift over cone QPs "
-             "(exact, 3D only)\n"
+             "  --model coulomb|cone|desaxce|newton  Coulomb fixed point "
+             "over Tresca QPs\n"
+             "                        (default), the cone QP (a convex "
+             "relaxation, 3D only), the\n"
+             "                        fixed point of De Saxce's shift over "
+             "cone QPs (exact, 3D\n"
+             "                        only), or the semismooth Newton method "
+             "on Alart-Curnier's\n"
+             "                        equations in a proximal loop (no QPs; "
+             "stops on the FCLIB\n"
+             "                        error <= --tol; subsection `Newton')\n"
              "  --first bonded|frictionless  first Coulomb iterate (default "
              "bonded)\n"
              "  --prox off|on|auto|RHO  proximal point, rho/2 ||r - "
              "r_previous||^2 (singular W;\n"
-             "                        default auto: the plain loop, and the "
-             "proximal one if it fails;\n"
+             "                        default auto: the plain loop; if it "
+             "fails, the Newton method\n"
+             "                        (model newton), and the proximal loop "
+             "if that fails too;\n"
              "                        RHO: on, initial rho relative to "
              "lambda_max)\n"
              "  --fixed-rho           do not adapt rho\n"
@@ -506,15 +576,29 @@ namespace dualcontact
           return 0;
         }
 
-        LocalSolver            local_solver(problem,
-                                 settings.qp,
-                                 settings.coulomb,
-                                 settings.loop);
         dealii::Vector<double> r(problem.size());
-        const auto             result = local_solver.solve(r);
-        print_result(result, settings, out);
-        compare_with_stored_solution(options.file, problem, r, out, summary);
-        add_result(result, settings, summary);
+        bool                   converged = false;
+        if (settings.loop.model == Model::newton)
+        {
+          const NewtonSolver newton(problem, settings.loop.newton);
+          const auto         result = newton.solve(r);
+          print_newton_result(result, settings, out);
+          compare_with_stored_solution(options.file, problem, r, out, summary);
+          add_newton_result(result, settings, summary);
+          converged = result.converged;
+        }
+        else
+        {
+          const LocalSolver local_solver(problem,
+                                         settings.qp,
+                                         settings.coulomb,
+                                         settings.loop);
+          const auto        result = local_solver.solve(r);
+          print_result(result, settings, out);
+          compare_with_stored_solution(options.file, problem, r, out, summary);
+          add_result(result, settings, summary);
+          converged = result.converged;
+        }
         if (!options.json_file.empty())
           write_summary(options.json_file, summary);
         if (!options.write_file.empty())
@@ -522,9 +606,11 @@ namespace dualcontact
                       problem,
                       r,
                       std::string("solved by dualcontact fclibsolve, model ") +
-                        model_names.name(settings.loop.model) + ", solver " +
-                        settings.qp.solver);
-        return result.converged ? 0 : 2;
+                        model_names.name(settings.loop.model) +
+                        (settings.loop.model == Model::newton ?
+                           std::string() :
+                           ", solver " + settings.qp.solver));
+        return converged ? 0 : 2;
       }
       catch (const dealii::ExceptionBase &e)
       {

@@ -314,8 +314,9 @@ main()
   }
 
   // a rigid-body problem (Capsules: W singular and slightly non-symmetric):
-  // the plain first QP does not converge (reported, no crash); the
-  // automatic proximal loop takes over and converges
+  // the plain first QP does not converge (reported, no crash); with the
+  // Newton fallback off the automatic proximal loop takes over and
+  // converges; by default the Newton method does, to the FCLIB error
   {
     const fclib::LocalProblem problem =
       fclib::read_local(FCLIB_TEST_DATA_DIR "Capsules-i125-1213.hdf5");
@@ -332,7 +333,9 @@ main()
             p.result.reason.find("did not converge") != std::string::npos,
           "Capsules, proximal off: not converged, said so",
           p.result.reason);
-    const auto a = solve(problem, plain, loop, coulomb_model);
+    auto proximal_qps                    = coulomb_model;
+    proximal_qps.newton_after_plain_loop = false;
+    const auto a = solve(problem, plain, loop, proximal_qps);
     check(a.result.converged && a.result.proximal &&
             a.result.proximal_reason.find("auto: the plain loop failed") !=
               std::string::npos,
@@ -345,6 +348,23 @@ main()
     check(a.result.perturbations.back() <= 1e-6,
           "Capsules: perturbation of q at the end",
           a.result.perturbations.back());
+    // the default: Newton after the failed plain loop, at 1e-8
+    loop.tolerance = 1e-8;
+    const auto n   = solve(problem, plain, loop, coulomb_model);
+    check(n.result.converged && !n.result.proximal &&
+            n.result.newton.converged &&
+            n.result.proximal_reason.find("the Newton method solved it") !=
+              std::string::npos,
+          "Capsules, auto: the Newton method after the failed plain loop",
+          n.result.proximal_reason);
+    check(n.result.fclib_error <= 1e-8 &&
+            n.result.fclib_error == fclib::fclib_error(problem, n.r),
+          "Capsules, auto with Newton: FCLIB error <= 1e-8 (of the r returned)",
+          n.result.fclib_error);
+    // (36 steps on this machine; a tenth of the 1,004 proximal QPs)
+    check(n.result.newton.steps <= 100,
+          "Capsules, auto with Newton: steps",
+          n.result.newton.steps);
   }
 
   // Capsules by De Saxce's fixed point over cone QPs at 1e-4: the shift
@@ -383,12 +403,15 @@ main()
     check(s.result.fclib_error <= 1e-4,
           "spheres-in-a-box: FCLIB error <= 1e-4",
           s.result.fclib_error);
-    // at 1e-8 the plain loop stalls and the automatic proximal loop takes
-    // over; with the extrapolated centers it converges in a few hundred
-    // proximal QPs (without: not within 1000, FCLIB error 5.6e-8)
-    qp.tolerance   = 1e-9;
-    loop.tolerance = 1e-8;
-    const auto t   = solve(problem, qp, loop, coulomb_model);
+    // at 1e-8 the plain loop stalls and (Newton fallback off) the
+    // automatic proximal loop takes over; with the extrapolated centers it
+    // converges in a few hundred proximal QPs (without: not within 1000,
+    // FCLIB error 5.6e-8)
+    qp.tolerance                         = 1e-9;
+    loop.tolerance                       = 1e-8;
+    auto proximal_qps                    = coulomb_model;
+    proximal_qps.newton_after_plain_loop = false;
+    const auto t = solve(problem, qp, loop, proximal_qps);
     check(t.result.converged && t.result.proximal,
           "spheres-in-a-box at 1e-8: converged by the proximal loop",
           t.result.proximal_reason + "; " + t.result.reason);
@@ -404,6 +427,13 @@ main()
     check(t.result.hessian_products <= 80000,
           "spheres-in-a-box at 1e-8: products with W",
           t.result.hessian_products);
+    // by default the Newton method after the stalled plain loop
+    const auto n = solve(problem, qp, loop, coulomb_model);
+    check(n.result.converged && n.result.newton.converged &&
+            !n.result.proximal && n.result.fclib_error <= 1e-8,
+          "spheres-in-a-box at 1e-8, auto: solved by the Newton method",
+          n.result.proximal_reason + "; " +
+            std::to_string(n.result.fclib_error));
   }
 
   // write a problem with its solution and read both back
