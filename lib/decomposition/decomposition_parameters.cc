@@ -2,6 +2,7 @@
 #include <deal.II/base/utilities.h>
 
 #include <decomposition/decomposition_parameters.h>
+#include <util/machine.h>
 
 #include <cmath>
 
@@ -169,6 +170,16 @@ namespace dualcontact
       // a guess, not yet fitted (see the declaration)
       const double constant = dim == 3 ? 2.5 : 1.;
       return constant * nodes_in_factor * dim * dim * 8. / 1048576.;
+    }
+
+
+    double
+    DecompositionParameters::factor_megabytes_on_machine(const unsigned int dim,
+                                                         const double n_dofs,
+                                                         const bool   spread)
+    {
+      const double copies = spread ? 1. : util::processes_on_this_machine();
+      return copies * estimate_factor_megabytes(dim, n_dofs);
     }
   } // namespace decomposition
 } // namespace dualcontact

@@ -112,6 +112,20 @@ namespace dualcontact
        */
       static double
       estimate_factor_megabytes(const unsigned int dim, const double n_dofs);
+
+      /**
+       * What the factor of a body of @p n_dofs weighs on this machine [MB]:
+       * estimate_factor_megabytes() times its copies, one for a solver
+       * that spreads its factor over the processes (@p spread: mumps,
+       * amg), one per process of this machine for a serial one (cholmod,
+       * umfpack: every process holds the whole factor).  The quantity that
+       * `Memory limit' bounds, both for the choice of TFETI (resolve()) and
+       * for the stiffness solver of a scene without contact.
+       */
+      static double
+      factor_megabytes_on_machine(const unsigned int dim,
+                                  const double       n_dofs,
+                                  const bool         spread);
     };
   } // namespace decomposition
 } // namespace dualcontact

@@ -40,9 +40,8 @@ namespace dualcontact
       const std::string solver =
         fem::StiffnessSolver::resolved_name(prm.get("Solver"));
       prm.leave_subsection();
-      factor_copies_ = fem::StiffnessSolver::spreads_over_processes(solver) ?
-                         1 :
-                         util::processes_on_this_machine();
+      solver_spreads_factor_ =
+        fem::StiffnessSolver::spreads_over_processes(solver);
     }
 
 
@@ -186,9 +185,9 @@ namespace dualcontact
       for (const auto *body : scene_.bodies())
         largest = std::max<double>(largest, body->n_dofs());
       return decomposition_parameters_.resolve(
-               factor_copies_ * decomposition::DecompositionParameters::
-                                  estimate_factor_megabytes(dim, largest)) ==
-             Method::tfeti;
+               decomposition::DecompositionParameters::
+                 factor_megabytes_on_machine(
+                   dim, largest, solver_spreads_factor_)) == Method::tfeti;
     }
 
 

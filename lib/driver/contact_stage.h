@@ -232,10 +232,9 @@ namespace dualcontact
       contact::DualProblemParameters dual_parameters_;
       /** `Decomposition': the undecomposed dual or TFETI. */
       decomposition::DecompositionParameters decomposition_parameters_;
-      /** Copies of a body's factor on this machine: the processes here
-       *  with a serial stiffness solver (each holds the whole factor), 1
-       *  with a distributed one. */
-      unsigned int factor_copies_ = 1;
+      /** Whether the stiffness solver spreads its factor over the
+       *  processes (mumps, amg); else every process here holds a copy. */
+      bool solver_spreads_factor_ = false;
       /** `Contact solver = primal': the report's Uzawa-CGC (lib/primal). */
       primal::PrimalParameters primal_parameters_;
       /** Its statistics (JSON object) when it ran. */

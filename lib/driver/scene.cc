@@ -242,16 +242,14 @@ namespace dualcontact
     {
       if (spread_solvers_.empty() || solvers_[b]->is_distributed())
         return "";
-      const double copies = util::processes_on_this_machine();
       const double megabytes =
-        copies *
-        decomposition::DecompositionParameters::estimate_factor_megabytes(
-          dim, body.n_dofs());
+        decomposition::DecompositionParameters::factor_megabytes_on_machine(
+          dim, body.n_dofs(), false);
       if (megabytes <= factor_limit_)
         return "";
       std::swap(solvers_[b], spread_solvers_[b]);
       return ", stiffness solver mumps (cholmod's copies on the " +
-             std::to_string(static_cast<unsigned int>(copies)) +
+             std::to_string(util::processes_on_this_machine()) +
              " processes of this machine: about " +
              std::to_string(std::llround(megabytes)) +
              " MB, above `Decomposition/Memory limit')";

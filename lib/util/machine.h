@@ -7,7 +7,8 @@ namespace dualcontact
     /**
      * The processes of MPI_COMM_WORLD that share this machine's memory
      * (MPI_Comm_split_type with MPI_COMM_TYPE_SHARED); 1 in a program
-     * without MPI.  Collective over MPI_COMM_WORLD.  What a replicated
+     * without MPI.  Collective over MPI_COMM_WORLD on its first call (the
+     * count is kept for the later ones, which are local).  What a replicated
      * object costs the machine: a serial factor under MPI is held by every
      * one of these processes.
      */
