@@ -126,6 +126,15 @@ namespace dualcontact
                         "Proximal regularization = auto: iteration limit of "
                         "the plain loop's QPs (a QP that needs more counts "
                         "as failed and the proximal loop takes over).");
+      prm.declare_entry("Bonded QP iterations in auto",
+                        "200",
+                        dealii::Patterns::Integer(1),
+                        "Proximal regularization = auto: iteration limit of "
+                        "the plain loop's bonded QP (the first Coulomb "
+                        "iterate, no slip bound), which is unbounded below "
+                        "when W is singular along a tangential direction "
+                        "that q pulls along (rigid bodies): a QP that needs "
+                        "more counts as failed.");
       prm.declare_entry("Newton after a failed plain loop",
                         "true",
                         dealii::Patterns::Bool(),
@@ -168,6 +177,8 @@ namespace dualcontact
       proximal_max_iterations = prm.get_integer("Proximal maximum iterations");
       auto_plain_qp_max_iterations =
         prm.get_integer("Plain QP iterations in auto");
+      auto_bonded_qp_max_iterations =
+        prm.get_integer("Bonded QP iterations in auto");
       newton_after_plain_loop =
         prm.get_bool("Newton after a failed plain loop");
       newton.parse_parameters(prm);
@@ -679,6 +690,20 @@ namespace dualcontact
     };
 
 
+    unsigned int
+    LocalSolver::qp_iteration_limit(const Loop &loop) const
+    {
+      // the bonded QP (no slip bound) is where a singular W with a load
+      // along a free tangential direction shows: unbounded below, it never
+      // converges
+      if (loop.bonded && !loop.proximal &&
+          parameters_.proximal == Proximal::automatic)
+        return std::min(loop.qp_iteration_limit,
+                        parameters_.auto_bonded_qp_max_iterations);
+      return loop.qp_iteration_limit;
+    }
+
+
     void
     LocalSolver::run_loop(dealii::Vector<double> &r,
                           const bool              proximal,
@@ -694,7 +719,7 @@ namespace dualcontact
                              loop.bonded ? nullptr : &loop.psi,
                              loop.rho * loop.lambda_max,
                              loop.tolerance,
-                             loop.qp_iteration_limit),
+                             qp_iteration_limit(loop)),
                     result))
         {
           if (retry_with_stronger_rho(loop, it, r, result))

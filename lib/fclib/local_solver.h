@@ -220,6 +220,17 @@ namespace dualcontact
          */
         unsigned int auto_plain_qp_max_iterations = 500;
         /**
+         * Proximal::automatic: iteration limit of the plain loop's bonded
+         * QP (the first Coulomb iterate without slip bounds), which is
+         * unbounded below when W is singular along a tangential direction
+         * that q pulls along (Capsules: it never converges).  200: the
+         * largest first QP that converges on the 8 FCLIB files and the 3
+         * scene exports of scripts/bench_fclib takes 160
+         * (spheres-in-a-box); Capsules at 1e-8 then hands over to Newton
+         * after 200 instead of 500 iterations (doc/fclib.md, issue 20).
+         */
+        unsigned int auto_bonded_qp_max_iterations = 200;
+        /**
          * Proximal::automatic: after a failed plain loop, the semismooth
          * Newton method (NewtonSolver, with `newton`'s settings, to an
          * FCLIB error at most the Coulomb tolerance) before the proximal
@@ -327,6 +338,11 @@ namespace dualcontact
 
       /** The state of one run_loop() (local_solver.cc). */
       struct Loop;
+
+      /** The iteration limit of @p loop's next QP (auto: the plain and
+       *  bonded caps). */
+      unsigned int
+      qp_iteration_limit(const Loop &loop) const;
 
       /** The loop's kind, limits and first iterate's bounds (psi, or
        *  bonded) from the start @p r; lambda_max(W_s) for the proximal

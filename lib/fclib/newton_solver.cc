@@ -39,7 +39,7 @@ namespace dualcontact
                         "normal diagonal entry of W [-]; used when W is "
                         "singular or the plain Newton method fails.");
       prm.declare_entry("Sigma reduction",
-                        "0.1",
+                        "0.01",
                         dealii::Patterns::Double(0.),
                         "Model newton: factor of sigma after a proximal "
                         "problem solved (in (0, 1]) [-].");
@@ -459,6 +459,7 @@ namespace dualcontact
       // the plain method first: a regular W needs no proximal term
       dealii::Vector<double> center(r);
       const Outcome          plain = newton(r, center, 0., tol, result);
+      result.plain_steps           = result.steps;
       result.errors.push_back(fclib_error(problem_, r));
       if (plain == Outcome::converged)
       {

@@ -429,7 +429,8 @@ namespace dualcontact
         out << std::setprecision(6);
         out << (result.converged ? "converged" : "NOT converged") << ": "
             << result.reason << "\n"
-            << "  Newton steps " << result.steps << ", proximal problems "
+            << "  Newton steps " << result.steps << " (plain "
+            << result.plain_steps << "), proximal problems "
             << result.proximal_iterations << ", products with W "
             << result.products << ", step halvings " << result.halvings
             << ", time " << result.wall_time << " s\n";
@@ -453,6 +454,7 @@ namespace dualcontact
         summary["converged"]           = result.converged;
         summary["reason"]              = result.reason;
         summary["newton_steps"]        = result.steps;
+        summary["newton_plain_steps"]  = result.plain_steps;
         summary["proximal"]            = result.proximal_iterations > 0;
         summary["proximal_iterations"] = result.proximal_iterations;
         summary["sigmas"]              = result.sigmas;
