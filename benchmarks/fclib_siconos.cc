@@ -16,7 +16,11 @@
 // the plain one fails, at most 1000); coulomb/NAME with LocalSolver's
 // defaults (inexact QPs, automatic proximal point, W dense or sparse by
 // its density), exact/NAME with every QP to the QP tolerance and no
-// proximal point.  Siconos gets W dense.  Every solve (Siconos' and ours)
+// proximal point, auto/NAME what `fclibsolve FILE --tol T --solver NAME'
+// runs (QP and Coulomb tolerance T, the defaults: the Newton method after a
+// failed plain loop), newton/ac model newton (the semismooth Newton method
+// on Alart-Curnier's equations, to an FCLIB error <= T).  Siconos gets W
+// dense.  Every solve (Siconos' and ours)
 // runs in a child process (Siconos aborts on some inputs) stopped after
 // --time-limit seconds (default 300), counted as a failure; a solve
 // shorter than --repeat-below seconds (default 1) is repeated from its cold
@@ -36,6 +40,7 @@
 #include <fclib/accuracy.h>
 #include <fclib/fclib_file.h>
 #include <fclib/local_solver.h>
+#include <fclib/newton_solver.h>
 
 #include <siconos/numerics/FrictionContactProblem.h>
 #include <siconos/numerics/Friction_cst.h>
@@ -244,6 +249,36 @@ namespace
     return out;
   }
 
+  /** model newton: fclib::NewtonSolver to an FCLIB error <= @p tol. */
+  Outcome
+  run_newton(const fclib::LocalProblem &problem, const double tol)
+  {
+    fclib::NewtonSolver::Parameters parameters;
+    parameters.tolerance = tol;
+    Outcome out;
+    try
+    {
+      const fclib::NewtonSolver newton(problem, parameters);
+      dealii::Vector<double>    r(problem.size());
+      const double              cpu    = cpu_seconds();
+      const auto                result = newton.solve(r);
+      out.time                         = cpu_seconds() - cpu;
+      out.solver_converged             = result.converged;
+      out.iterations                   = result.steps;
+      out.products                     = result.products;
+      out.wall                         = result.wall_time;
+      out.error                        = result.fclib_error;
+      out.note                         = result.reason;
+    }
+    catch (const std::exception &e)
+    {
+      out.error = INFINITY;
+      out.note  = e.what();
+    }
+    return out;
+  }
+
+
   Outcome
   run_ours(const fclib::LocalProblem &problem,
            const std::string         &name,
@@ -254,8 +289,10 @@ namespace
     // LocalSolver's defaults (inexact QPs, proximal point switched on if
     // the plain loop fails), exact/NAME every QP to the QP tolerance and no
     // proximal point (the first version's loop), cone/NAME the cone QP
-    const std::string              loop   = name.substr(0, name.find('/'));
-    const std::string              solver = name.substr(name.find('/') + 1);
+    const std::string loop   = name.substr(0, name.find('/'));
+    const std::string solver = name.substr(name.find('/') + 1);
+    if (loop == "newton")
+      return run_newton(problem, tol);
     fclib::LocalSolver::Parameters parameters;
     if (loop == "cone")
       parameters.model = fclib::Model::cone;
@@ -265,17 +302,20 @@ namespace
       parameters.proximal = fclib::Proximal::off;
     }
     else
-      AssertThrow(loop == "coulomb",
+      AssertThrow(loop == "coulomb" || loop == "auto",
                   dealii::ExcMessage("unknown loop " + loop));
     // the QPs 10 times tighter than the target, so that the FCLIB error of
-    // the fixed point can reach the target tolerance
+    // the fixed point can reach the target tolerance; auto/NAME: what
+    // `fclibsolve FILE --tol T --solver NAME' runs (QP and Coulomb
+    // tolerance T, every other setting at its default)
     qp::SolverParameters prm;
     prm.solver         = solver;
-    prm.tolerance      = 0.1 * tol;
+    prm.tolerance      = loop == "auto" ? tol : 0.1 * tol;
     prm.max_iterations = max_iter;
     contact::CoulombParameters coulomb;
-    coulomb.tolerance      = tol;
-    coulomb.max_iterations = 100;
+    coulomb.tolerance = tol;
+    if (loop != "auto")
+      coulomb.max_iterations = 100;
     Outcome out;
     try
     {
@@ -333,7 +373,9 @@ main(int argc, char **argv)
                                       "coulomb/spg-qp",
                                       "coulomb/apgd",
                                       "exact/mpgp-bb",
-                                      "cone/mpgp-bb"};
+                                      "cone/mpgp-bb",
+                                      "auto/mpgp",
+                                      "newton/ac"};
   for (int i = 1; i < argc; ++i)
   {
     const std::string a = argv[i];

@@ -10,6 +10,8 @@
 #include <numeric>
 #include <set>
 
+#include <deal.II/lac/lapack_templates.h>
+
 #include <umfpack.h>
 
 namespace dualcontact
@@ -152,6 +154,14 @@ namespace dualcontact
         rho_[i] = parameters_.rho_factor / (w > 0 ? w : mean_normal_diagonal_);
       }
       build_pattern();
+      // a dense LAPACK LU where J is dense (W of an elastic scene: every
+      // contact sees every other) or small (UMFPACK's fixed cost per call
+      // is tens of microseconds: LMGC_GlobalFrictionContactProblem00046,
+      // 27 unknowns, 29 -> 2 us a solve)
+      const double density = static_cast<double>(columns_.size()) /
+                             (static_cast<double>(problem_.size()) *
+                              std::max<unsigned int>(problem_.size(), 1));
+      dense_ = problem_.size() <= 64 || density >= 0.25;
     }
 
 
@@ -284,7 +294,6 @@ namespace dualcontact
                                       const dealii::Vector<double> &phi,
                                       dealii::Vector<double>       &x) const
     {
-      const unsigned int n  = problem_.size();
       const unsigned int d  = dim_;
       const unsigned int nc = problem_.n_contacts();
       // J_i = (I - D_i) E_i + rho_i D_i (W + sigma I)_i, E_i the rows of
@@ -311,6 +320,49 @@ namespace dualcontact
           }
         }
       }
+      return dense_ ? solve_dense(phi, x) : solve_sparse(phi, x);
+    }
+
+
+    bool
+    NewtonSolver::solve_dense(const dealii::Vector<double> &phi,
+                              dealii::Vector<double>       &x) const
+    {
+      const unsigned int n = problem_.size();
+      // J column-major from its rows
+      dense_J_.assign(static_cast<std::size_t>(n) * n, 0.);
+      for (unsigned int row = 0; row < n; ++row)
+        for (int k = row_start_[row]; k < row_start_[row + 1]; ++k)
+          dense_J_[static_cast<std::size_t>(columns_[k]) * n + row] =
+            values_[k];
+      pivots_.resize(n);
+      const dealii::types::blas_int size = n, one = 1;
+      dealii::types::blas_int       info = 0;
+      dealii::getrf(
+        &size, &size, dense_J_.data(), &size, pivots_.data(), &info);
+      if (info != 0)
+        return false;
+      x = phi;
+      x *= -1.;
+      const char no_transpose = 'N';
+      dealii::getrs(&no_transpose,
+                    &size,
+                    &one,
+                    dense_J_.data(),
+                    &size,
+                    pivots_.data(),
+                    x.data(),
+                    &size,
+                    &info);
+      return info == 0 && std::isfinite(x.l2_norm());
+    }
+
+
+    bool
+    NewtonSolver::solve_sparse(const dealii::Vector<double> &phi,
+                               dealii::Vector<double>       &x) const
+    {
+      const unsigned int n = problem_.size();
       // UMFPACK reads compressed columns: J's rows are the columns of J',
       // so the system J x = b is A' x = b for A = J'.  J's pattern is
       // fixed: its analysis (the fill-reducing ordering) is done once

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <deal.II/base/parameter_handler.h>
+#include <deal.II/lac/lapack_support.h>
 #include <deal.II/lac/vector.h>
 
 #include <fclib/local_problem.h>
@@ -176,6 +177,15 @@ namespace dualcontact
                           const dealii::Vector<double> &phi,
                           dealii::Vector<double>       &x) const;
 
+      /** x = -J^{-1} phi by LAPACK's dense LU of J (values_ scattered). */
+      bool
+      solve_dense(const dealii::Vector<double> &phi,
+                  dealii::Vector<double>       &x) const;
+      /** x = -J^{-1} phi by UMFPACK on J's pattern. */
+      bool
+      solve_sparse(const dealii::Vector<double> &phi,
+                   dealii::Vector<double>       &x) const;
+
       /** The sparsity of J (CSR): W's rows merged by contact, plus the
        *  diagonal blocks. */
       void
@@ -204,6 +214,11 @@ namespace dualcontact
       mutable std::vector<double> values_;
       /** UMFPACK's analysis of J's pattern (the first Jacobian's). */
       mutable void *symbolic_ = nullptr;
+      /** Whether J is factorized dense (small or dense problems). */
+      bool dense_ = false;
+      /** The dense J (column-major) and its LU pivots. */
+      mutable std::vector<double>                  dense_J_;
+      mutable std::vector<dealii::types::blas_int> pivots_;
     };
   } // namespace fclib
 } // namespace dualcontact
