@@ -241,6 +241,14 @@ namespace dualcontact
          * (doc/fclib.md, issue 20).
          */
         bool newton_after_plain_loop = true;
+        /**
+         * Model coulomb: a converged loop whose solution's FCLIB error is
+         * above the Coulomb tolerance (the loop stops on relative QP and
+         * fixed-point criteria, not on that error: local_problem_test at
+         * --tol 1e-8 ended at 1.7e-8, Hertz L3 at 1e-4 at 1.3e-4) gets
+         * Newton steps from that solution down to it.
+         */
+        bool newton_polish = true;
         /** The Newton method's settings (subsection `Newton`). */
         NewtonSolver::Parameters newton;
 
@@ -278,6 +286,8 @@ namespace dualcontact
         std::string proximal_reason;
         /** The Newton method after a failed plain loop (steps 0: not run). */
         NewtonSolver::Result newton;
+        /** Newton steps of the polish (0: not needed or off). */
+        unsigned int polish_steps = 0;
         /** The last iterate whose QP converged (empty: none yet). */
         dealii::Vector<double> last_good;
         /** Sum of the QP iterations. */
@@ -335,6 +345,12 @@ namespace dualcontact
       solve_by_newton(const dealii::Vector<double> &start,
                       dealii::Vector<double>       &r,
                       Result                       &result) const;
+
+      /** Parameters::newton_polish: Newton steps from the converged @p r
+       *  to the Coulomb tolerance on the FCLIB error; @p r replaced if
+       *  they get there. */
+      void
+      polish_by_newton(dealii::Vector<double> &r, Result &result) const;
 
       /** The state of one run_loop() (local_solver.cc). */
       struct Loop;

@@ -510,7 +510,9 @@ namespace dualcontact
 
       // the plain method first: a regular W needs no proximal term
       dealii::Vector<double> center(r);
-      const Outcome          plain = newton(r, center, 0., tol, result);
+      const Outcome          plain = parameters_.plain_first ?
+                                       newton(r, center, 0., tol, result) :
+                                       Outcome::step_limit;
       result.plain_steps           = result.steps;
       result.errors.push_back(fclib_error(problem_, r));
       if (plain == Outcome::converged)

@@ -57,6 +57,12 @@ namespace dualcontact
         double tolerance = 1e-8;
         /** Newton steps in all (every proximal problem's together). */
         unsigned int max_steps = 500;
+        /**
+         * Try the plain method (no proximal term) first.  Off for a start
+         * near the solution of a singular W (LocalSolver's polish: the
+         * plain method cycled there for 20 steps on local_problem_test).
+         */
+        bool plain_first = true;
         /** Newton steps of one proximal problem before sigma grows. */
         unsigned int max_inner_steps = 20;
         /**

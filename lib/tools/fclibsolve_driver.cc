@@ -343,6 +343,9 @@ namespace dualcontact
               << result.newton.proximal_iterations << " proximal problems, "
               << result.newton.products << " products with W, "
               << result.newton.wall_time << " s)\n";
+        if (result.polish_steps > 0)
+          out << "  Newton polish to the FCLIB error: " << result.polish_steps
+              << " steps\n";
         if (!result.coulomb_changes.empty())
           out << "  Coulomb iterations " << result.coulomb_changes.size()
               << ", last relative change of psi "
@@ -405,6 +408,7 @@ namespace dualcontact
         summary["newton_steps"] = result.newton.steps;
         summary["newton_converged"] = result.newton.converged;
         summary["newton_time_s"]    = result.newton.wall_time;
+        summary["polish_steps"]     = result.polish_steps;
         // (--tol alone sets it too)
         summary["coulomb_tolerance"] = settings.coulomb.tolerance;
         // per QP of the loop: iterations, products, tolerance, criterion
