@@ -144,14 +144,17 @@ namespace dualcontact
                         "Coulomb tolerance, from the cold start; the "
                         "proximal QP loop runs only if it fails too.  false: "
                         "the proximal QP loop at once.");
-      prm.declare_entry("Newton polish",
+      prm.declare_entry("Polish",
                         "true",
                         dealii::Patterns::Bool(),
                         "Model coulomb: when the loop has converged on its "
                         "relative criteria but the FCLIB error of its "
-                        "solution is above the Coulomb tolerance, Newton "
-                        "steps (model newton) from that solution down to "
-                        "it; kept if they get there.");
+                        "solution is above the Coulomb tolerance, refine "
+                        "it: where W is stored dense, the plain loop once "
+                        "more from it with QPs ten times tighter; else "
+                        "proximal Newton steps (model newton) down to the "
+                        "tolerance.  The result is kept if its error is "
+                        "smaller.");
       prm.declare_entry("Proximal maximum iterations",
                         "5000",
                         dealii::Patterns::Integer(1),
@@ -189,7 +192,7 @@ namespace dualcontact
         prm.get_integer("Bonded QP iterations in auto");
       newton_after_plain_loop =
         prm.get_bool("Newton after a failed plain loop");
-      newton_polish = prm.get_bool("Newton polish");
+      polish = prm.get_bool("Polish");
       newton.parse_parameters(prm);
       check();
     }
@@ -635,12 +638,44 @@ namespace dualcontact
         }
       }
       result.fclib_error = fclib_error(problem_, r);
-      if (result.converged && parameters_.newton_polish &&
+      if (result.converged && parameters_.polish &&
           parameters_.model == Model::coulomb_fixed_point &&
           result.fclib_error > coulomb_parameters_.tolerance)
-        polish_by_newton(r, result);
+      {
+        // a Newton step costs a dense LU where W is dense (n^3), a QP
+        // iteration a product (n^2): QPs for a dense W, Newton otherwise
+        if (problem_.delassus().dense())
+          polish_by_qps(r, result);
+        else
+          polish_by_newton(r, result);
+      }
       result.wall_time = timer.wall_time();
       return result;
+    }
+
+
+    void
+    LocalSolver::polish_by_qps(dealii::Vector<double> &r, Result &result) const
+    {
+      // the plain loop once more from its solution, every QP ten times
+      // tighter from the first
+      Result                 more;
+      dealii::Vector<double> x(r);
+      polish_factor_ = 0.1;
+      run_loop(x, false, more);
+      polish_factor_ = 1.;
+      result.iterations += more.iterations;
+      result.hessian_products += more.hessian_products;
+      result.polish_qps = more.qp_statistics.size();
+      result.qp_statistics.insert(result.qp_statistics.end(),
+                                  more.qp_statistics.begin(),
+                                  more.qp_statistics.end());
+      const double error = fclib_error(problem_, x);
+      if (more.converged && error < result.fclib_error)
+      {
+        r                  = x;
+        result.fclib_error = error;
+      }
     }
 
 
@@ -851,9 +886,10 @@ namespace dualcontact
       loop.first_change = r.linfty_norm() == 0;
 
       // inexact fixed point: the QP tolerance follows the loop's progress
-      loop.final_tolerance = qp_parameters_.tolerance;
+      loop.final_tolerance = qp_parameters_.tolerance * polish_factor_;
       loop.tolerance       = loop.final_tolerance;
-      if (parameters_.inexact && (loop.coulomb_loop || loop.stepping))
+      if (parameters_.inexact && (loop.coulomb_loop || loop.stepping) &&
+          polish_factor_ == 1.)
         loop.tolerance =
           std::max(loop.final_tolerance, parameters_.initial_qp_tolerance);
       loop.q_norm = problem_.q().l2_norm();

@@ -6,9 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
-#include <map>
 #include <numeric>
-#include <set>
 
 #include <deal.II/lac/lapack_templates.h>
 
@@ -184,33 +182,44 @@ namespace dualcontact
       block_position_.assign(n, 0);
       // J's rows of contact i are combinations of W's rows of contact i:
       // they share one column set, the union of those rows' and the
-      // contact's own columns
+      // contact's own columns (marked in `position', -1 where unmarked:
+      // linear in W's entries, which matters for a dense W)
+      std::vector<int>          position(n, -1);
+      std::vector<unsigned int> cols;
       for (unsigned int i = 0; i < nc; ++i)
       {
-        const unsigned int     first = dim_ * i;
-        std::set<unsigned int> cols;
+        const unsigned int first = dim_ * i;
+        cols.clear();
+        auto mark = [&](const unsigned int c)
+        {
+          if (position[c] < 0)
+          {
+            position[c] = 0;
+            cols.push_back(c);
+          }
+        };
         for (unsigned int a = 0; a < dim_; ++a)
         {
-          cols.insert(first + a);
+          mark(first + a);
           for (auto e = W.begin(first + a); e != W.end(first + a); ++e)
             if (e->value() != 0)
-              cols.insert(e->column());
+              mark(e->column());
         }
-        const std::vector<unsigned int>      sorted(cols.begin(), cols.end());
-        std::map<unsigned int, unsigned int> position;
-        for (unsigned int p = 0; p < sorted.size(); ++p)
-          position[sorted[p]] = p;
+        std::sort(cols.begin(), cols.end());
+        for (unsigned int p = 0; p < cols.size(); ++p)
+          position[cols[p]] = p;
         for (unsigned int a = 0; a < dim_; ++a)
         {
           const unsigned int row = first + a;
           row_start_[row]        = columns_.size();
           block_position_[row]   = position[first];
-          for (const unsigned int c : sorted)
-            columns_.push_back(c);
+          columns_.insert(columns_.end(), cols.begin(), cols.end());
           for (auto e = W.begin(row); e != W.end(row); ++e)
             if (e->value() != 0)
               w_rows_[row].emplace_back(position[e->column()], e->value());
         }
+        for (const unsigned int c : cols)
+          position[c] = -1;
       }
       row_start_[n] = columns_.size();
       values_.resize(columns_.size());

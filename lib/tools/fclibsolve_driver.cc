@@ -343,9 +343,12 @@ namespace dualcontact
               << result.newton.proximal_iterations << " proximal problems, "
               << result.newton.products << " products with W, "
               << result.newton.wall_time << " s)\n";
-        if (result.polish_steps > 0)
-          out << "  Newton polish to the FCLIB error: " << result.polish_steps
-              << " steps\n";
+        if (result.polish_steps > 0 || result.polish_qps > 0)
+          out << "  polish to the FCLIB error: "
+              << (result.polish_qps > 0 ?
+                    std::to_string(result.polish_qps) + " tighter QPs" :
+                    std::to_string(result.polish_steps) + " Newton steps")
+              << "\n";
         if (!result.coulomb_changes.empty())
           out << "  Coulomb iterations " << result.coulomb_changes.size()
               << ", last relative change of psi "
@@ -409,6 +412,7 @@ namespace dualcontact
         summary["newton_converged"] = result.newton.converged;
         summary["newton_time_s"]    = result.newton.wall_time;
         summary["polish_steps"]     = result.polish_steps;
+        summary["polish_qps"]       = result.polish_qps;
         // (--tol alone sets it too)
         summary["coulomb_tolerance"] = settings.coulomb.tolerance;
         // per QP of the loop: iterations, products, tolerance, criterion
