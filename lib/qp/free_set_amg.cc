@@ -67,6 +67,18 @@ namespace dualcontact
     }
 
 
+    Teuchos::ParameterList
+    FreeSetAMG::ml_parameters()
+    {
+      // deal.II's translation of the settings, with what it does not
+      // expose set on the list
+      Teuchos::ParameterList list;
+      additional_data().set_parameters(list, constant_modes, restricted);
+      list.set("aggregation: damping factor", parameters.prolongator_damping);
+      return list;
+    }
+
+
     dealii::TrilinosWrappers::PreconditionAMG::AdditionalData
     FreeSetAMG::additional_data() const
     {
@@ -131,7 +143,7 @@ namespace dualcontact
         if (!parameters.reuse_aggregates)
         {
           set_entries(&active_mask);
-          amg->initialize(restricted, additional_data());
+          amg->initialize(restricted, ml_parameters());
           ++full_setups;
         }
         else if (computed_mask.empty())
@@ -139,7 +151,7 @@ namespace dualcontact
           // aggregates of A itself; then, unless every unknown is free, the
           // recompute for this set
           set_entries(nullptr);
-          amg->initialize(restricted, additional_data());
+          amg->initialize(restricted, ml_parameters());
           ++full_setups;
           if (any_active)
           {

@@ -60,6 +60,14 @@ namespace dualcontact
         double aggregation_threshold = 1e-4;
         /// smoother sweeps per level (deal.II default 2)
         unsigned int smoother_sweeps = 2;
+        /**
+         * ML's prolongator damping ("aggregation: damping factor", ML's
+         * default 4/3): the smoothed prolongator is (I - omega D^-1 A) P
+         * with omega = damping / lambda_max(D^-1 A); 0 keeps the tentative
+         * (piecewise constant) prolongator, whose coarse operators P'AP
+         * cost far fewer sparse products to recompute.
+         */
+        double prolongator_damping = 4. / 3.;
         /// V-cycles per application (deal.II default 1)
         unsigned int n_cycles = 1;
         /**
@@ -163,6 +171,12 @@ namespace dualcontact
       /// ML's AdditionalData from the parameters
       dealii::TrilinosWrappers::PreconditionAMG::AdditionalData
       additional_data() const;
+      /// ML's parameter list: additional_data()'s, and the prolongator
+      /// damping
+      Teuchos::ParameterList
+      ml_parameters();
+      /// the null space the list may point to (kept alive with it)
+      std::unique_ptr<Epetra_MultiVector> constant_modes;
       /// overwrite @p restricted's entries: A's, with identity rows and
       /// zero couplings for the unknowns where @p active_mask is nonzero
       /// (no mask: A itself)

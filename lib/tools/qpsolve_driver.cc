@@ -55,6 +55,7 @@ namespace dualcontact
         int         amg_reuse_aggregates         = -1;
         long        amg_smoother_sweeps          = -1;
         double      amg_aggregation_threshold    = -1.;
+        double      amg_prolongator_damping      = -1.;
         std::string x_out;
         std::string json_out;
       };
@@ -168,6 +169,10 @@ namespace dualcontact
             o.amg_aggregation_threshold =
               number_where([](const double x) { return x >= 0. && x < 1.; },
                            "--amg-aggregation-threshold must be in [0, 1)");
+          else if (a == "--amg-prolongator-damping")
+            o.amg_prolongator_damping =
+              number_where([](const double x) { return x >= 0. && x < 2.; },
+                           "--amg-prolongator-damping must be in [0, 2)");
           else if (a == "--x-out")
             o.x_out = value();
           else if (a == "--json-out")
@@ -206,7 +211,7 @@ namespace dualcontact
              "[--proportioning chopped-gradient|preconditioned] "
              "[--amg-reuse-aggregates 0|1] [--amg-keep-fraction F] "
              "[--amg-smoother-sweeps N] [--amg-aggregation-threshold T] "
-             "[--repeat N] "
+             "[--amg-prolongator-damping W] [--repeat N] "
              "[--x-out FILE] [--json-out FILE] [--prm FILE.prm] "
              "[--set \"QP solver/Entry=value\"]...\n"
              "--prm, --set: the QP solver's parameters by the names of "
@@ -224,7 +229,9 @@ namespace dualcontact
              "at most F * n unknowns changed state; "
              "--amg-smoother-sweeps N (default 2) Chebyshev sweeps per "
              "level, --amg-aggregation-threshold T (default 1e-4) ML's "
-             "strength-of-connection threshold).\n"
+             "strength-of-connection threshold, --amg-prolongator-damping W "
+             "(default 4/3) ML's damping of the smoothed prolongator, 0: the "
+             "tentative one).\n"
              "--solver auto (the default): the fall-back chain; on bound and "
              "box "
              "constraints it runs MPRGP with the settings measured best "
@@ -463,6 +470,9 @@ namespace dualcontact
           if (options.amg_aggregation_threshold >= 0.)
             amg_parameters.aggregation_threshold =
               options.amg_aggregation_threshold;
+          if (options.amg_prolongator_damping >= 0.)
+            amg_parameters.prolongator_damping =
+              options.amg_prolongator_damping;
           built.amg = std::make_unique<FreeSetAMG>(d.hessian, amg_parameters);
           problem.free_set_preconditioner = built.amg->factory();
         }
