@@ -5,12 +5,12 @@
 #include <deal.II/lac/dynamic_sparsity_pattern.h>
 
 #include <decomposition/cell_partition.h>
-#include <decomposition/multiplier_scaling.h>
 #include <decomposition/tfeti_dual.h>
 #include <fem/cholmod_solver.h>
 #include <fem/rigid_body_modes.h>
 #include <qp/power_iteration.h>
 #include <qp/separable_set.h>
+#include <util/machine.h>
 
 #include <algorithm>
 #include <cmath>
@@ -53,33 +53,6 @@ namespace dualcontact
         // (TFETIDual::projector_penalty_factor())
         equality.projector_penalty_factor = projector_penalty_factor;
         problem.semidefinite              = true;
-      }
-
-      /**
-       * The concatenation, in process order, of @p local of every process
-       * of @p communicator (on every process).
-       */
-      std::vector<double>
-      all_gather(const std::vector<double> &local, const MPI_Comm communicator)
-      {
-        const std::vector<unsigned int> sizes =
-          Utilities::MPI::all_gather(communicator,
-                                     static_cast<unsigned int>(local.size()));
-        std::vector<int> counts(sizes.begin(), sizes.end()),
-          offsets(sizes.size(), 0);
-        for (unsigned int p = 1; p < sizes.size(); ++p)
-          offsets[p] = offsets[p - 1] + counts[p - 1];
-        std::vector<double> all(offsets.back() + counts.back());
-        const int           ierr = MPI_Allgatherv(local.data(),
-                                        local.size(),
-                                        MPI_DOUBLE,
-                                        all.data(),
-                                        counts.data(),
-                                        offsets.data(),
-                                        MPI_DOUBLE,
-                                        communicator);
-        AssertThrowMPI(ierr);
-        return all;
       }
     } // namespace
 
@@ -149,10 +122,21 @@ namespace dualcontact
       build_coarse_problem();
       if (keep_stiffness)
       {
+        using Kind = typename DualPreconditioner<dim>::Kind;
         Timer preconditioner_timer;
-        build_preconditioner_scaling();
-        if (parameters.preconditioner == "dirichlet")
-          build_dirichlet_preconditioner(make_solver);
+        preconditioner_ = std::make_unique<DualPreconditioner<dim>>(
+          parameters.preconditioner == "dirichlet" ? Kind::dirichlet :
+                                                     Kind::lumped,
+          *rows_,
+          subdomains_,
+          owned_,
+          n_multipliers(),
+          communicator_,
+          make_solver,
+          [this](VectorType                                            &dst,
+                 const VectorType                                      &src,
+                 const typename DualPreconditioner<dim>::LocalOperator &local)
+          { apply_between_B(dst, src, local); });
         preconditioner_setup_time_ =
           max_over_processes(preconditioner_timer.wall_time());
       }
@@ -443,7 +427,7 @@ namespace dualcontact
       }
       sum_over_processes(e_);
       if (n_processes_ > 1)
-        triples = all_gather(triples, communicator_);
+        triples = util::concatenate_over_processes(triples, communicator_);
       for (unsigned int t = 0; t < triples.size(); t += 3)
         columns[static_cast<unsigned int>(triples[t])].emplace_back(
           static_cast<unsigned int>(triples[t + 1]), triples[t + 2]);
@@ -557,19 +541,6 @@ namespace dualcontact
 
     template <int dim>
     void
-    TFETIDual<dim>::apply_lumped(VectorType &dst, const VectorType &src) const
-    {
-      apply_between_B(dst,
-                      src,
-                      [this](const unsigned int s,
-                             VectorType        &y,
-                             const VectorType  &v)
-                      { subdomains_[s]->stiffness_matrix().vmult(y, v); });
-    }
-
-
-    template <int dim>
-    void
     TFETIDual<dim>::apply_between_B(
       VectorType       &dst,
       const VectorType &src,
@@ -590,102 +561,11 @@ namespace dualcontact
 
 
     template <int dim>
-    void
-    TFETIDual<dim>::build_dirichlet_preconditioner(
-      const std::function<std::unique_ptr<fem::StiffnessSolver>()> &make_solver)
-    {
-      schur_.resize(subdomains_.size());
-      for (const unsigned int s : owned_)
-      {
-        // the interface: every local dof an entry of B_s touches
-        std::vector<unsigned int> interface;
-        interface.reserve(rows_->entries(s).size());
-        for (const Entry &entry : rows_->entries(s))
-          interface.push_back(entry.local);
-        std::sort(interface.begin(), interface.end());
-        interface.erase(std::unique(interface.begin(), interface.end()),
-                        interface.end());
-        schur_[s] = std::make_unique<InterfaceSchurComplement>(
-          subdomains_[s]->stiffness_matrix(),
-          interface,
-          make_solver(),
-          subdomains_[s]->name());
-      }
-    }
-
-
-    template <int dim>
-    void
-    TFETIDual<dim>::apply_dirichlet(VectorType       &dst,
-                                    const VectorType &src) const
-    {
-      Assert(has_dirichlet_preconditioner(),
-             ExcMessage("TFETIDual: the Dirichlet preconditioner was not "
-                        "built (DecompositionParameters::preconditioner)."));
-      apply_between_B(dst,
-                      src,
-                      [this](const unsigned int s,
-                             VectorType        &y,
-                             const VectorType  &v) { schur_[s]->vmult(y, v); });
-    }
-
-
-    template <int dim>
-    void
-    TFETIDual<dim>::build_preconditioner_scaling()
-    {
-      // (row, row, value) of B_s B_s' for the owned subdomains: the rows
-      // that share a local dof, grouped by subdomain and dof
-      std::vector<double> triples;
-      for (const unsigned int s : owned_)
-      {
-        std::vector<Entry> by_dof = rows_->entries(s);
-        std::sort(by_dof.begin(),
-                  by_dof.end(),
-                  [](const Entry &a, const Entry &b)
-                  { return a.local < b.local; });
-        for (std::size_t begin = 0, end; begin < by_dof.size(); begin = end)
-        {
-          for (end = begin;
-               end < by_dof.size() && by_dof[end].local == by_dof[begin].local;
-               ++end)
-            ;
-          for (std::size_t i = begin; i < end; ++i)
-            for (std::size_t j = begin; j < end; ++j)
-              triples.insert(triples.end(),
-                             {static_cast<double>(by_dof[i].row),
-                              static_cast<double>(by_dof[j].row),
-                              by_dof[i].value * by_dof[j].value});
-        }
-      }
-      if (n_processes_ > 1)
-        triples = all_gather(triples, communicator_);
-      scaling_ = std::make_unique<MultiplierScaling>(n_multipliers(), triples);
-    }
-
-
-    template <int dim>
-    void
-    TFETIDual<dim>::apply_scaled_preconditioner(VectorType       &dst,
-                                                const VectorType &src,
-                                                const bool dirichlet) const
-    {
-      Assert(scaling_, ExcInternalError());
-      VectorType y = src;
-      scaling_->apply(y);
-      if (dirichlet)
-        apply_dirichlet(dst, y);
-      else
-        apply_lumped(dst, y);
-      scaling_->apply(dst);
-    }
-
-
-    template <int dim>
     bool
     TFETIDual<dim>::has_dirichlet_preconditioner() const
     {
-      return !schur_.empty();
+      return preconditioner_ && preconditioner_->kind() ==
+                                  DualPreconditioner<dim>::Kind::dirichlet;
     }
 
 
@@ -712,14 +592,12 @@ namespace dualcontact
       // the lumped (Dirichlet) preconditioner of F / s is s Q B K B' Q
       // (s Q B S B' Q): one operator for every free set, the solver zeroes
       // the active entries
-      if (scaling_)
+      if (preconditioner_)
         problem.free_set_preconditioner = [this](const VectorType &)
         {
           return [this](VectorType &dst, const VectorType &src)
           {
-            apply_scaled_preconditioner(dst,
-                                        src,
-                                        has_dirichlet_preconditioner());
+            preconditioner_->vmult(dst, src);
             dst *= scale_;
           };
         };
@@ -909,16 +787,14 @@ namespace dualcontact
       // the preconditioners act on the whole vector (their scaling
       // (B B')^{-1} is one replicated factor): gathered, applied, the owned
       // part kept
-      if (scaling_)
+      if (preconditioner_)
         problem.free_set_preconditioner = [this](const V &)
         {
           return [this](V &dst, const V &src)
           {
             VectorType whole, result;
             gather(src, whole);
-            apply_scaled_preconditioner(result,
-                                        whole,
-                                        has_dirichlet_preconditioner());
+            preconditioner_->vmult(result, whole);
             result *= scale_;
             ownership_->layout().extract(result, dst);
           };

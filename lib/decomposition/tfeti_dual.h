@@ -10,9 +10,8 @@
 #include <decomposition/coarse_problem.h>
 #include <decomposition/constraint_rows.h>
 #include <decomposition/decomposition_parameters.h>
-#include <decomposition/interface_schur_complement.h>
+#include <decomposition/dual_preconditioner.h>
 #include <decomposition/multiplier_ownership.h>
-#include <decomposition/multiplier_scaling.h>
 #include <decomposition/subdomain.h>
 
 #include <fem/elastic_body.h>
@@ -75,9 +74,9 @@ namespace dualcontact
      * triangular solves with the subdomain's factor, and the removal of
      * the kernel before and after), B_s.
      *
-     * <b>Preconditioner.</b> The problem supplies the lumped preconditioner
-     * s Q B K B' Q or, when built, the Dirichlet one s Q B S B' Q
-     * (S = diag(S_s), the subdomains' interface Schur complements), as
+     * <b>Preconditioner</b> (DualPreconditioner).  The problem supplies the
+     * lumped preconditioner s Q B K B' Q or, when built, the Dirichlet one s Q
+     * B S B' Q (S = diag(S_s), the subdomains' interface Schur complements), as
      * its free-set preconditioner, with the scaling Q = (B B')^{-1} (Rixen
      * and Farhat 1999): for the non-redundant gluing rows, B K B' alone
      * misses F^{-1} by the square of the chain's matrix at a dof shared by
@@ -206,22 +205,8 @@ namespace dualcontact
       void
       apply_F(VectorType &dst, const VectorType &src) const;
 
-      /**
-       * dst = sum_s B_s K_s B_s' src (collective): the lumped
-       * preconditioner, an approximate inverse of F at the cost of sparse
-       * products with the subdomains' stiffness matrices.
-       */
-      void
-      apply_lumped(VectorType &dst, const VectorType &src) const;
-      /**
-       * dst = sum_s B_s S_s B_s' src (collective): the Dirichlet
-       * preconditioner, S_s the Schur complement of K_s onto the dofs B_s
-       * touches (InterfaceSchurComplement); built only when the
-       * DecompositionParameters ask for it (has_dirichlet_preconditioner()).
-       * Unscaled: the QP gets Q B S B' Q (see the class documentation).
-       */
-      void
-      apply_dirichlet(VectorType &dst, const VectorType &src) const;
+      /** Whether the QP gets the Dirichlet preconditioner (else the
+       *  lumped one, or none: DecompositionParameters::preconditioner). */
       bool
       has_dirichlet_preconditioner() const;
       /** Wall time [s] of building the preconditioner: B B' and its
@@ -307,8 +292,7 @@ namespace dualcontact
       /**
        * dst = sum_s B_s A_s B_s' src (collective), A_s applied by
        * @p local(s, y, v): y = A_s v in the local numbering of subdomain s
-       * (y comes sized and zeroed); the lumped and the Dirichlet
-       * preconditioner.
+       * (y comes sized and zeroed): the products of DualPreconditioner.
        */
       void
       apply_between_B(
@@ -334,25 +318,6 @@ namespace dualcontact
       /** v := P v = v - G~'G~ v, the coarse projector (collective). */
       void
       project(VectorType &v) const;
-      /**
-       * B B' (summed over the processes' entries) and its Cholesky factor:
-       * the scaling of both preconditioners.
-       */
-      void
-      build_preconditioner_scaling();
-      /** dst = (B B')^{-1} B_s A_s B_s' (B B')^{-1} src summed over the
-       *  subdomains, A_s = K_s (lumped) or S_s (Dirichlet). */
-      void
-      apply_scaled_preconditioner(VectorType       &dst,
-                                  const VectorType &src,
-                                  const bool        dirichlet) const;
-      /** The InterfaceSchurComplement of every owned subdomain, on the
-       *  dofs its rows of B touch. */
-      void
-      build_dirichlet_preconditioner(
-        const std::function<std::unique_ptr<fem::StiffnessSolver>()>
-          &make_solver);
-
       /**
        * Which process owns which multipliers (MultiplierOwnership), and
        * the distributed d and e~.
@@ -430,12 +395,9 @@ namespace dualcontact
       mutable unsigned long           n_stiffness_solves_ = 0;
       mutable double                  max_jump_ = 0, relative_jump_ = 0;
       mutable std::vector<VectorType> work_, work_x_;
-      /** Per subdomain (owned ones only; empty without the Dirichlet
-       *  preconditioner). */
-      std::vector<std::unique_ptr<InterfaceSchurComplement>> schur_;
-      /** (B B')^{-1} (built with either preconditioner). */
-      std::unique_ptr<MultiplierScaling> scaling_;
-      double                             preconditioner_setup_time_ = 0;
+      /** The lumped or Dirichlet preconditioner (none: null). */
+      std::unique_ptr<DualPreconditioner<dim>> preconditioner_;
+      double                                   preconditioner_setup_time_ = 0;
     };
   } // namespace decomposition
 } // namespace dualcontact

@@ -37,5 +37,30 @@ namespace dualcontact
       static const unsigned int count = count_processes_on_this_machine();
       return count;
     }
+
+
+    std::vector<double>
+    concatenate_over_processes(const std::vector<double> &local,
+                               const MPI_Comm             communicator)
+    {
+      const std::vector<unsigned int> sizes =
+        dealii::Utilities::MPI::all_gather(
+          communicator, static_cast<unsigned int>(local.size()));
+      std::vector<int> counts(sizes.begin(), sizes.end()),
+        offsets(sizes.size(), 0);
+      for (unsigned int p = 1; p < sizes.size(); ++p)
+        offsets[p] = offsets[p - 1] + counts[p - 1];
+      std::vector<double> all(offsets.back() + counts.back());
+      const int           ierr = MPI_Allgatherv(local.data(),
+                                      local.size(),
+                                      MPI_DOUBLE,
+                                      all.data(),
+                                      counts.data(),
+                                      offsets.data(),
+                                      MPI_DOUBLE,
+                                      communicator);
+      AssertThrowMPI(ierr);
+      return all;
+    }
   } // namespace util
 } // namespace dualcontact

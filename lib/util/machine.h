@@ -1,5 +1,9 @@
 #pragma once
 
+#include <mpi.h>
+
+#include <vector>
+
 namespace dualcontact
 {
   namespace util
@@ -14,5 +18,13 @@ namespace dualcontact
      */
     unsigned int
     processes_on_this_machine();
+
+    /**
+     * The concatenation, in process order, of @p local of every process of
+     * @p communicator, on every process (one MPI_Allgatherv).  Collective.
+     */
+    std::vector<double>
+    concatenate_over_processes(const std::vector<double> &local,
+                               const MPI_Comm             communicator);
   } // namespace util
 } // namespace dualcontact
