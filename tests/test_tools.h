@@ -4,7 +4,10 @@
 // counts failures, and the exit status.  Tests print what they checked, so
 // a failing ctest log says which number was wrong.
 
+#include <deal.II/base/exceptions.h>
+
 #include <iostream>
+#include <sstream>
 #include <string>
 
 namespace test_tools
@@ -20,6 +23,45 @@ namespace test_tools
               << std::endl;
     if (!ok)
       ++failures;
+  }
+
+  /** Print "ok"/"FAIL" and the description (a check without a value). */
+  inline void
+  check(const bool ok, const std::string &what)
+  {
+    std::cout << (ok ? "  ok   " : "  FAIL ") << what << std::endl;
+    if (!ok)
+      ++failures;
+  }
+
+  /** The message of the deal.II exception @p function throws ("" if it
+   *  throws none). */
+  template <typename Function>
+  std::string
+  error_of(const Function &function)
+  {
+    try
+    {
+      function();
+    }
+    catch (const dealii::ExceptionBase &exception)
+    {
+      std::ostringstream info;
+      exception.print_info(info);
+      return info.str();
+    }
+    return "";
+  }
+
+  /** Whether @p text contains @p part; prints @p text where it does not,
+   *  so that a failing check shows the message it got. */
+  inline bool
+  contains(const std::string &text, const std::string &part)
+  {
+    const bool found = text.find(part) != std::string::npos;
+    if (!found)
+      std::cout << "      message: " << text.substr(0, 600) << std::endl;
+    return found;
   }
 
   /** Final line and exit status of a test program. */

@@ -27,20 +27,13 @@
 #include <iostream>
 #include <set>
 #include <string>
+#include <test_tools.h>
 #include <vector>
+
+using test_tools::check;
 
 namespace
 {
-  int n_failures = 0;
-
-  void
-  check(const bool condition, const std::string &what)
-  {
-    std::cout << (condition ? "ok    " : "FAIL  ") << what << std::endl;
-    if (!condition)
-      ++n_failures;
-  }
-
   template <typename Reader>
   vtkSmartPointer<vtkUnstructuredGrid>
   read(const std::string &name)
@@ -253,6 +246,5 @@ main()
 {
   test<2>();
   test<3>();
-  std::cout << (n_failures == 0 ? "all passed" : "FAILED") << std::endl;
-  return n_failures == 0 ? 0 : 1;
+  return test_tools::finish();
 }

@@ -15,19 +15,12 @@
 #include <set>
 #include <sstream>
 #include <string>
+#include <test_tools.h>
+
+using test_tools::check;
 
 namespace
 {
-  int n_failures = 0;
-
-  void
-  check(const bool condition, const std::string &what)
-  {
-    std::cout << (condition ? "ok    " : "FAIL  ") << what << std::endl;
-    if (!condition)
-      ++n_failures;
-  }
-
   /**
    * Build the mesh of @p generator, rotated by 40 degrees (about (1, 2, 3)
    * in 3D) and moved to @p center, refined twice; check its boundary ids and
@@ -110,6 +103,5 @@ main()
   check_generator<3>("cylinder", {0, 1, 2});
   check_generator<2>("box", {0, 1, 2, 3});
   check_generator<3>("box", {0, 1, 2, 3, 4, 5});
-  std::cout << (n_failures == 0 ? "all passed" : "FAILURES") << std::endl;
-  return n_failures == 0 ? 0 : 1;
+  return test_tools::finish();
 }

@@ -14,38 +14,12 @@
 #include <fstream>
 #include <iostream>
 #include <string>
+#include <test_tools.h>
 
 namespace fs = std::filesystem;
 
-namespace
-{
-  int n_failures = 0;
-
-  void
-  check(const bool condition, const std::string &what)
-  {
-    std::cout << (condition ? "ok    " : "FAIL  ") << what << std::endl;
-    if (!condition)
-      ++n_failures;
-  }
-
-  template <typename Function>
-  std::string
-  error_of(const Function &function)
-  {
-    try
-    {
-      function();
-    }
-    catch (const dealii::ExceptionBase &exception)
-    {
-      std::ostringstream info;
-      exception.print_info(info);
-      return info.str();
-    }
-    return "";
-  }
-} // namespace
+using test_tools::check;
+using test_tools::error_of;
 
 
 int
@@ -154,6 +128,5 @@ main()
   }
 
   fs::remove_all(root);
-  std::cout << (n_failures == 0 ? "all passed" : "FAILURES") << std::endl;
-  return n_failures == 0 ? 0 : 1;
+  return test_tools::finish();
 }

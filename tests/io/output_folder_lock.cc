@@ -18,47 +18,16 @@
 #include <iostream>
 #include <sstream>
 #include <string>
+#include <test_tools.h>
 
 namespace fs = std::filesystem;
 
+using test_tools::check;
+using test_tools::contains;
+using test_tools::error_of;
+
 namespace
 {
-  int n_failures = 0;
-
-  void
-  check(const bool condition, const std::string &what)
-  {
-    std::cout << (condition ? "ok    " : "FAIL  ") << what << std::endl;
-    if (!condition)
-      ++n_failures;
-  }
-
-  template <typename Function>
-  std::string
-  error_of(const Function &function)
-  {
-    try
-    {
-      function();
-    }
-    catch (const dealii::ExceptionBase &exception)
-    {
-      std::ostringstream info;
-      exception.print_info(info);
-      return info.str();
-    }
-    return "";
-  }
-
-  bool
-  contains(const std::string &text, const std::string &part)
-  {
-    const bool found = text.find(part) != std::string::npos;
-    if (!found)
-      std::cout << "      message: " << text << std::endl;
-    return found;
-  }
-
   void
   write_text(dualcontact::io::OutputFolder &folder, const std::string &name)
   {
@@ -153,6 +122,5 @@ main()
   }
 
   fs::remove_all(root);
-  std::cout << (n_failures == 0 ? "all passed" : "FAILURES") << std::endl;
-  return n_failures == 0 ? 0 : 1;
+  return test_tools::finish();
 }

@@ -18,6 +18,7 @@
 #include <iostream>
 #include <memory>
 #include <string>
+#include <test_tools.h>
 #include <vector>
 
 #ifdef DUALCONTACT_WITH_VTK
@@ -28,19 +29,8 @@
 #include <vtkXMLPUnstructuredGridReader.h>
 #endif
 
-namespace
-{
-  int n_failures = 0;
 
-  void
-  check(const bool condition, const std::string &what)
-  {
-    std::cout << (condition ? "ok    " : "FAIL  ") << what << std::endl;
-    if (!condition)
-      ++n_failures;
-  }
-} // namespace
-
+using test_tools::check;
 
 int
 main()
@@ -123,7 +113,7 @@ main()
             " components");
   }
 
-  if (n_failures == 0)
+  if (test_tools::failures == 0)
   {
     double range[2];
     data->GetArray("body_id")->GetRange(range);
@@ -140,7 +130,6 @@ main()
           "largest |displacement_m| equals the body's max displacement");
   }
   std::filesystem::remove_all(folder_name);
-  std::cout << (n_failures == 0 ? "all passed" : "FAILURES") << std::endl;
-  return n_failures == 0 ? 0 : 1;
+  return test_tools::finish();
 #endif
 }
