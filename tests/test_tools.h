@@ -5,10 +5,13 @@
 // a failing ctest log says which number was wrong.
 
 #include <deal.II/base/exceptions.h>
+#include <deal.II/lac/vector.h>
 
+#include <cmath>
 #include <iostream>
 #include <sstream>
 #include <string>
+#include <vector>
 
 namespace test_tools
 {
@@ -62,6 +65,16 @@ namespace test_tools
     if (!found)
       std::cout << "      message: " << text.substr(0, 600) << std::endl;
     return found;
+  }
+
+  /** The Euclidean distance between @p a and the expected values @p b. */
+  inline double
+  distance(const dealii::Vector<double> &a, const std::vector<double> &b)
+  {
+    double s = 0;
+    for (unsigned int i = 0; i < a.size(); ++i)
+      s += std::pow(a(i) - b[i], 2);
+    return std::sqrt(s);
   }
 
   /** Final line and exit status of a test program. */

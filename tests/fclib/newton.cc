@@ -21,6 +21,7 @@
 
 using namespace dualcontact;
 using test_tools::check;
+using test_tools::distance;
 
 namespace
 {
@@ -46,15 +47,6 @@ namespace
     std::ostringstream s;
     s << std::scientific << std::setprecision(3) << x;
     return s.str();
-  }
-
-  double
-  distance(const dealii::Vector<double> &a, const std::vector<double> &b)
-  {
-    double s = 0;
-    for (unsigned int i = 0; i < a.size(); ++i)
-      s += std::pow(a(i) - b[i], 2);
-    return std::sqrt(s);
   }
 
   struct Solved

@@ -18,6 +18,7 @@
 
 using namespace dualcontact;
 using test_tools::check;
+using test_tools::distance;
 
 namespace
 {
@@ -38,15 +39,6 @@ namespace
     q(1) = q_t1;
     q(2) = q_t2;
     return fclib::LocalProblem(3, W, q, {mu});
-  }
-
-  double
-  distance(const dealii::Vector<double> &a, const std::vector<double> &b)
-  {
-    double s = 0;
-    for (unsigned int i = 0; i < a.size(); ++i)
-      s += std::pow(a(i) - b[i], 2);
-    return std::sqrt(s);
   }
 
   struct Solved
