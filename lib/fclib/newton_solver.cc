@@ -116,6 +116,12 @@ namespace dualcontact
       AssertThrow(armijo > 0 && armijo < 0.5,
                   dealii::ExcMessage("Newton/Armijo constant must lie in "
                                      "(0, 1/2)."));
+      AssertThrow(rho_factor > 0 && std::isfinite(rho_factor),
+                  dealii::ExcMessage("Newton/Rho factor must be positive "
+                                     "(rho = 0 takes the velocity out of "
+                                     "the equations)."));
+      AssertThrow(std::isfinite(sigma),
+                  dealii::ExcMessage("Newton/Sigma must be finite."));
     }
 
 

@@ -219,6 +219,9 @@ main()
     check(refused(p, "Newton/Armijo constant"),
           "Armijo constant 0.5 refused",
           0);
+    p            = {};
+    p.rho_factor = 0;
+    check(refused(p, "Newton/Rho factor"), "Rho factor 0 refused", 0);
   }
   return test_tools::finish();
 }
