@@ -56,8 +56,16 @@ namespace dualcontact
       /// which keeps the preconditioner symmetric as PCG needs).
       struct Parameters
       {
-        /// ML aggregation threshold (deal.II default 1e-4)
-        double aggregation_threshold = 1e-4;
+        /**
+         * ML's strength-of-connection threshold of the aggregation.  0.02
+         * (deal.II's default is 1e-4): on the membranes of
+         * doc/benchmarks/membrane.md ("Session 17") equal or fewer
+         * active-set changes and set-ups on all 10 cases measured (PERMON's
+         * variant h = 50-800 at p = 0.5, h = 400 at p = 0.1 / 0.9, the
+         * thesis' at h = 200 / 400): h = 400, p = 0.5 1.43 -> 1.15 s,
+         * p = 0.9 2.45 -> 1.48 s, the others within the run-to-run spread.
+         */
+        double aggregation_threshold = 0.02;
         /// smoother sweeps per level (deal.II default 2)
         unsigned int smoother_sweeps = 2;
         /**

@@ -228,7 +228,7 @@ namespace dualcontact
              "--amg-keep-fraction F (default 0) keeps the hierarchy while "
              "at most F * n unknowns changed state; "
              "--amg-smoother-sweeps N (default 2) Chebyshev sweeps per "
-             "level, --amg-aggregation-threshold T (default 1e-4) ML's "
+             "level, --amg-aggregation-threshold T (default 0.02) ML's "
              "strength-of-connection threshold, --amg-prolongator-damping W "
              "(default 4/3) ML's damping of the smoothed prolongator, 0: the "
              "tentative one).\n"
