@@ -661,9 +661,7 @@ namespace dualcontact
       // tighter from the first
       Result                 more;
       dealii::Vector<double> x(r);
-      polish_factor_ = 0.1;
-      run_loop(x, false, more);
-      polish_factor_ = 1.;
+      run_loop(x, false, more, true);
       result.iterations += more.iterations;
       result.hessian_products += more.hessian_products;
       result.polish_qps = more.qp_statistics.size();
@@ -685,8 +683,8 @@ namespace dualcontact
     {
       // the loop stops on its own relative criteria; near its solution the
       // Newton method converges in a few steps to the FCLIB error asked for
-      NewtonSolver::Parameters newton_parameters = parameters_.newton;
-      newton_parameters.tolerance = coulomb_parameters_.tolerance;
+      NewtonSolver::Parameters newton_parameters =
+        newton_to_coulomb_tolerance();
       // from a start this near the solution a weak proximal term at once:
       // the plain method cycled for 20 steps on the singular W of
       // local_problem_test, where one proximal step at sigma 1e-4 (1e-2:
@@ -706,14 +704,23 @@ namespace dualcontact
     }
 
 
+    NewtonSolver::Parameters
+    LocalSolver::newton_to_coulomb_tolerance() const
+    {
+      // inside the Coulomb loop's options the Newton method stops where
+      // the loop would: at the Coulomb tolerance, on the FCLIB error
+      NewtonSolver::Parameters p = parameters_.newton;
+      p.tolerance                = coulomb_parameters_.tolerance;
+      return p;
+    }
+
+
     bool
     LocalSolver::solve_by_newton(const dealii::Vector<double> &start,
                                  dealii::Vector<double>       &r,
                                  Result                       &result) const
     {
-      NewtonSolver::Parameters newton_parameters = parameters_.newton;
-      newton_parameters.tolerance = coulomb_parameters_.tolerance;
-      const NewtonSolver     newton(problem_, newton_parameters);
+      const NewtonSolver     newton(problem_, newton_to_coulomb_tolerance());
       dealii::Vector<double> x(start);
       result.newton = newton.solve(x);
       result.hessian_products += result.newton.products;
@@ -782,9 +789,10 @@ namespace dualcontact
     void
     LocalSolver::run_loop(dealii::Vector<double> &r,
                           const bool              proximal,
-                          Result                 &result) const
+                          Result                 &result,
+                          const bool              polish) const
     {
-      Loop loop = start_loop(r, proximal, result);
+      Loop loop = start_loop(r, proximal, polish, result);
       for (unsigned int it = 0;; ++it)
       {
         if (loop.extrapolate)
@@ -830,6 +838,7 @@ namespace dualcontact
     LocalSolver::Loop
     LocalSolver::start_loop(const dealii::Vector<double> &r,
                             const bool                    proximal,
+                            const bool                    polish,
                             Result                       &result) const
     {
       // rho is relative to lambda_max(W_s); with the contact scaling only
@@ -886,10 +895,10 @@ namespace dualcontact
       loop.first_change = r.linfty_norm() == 0;
 
       // inexact fixed point: the QP tolerance follows the loop's progress
-      loop.final_tolerance = qp_parameters_.tolerance * polish_factor_;
+      loop.final_tolerance = qp_parameters_.tolerance * (polish ? 0.1 : 1.);
       loop.tolerance       = loop.final_tolerance;
       if (parameters_.inexact && (loop.coulomb_loop || loop.stepping) &&
-          polish_factor_ == 1.)
+          !polish)
         loop.tolerance =
           std::max(loop.final_tolerance, parameters_.initial_qp_tolerance);
       loop.q_norm = problem_.q().l2_norm();

@@ -332,11 +332,14 @@ namespace dualcontact
       /**
        * The loop from @p r, plain or with the proximal term; appends to
        * @p result (QP records, changes), sets converged and reason.
+       * @p polish: every QP at a tenth of the QP tolerance from the first
+       * (polish_by_qps()).
        */
       void
       run_loop(dealii::Vector<double> &r,
                const bool              proximal,
-               Result                 &result) const;
+               Result                 &result,
+               const bool              polish = false) const;
 
       /**
        * Proximal::automatic after a failed plain loop: the Newton method
@@ -344,6 +347,11 @@ namespace dualcontact
        * (result.newton); true, with @p r its solution and result converged,
        * if it converged (else @p r is left as it was).
        */
+      /** Parameters::newton with the Coulomb tolerance as its FCLIB error
+       *  goal (the fallback's and the polish's). */
+      NewtonSolver::Parameters
+      newton_to_coulomb_tolerance() const;
+
       bool
       solve_by_newton(const dealii::Vector<double> &start,
                       dealii::Vector<double>       &r,
@@ -373,6 +381,7 @@ namespace dualcontact
       Loop
       start_loop(const dealii::Vector<double> &r,
                  const bool                    proximal,
+                 const bool                    polish,
                  Result                       &result) const;
       /** De Saxce's shift mu_i ||u_t,i|| per contact at @p x (u = W x + q). */
       std::vector<double>
@@ -456,9 +465,6 @@ namespace dualcontact
                const double               rho,
                const double               tolerance,
                const unsigned int         max_iterations) const;
-
-      /** Factor of the QP tolerance (0.1 while polish_by_qps() runs). */
-      mutable double polish_factor_ = 1.;
 
       /** Whether W is not symmetric (then the loop iterates on W_a r^k). */
       bool asymmetric_;

@@ -433,18 +433,6 @@ namespace dualcontact
     }
 
 
-    double
-    NewtonSolver::proximal_error(const dealii::Vector<double> &r,
-                                 const dealii::Vector<double> &center,
-                                 const double                  sigma,
-                                 Result                       &result) const
-    {
-      dealii::Vector<double> u(r.size());
-      velocity(u, r, center, sigma, result);
-      return fclib_error(problem_, r, u);
-    }
-
-
     NewtonSolver::Outcome
     NewtonSolver::newton(dealii::Vector<double>       &r,
                          const dealii::Vector<double> &center,

@@ -197,13 +197,6 @@ namespace dualcontact
       void
       build_pattern();
 
-      /** FCLIB error of @p r for the proximal problem (sigma, center). */
-      double
-      proximal_error(const dealii::Vector<double> &r,
-                     const dealii::Vector<double> &center,
-                     const double                  sigma,
-                     Result                       &result) const;
-
       const LocalProblem &problem_;
       Parameters          parameters_;
       unsigned int        dim_;
@@ -211,12 +204,16 @@ namespace dualcontact
       std::vector<double> rho_;
       /** Mean normal diagonal entry of W (the unit of sigma). */
       double mean_normal_diagonal_ = 1;
-      /** J's pattern (CSR) and, per stored entry, its place in W (or -1). */
+      /** J's pattern, compressed rows (the rows of a contact share one
+       *  column set). */
       std::vector<int> row_start_, columns_;
-      /** Per row of J, W's entries: (column index into columns_, value). */
+      /** Per row of J, W's entries of that row: (offset in the row's
+       *  columns, value). */
       std::vector<std::vector<std::pair<unsigned int, double>>> w_rows_;
-      /** Position of each row's diagonal block start in columns_. */
-      std::vector<unsigned int>   block_position_;
+      /** Per row, the offset in its columns of its contact's first unknown
+       *  (where the diagonal block starts). */
+      std::vector<unsigned int> block_position_;
+      /** J's values on the pattern (the last Jacobian assembled). */
       mutable std::vector<double> values_;
       /** UMFPACK's analysis of J's pattern (the first Jacobian's). */
       mutable void *symbolic_ = nullptr;

@@ -8,6 +8,8 @@
 // method after the failed plain loop at 1e-8.  `--tol 1e-4 --coulomb-tol
 // 1e-6' keeps the explicit Coulomb tolerance.
 #include <test_tools.h>
+
+#include "data_files.h"
 #include <tools/fclibsolve_driver.h>
 
 #include <nlohmann/json.hpp>
@@ -54,14 +56,7 @@ int
 main()
 {
   const std::string dir = FCLIB_TEST_DATA_DIR;
-  for (const std::string name : {"Box_Stacks-i0122-82-5",
-                                 "Capsules-i125-1213",
-                                 "CubeH8",
-                                 "LMGC_100_PR_PerioBox-i00361-60-03000",
-                                 "LMGC_GlobalFrictionContactProblem00046",
-                                 "Spheres-i099-356-679",
-                                 "local_problem_test",
-                                 "spheres-in-a-box-98-i10000-256-10"})
+  for (const std::string &name : fclib_test_data::names)
     for (const double tol : {1e-4, 1e-8})
     {
       std::ostringstream t;

@@ -13,6 +13,8 @@
 #include <fclib/newton_solver.h>
 #include <test_tools.h>
 
+#include "data_files.h"
+
 #include <cmath>
 #include <iomanip>
 #include <sstream>
@@ -149,14 +151,7 @@ main()
   }
 
   // the FCLIB files at 1e-8: the error of the r returned, as reported
-  for (const std::string name : {"Box_Stacks-i0122-82-5",
-                                 "Capsules-i125-1213",
-                                 "CubeH8",
-                                 "LMGC_100_PR_PerioBox-i00361-60-03000",
-                                 "LMGC_GlobalFrictionContactProblem00046",
-                                 "Spheres-i099-356-679",
-                                 "local_problem_test",
-                                 "spheres-in-a-box-98-i10000-256-10"})
+  for (const std::string &name : fclib_test_data::names)
   {
     const fclib::LocalProblem problem =
       fclib::read_as_local(FCLIB_TEST_DATA_DIR + name + ".hdf5");
