@@ -7,6 +7,7 @@
 
 #include <contact/contact_discretization.h>
 #include <contact/master_surface.h>
+#include <util/machine.h>
 
 #include <algorithm>
 #include <limits>
@@ -125,7 +126,8 @@ namespace dualcontact
         std::vector<types::global_dof_index> cell_dofs(fe.n_dofs_per_cell());
         for (const auto &cell : slave.dof_handler().active_cell_iterators())
           for (const unsigned int f : cell->face_indices())
-            if (cell->face(f)->at_boundary() &&
+            if ((!slave.is_distributed() || cell->is_locally_owned()) &&
+                cell->face(f)->at_boundary() &&
                 cell->face(f)->boundary_id() == pair.slave_boundary)
             {
               fe_face.reinit(cell, f);
@@ -150,12 +152,98 @@ namespace dualcontact
                   }
                 }
             }
-        AssertThrow(!side.face_weights.empty(),
+        // on a distributed mesh a process may hold none of the faces:
+        // decided on the gathered side (gather_slave_side())
+        AssertThrow(slave.is_distributed() || !side.face_weights.empty(),
                     ExcMessage("Contact pair `" + pair.name +
                                "': the slave body `" + slave.name() +
                                "' has no boundary with id " +
                                std::to_string(pair.slave_boundary) + "."));
         return side;
+      }
+
+
+      /**
+       * The slave side of a pair on a distributed mesh, from every
+       * process' part (integrate_slave_side() of its own cells): the nodes
+       * by key with their weights and weighted normals summed over the
+       * processes that share them, the faces of all processes (in process
+       * order), and the support point of every node.  What is gathered is
+       * the slave surface, not the mesh.  Collective.
+       */
+      template <int dim>
+      std::map<types::global_dof_index, Point<dim>>
+      gather_slave_side(const ContactPair<dim>      &pair,
+                        const fem::ElasticBody<dim> &slave,
+                        SlaveSide<dim>              &side)
+      {
+        std::map<types::global_dof_index, Point<dim>> points;
+        DoFTools::map_dofs_to_support_points(slave.mapping(),
+                                             slave.dof_handler(),
+                                             points);
+        // self-delimiting records: nodes (key, dofs, weight, normal,
+        // position), then faces ((key, weight) pairs)
+        std::vector<double> local;
+        local.push_back(side.nodes.size());
+        for (const auto &[key, node] : side.nodes)
+        {
+          local.push_back(key);
+          local.insert(local.end(), node.dofs.begin(), node.dofs.end());
+          local.push_back(node.weight);
+          for (unsigned int d = 0; d < dim; ++d)
+            local.push_back(node.normal[d]);
+          for (unsigned int d = 0; d < dim; ++d)
+            local.push_back(points.at(key)[d]);
+        }
+        local.push_back(side.face_weights.size());
+        for (const auto &face : side.face_weights)
+        {
+          local.push_back(face.size());
+          for (const auto &[key, w] : face)
+          {
+            local.push_back(key);
+            local.push_back(w);
+          }
+        }
+        const std::vector<double> all =
+          util::concatenate_over_processes(local, slave.communicator());
+
+        SlaveSide<dim>                                merged;
+        std::map<types::global_dof_index, Point<dim>> positions;
+        const auto as_dof = [](const double x)
+        { return static_cast<types::global_dof_index>(x); };
+        for (std::size_t i = 0; i < all.size();)
+        {
+          const std::size_t n_nodes = all[i++];
+          for (std::size_t n = 0; n < n_nodes; ++n)
+          {
+            const types::global_dof_index key  = as_dof(all[i++]);
+            SlaveNode<dim>               &node = merged.nodes[key];
+            for (unsigned int c = 0; c < dim; ++c)
+              node.dofs[c] = as_dof(all[i++]);
+            node.weight += all[i++];
+            for (unsigned int d = 0; d < dim; ++d)
+              node.normal[d] += all[i++];
+            Point<dim> &x = positions[key];
+            for (unsigned int d = 0; d < dim; ++d)
+              x[d] = all[i++];
+          }
+          const std::size_t n_faces = all[i++];
+          for (std::size_t f = 0; f < n_faces; ++f)
+          {
+            merged.face_weights.emplace_back();
+            const std::size_t n_entries = all[i++];
+            for (std::size_t e = 0; e < n_entries; ++e, i += 2)
+              merged.face_weights.back()[as_dof(all[i])] += all[i + 1];
+          }
+        }
+        AssertThrow(!merged.face_weights.empty(),
+                    ExcMessage("Contact pair `" + pair.name +
+                               "': the slave body `" + slave.name() +
+                               "' has no boundary with id " +
+                               std::to_string(pair.slave_boundary) + "."));
+        side = std::move(merged);
+        return positions;
       }
 
 
@@ -348,11 +436,27 @@ namespace dualcontact
         check_pair(pair, bodies.size());
         const fem::ElasticBody<dim> &slave = *bodies[pair.slave_body];
         SlaveSide<dim>               side  = integrate_slave_side(pair, slave);
-        move_hanging_nodes_to_parents(slave, side);
+        // the support points of the slave nodes
         std::vector<Point<dim>> support_points(slave.n_dofs());
-        DoFTools::map_dofs_to_support_points(slave.mapping(),
-                                             slave.dof_handler(),
-                                             support_points);
+        if (slave.is_distributed())
+        {
+          AssertThrow(pair.obstacle,
+                      ExcMessage("Contact pair `" + pair.name +
+                                 "': contact between two bodies on a "
+                                 "distributed mesh (`Mesh distribution = "
+                                 "distributed' in `subsection "
+                                 "Decomposition') is not supported yet; "
+                                 "rigid obstacles are."));
+          for (const auto &[key, x] : gather_slave_side(pair, slave, side))
+            support_points[key] = x;
+        }
+        else
+        {
+          move_hanging_nodes_to_parents(slave, side);
+          DoFTools::map_dofs_to_support_points(slave.mapping(),
+                                               slave.dof_handler(),
+                                               support_points);
+        }
         const std::unique_ptr<MasterSurface<dim>> master_surface =
           pair.obstacle ?
             nullptr :

@@ -44,7 +44,7 @@ namespace dualcontact
         std::vector<types::global_dof_index> cell_dofs(
           body.fe().n_dofs_per_cell());
         for (const auto &cell : body.dof_handler().active_cell_iterators())
-          if (cell->at_boundary())
+          if (!cell->is_artificial() && cell->at_boundary())
             for (const unsigned int f : cell->face_indices())
               if (cell->face(f)->at_boundary() &&
                   cell->face(f)->boundary_id() == boundary)

@@ -69,6 +69,21 @@ namespace dualcontact
         "friction brick (doc/benchmarks/tfeti.md, \"Gluing rows\"): "
         "orthonormal rows cost more Hessian products (level 20, 64 "
         "subdomains: 889 against 714) and more outer iterations.");
+      prm.declare_entry(
+        "Mesh distribution",
+        "replicated",
+        Patterns::Selection("replicated|distributed"),
+        "Method = tfeti: where the meshes live. replicated: every process "
+        "holds every body's whole mesh (under MPI a parallel::shared "
+        "triangulation) and assembles its own subdomains from it. "
+        "distributed: every process holds the cells of its own subdomains "
+        "and one layer of ghost cells (a parallel::fullydistributed "
+        "triangulation built from the serial description): no process "
+        "keeps the whole mesh, and the contact search gathers the slave "
+        "surfaces only. Needs `Method = tfeti' and at least one subdomain "
+        "per process; not yet with hanging nodes (`Local refinements', "
+        "`subsection Contact refinement') or contact between two bodies "
+        "(rigid obstacles only).");
       prm.declare_entry("Cells per subdomain",
                         "1000",
                         Patterns::Integer(1),
@@ -112,6 +127,15 @@ namespace dualcontact
       for (const std::string &entry :
            Utilities::split_string_list(prm.get("Subdomains per body")))
         subdomains_per_body.push_back(Utilities::string_to_int(entry));
+      mesh_distribution = prm.get("Mesh distribution") == "distributed" ?
+                            MeshDistribution::distributed :
+                            MeshDistribution::replicated;
+      AssertThrow(mesh_distribution == MeshDistribution::replicated ||
+                    method == Method::tfeti,
+                  ExcMessage("`Mesh distribution = distributed' in "
+                             "`subsection Decomposition' needs `Method = "
+                             "tfeti' there: only TFETI's subdomains can live "
+                             "on a distributed mesh."));
       cells_per_subdomain = prm.get_integer("Cells per subdomain");
       memory_limit        = prm.get_double("Memory limit");
       prm.leave_subsection();

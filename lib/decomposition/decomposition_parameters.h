@@ -54,6 +54,17 @@ namespace dualcontact
         orthonormal
       };
       Gluing gluing = Gluing::chain;
+      /** Where the bodies' meshes live under TFETI. */
+      enum class MeshDistribution
+      {
+        /** every process holds the whole mesh (parallel::shared under
+         *  MPI) */
+        replicated,
+        /** every process holds the cells of its own subdomains and a
+         *  layer of ghosts (DistributedMesh, parallel::fullydistributed) */
+        distributed
+      };
+      MeshDistribution mesh_distribution = MeshDistribution::replicated;
       /** Target number of cells per subdomain when no count is given. */
       unsigned int cells_per_subdomain = 1000;
       /**

@@ -15,6 +15,8 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
+#include <set>
 #include <sstream>
 
 namespace dualcontact
@@ -63,7 +65,8 @@ namespace dualcontact
       const contact::ContactDiscretization<dim>                    &contact,
       const DecompositionParameters                                &parameters,
       const std::function<std::unique_ptr<fem::StiffnessSolver>()> &make_solver,
-      const MPI_Comm communicator)
+      const MPI_Comm              communicator,
+      const DistributedMesh<dim> *distributed_mesh)
         : contact::DualFormulation<dim>(contact)
         , communicator_(communicator)
         // a program that never initialized MPI (a test) runs on one process
@@ -74,6 +77,7 @@ namespace dualcontact
                   Utilities::MPI::this_mpi_process(communicator) :
                   0)
         , bodies_(bodies)
+        , distributed_mesh_(distributed_mesh)
     {
       // hanging nodes and Dirichlet conditions become multiplier rows;
       // every other constraint line must be one of these
@@ -85,9 +89,12 @@ namespace dualcontact
                  ExcInternalError());
 #endif
       // a body whose Dirichlet conditions leave a rigid-body motion free
-      for (const auto *body : bodies_)
+      for (unsigned int b = 0; b < bodies_.size(); ++b)
         has_floating_body_ =
-          has_floating_body_ || fem::RigidBodyModes<dim>(*body).n_modes() > 0;
+          has_floating_body_ ||
+          (distributed_mesh_ ?
+             floats_on_distributed_mesh(b) :
+             fem::RigidBodyModes<dim>(*bodies_[b]).n_modes() > 0);
       Timer timer;
       decompose(parameters);
       decomposition_time_ = max_over_processes(timer.wall_time());
@@ -257,39 +264,12 @@ namespace dualcontact
     void
     TFETIDual<dim>::decompose(const DecompositionParameters &parameters)
     {
-      // the cells of every subdomain, on every process (the mesh is
-      // replicated); the first process' partition is broadcast, so that
-      // every process has the same one whatever METIS' seeding
       std::vector<std::vector<typename Subdomain<dim>::CellIterator>> cells;
       std::vector<std::string>                                        names;
       std::vector<unsigned int>                                       body_of;
       first_copy_.resize(bodies_.size());
       for (unsigned int b = 0; b < bodies_.size(); ++b)
-      {
-        const fem::ElasticBody<dim> &body = *bodies_[b];
-        const unsigned int           n_parts =
-          parameters.n_subdomains(b, body.triangulation().n_active_cells());
-        // every process partitions (so that an error is thrown on every
-        // process alike) and takes the first one's partition
-        std::vector<unsigned int> part = partition_cells(body.triangulation(),
-                                                         n_parts,
-                                                         parameters.partitioner,
-                                                         body.name());
-        if (n_processes_ > 1)
-          part = Utilities::MPI::broadcast(communicator_, part, 0);
-        const unsigned int n_pieces =
-          *std::max_element(part.begin(), part.end()) + 1;
-        first_subdomain_.push_back(cells.size());
-        cells.resize(cells.size() + n_pieces);
-        for (const auto &cell : body.dof_handler().active_cell_iterators())
-          cells[first_subdomain_.back() + part[cell->active_cell_index()]]
-            .push_back(cell);
-        for (unsigned int p = 0; p < n_pieces; ++p)
-        {
-          names.push_back(body.name() + ", subdomain " + std::to_string(p + 1));
-          body_of.push_back(b);
-        }
-      }
+        cut_body(b, parameters, cells, names, body_of);
       first_subdomain_.push_back(cells.size());
 
       dofs_.resize(cells.size());
@@ -307,7 +287,18 @@ namespace dualcontact
         dofs_[s].erase(std::unique(dofs_[s].begin(), dofs_[s].end()),
                        dofs_[s].end());
       }
-      assign_owners();
+      if (distributed_mesh_)
+      {
+        owner_ = distributed_mesh_->owners();
+        AssertDimension(owner_.size(), cells.size());
+        owned_.clear();
+        for (unsigned int s = 0; s < owner_.size(); ++s)
+          if (owner_[s] == rank_)
+            owned_.push_back(s);
+        gather_subdomain_dofs();
+      }
+      else
+        assign_owners();
 
       subdomains_.resize(cells.size());
       for (unsigned int b = 0; b < bodies_.size(); ++b)
@@ -326,14 +317,21 @@ namespace dualcontact
         if (!owns_some)
           continue;
 
-        std::vector<Point<dim>> points(body.n_dofs());
+        // the support points of the dofs of this process' cells (on a
+        // distributed mesh the others are not known here)
+        std::map<types::global_dof_index, Point<dim>> known_points;
         DoFTools::map_dofs_to_support_points(body.mapping(),
                                              body.dof_handler(),
-                                             points);
+                                             known_points);
+        std::vector<Point<dim>> points(body.n_dofs());
+        for (const auto &[dof, point] : known_points)
+          points[dof] = point;
         std::vector<unsigned int>            components(body.n_dofs());
         std::vector<types::global_dof_index> dofs(body.fe().n_dofs_per_cell());
         for (const auto &cell : body.dof_handler().active_cell_iterators())
         {
+          if (cell->is_artificial())
+            continue;
           cell->get_dof_indices(dofs);
           for (unsigned int i = 0; i < dofs.size(); ++i)
             components[dofs[i]] = body.fe().system_to_component_index(i).first;
@@ -354,30 +352,134 @@ namespace dualcontact
     void
     TFETIDual<dim>::assign_owners()
     {
-      // longest processing time first: a subdomain's local solves cost
-      // about its dofs (times a factor-size power that is the same for
-      // subdomains of one scene)
-      const unsigned int        n_subdomains = dofs_.size();
-      std::vector<unsigned int> order(n_subdomains);
-      for (unsigned int s = 0; s < n_subdomains; ++s)
-        order[s] = s;
-      std::stable_sort(order.begin(),
-                       order.end(),
-                       [this](const unsigned int a, const unsigned int b)
-                       { return dofs_[a].size() > dofs_[b].size(); });
-      std::vector<unsigned long> load(n_processes_, 0);
-      owner_.assign(n_subdomains, 0);
-      for (const unsigned int s : order)
-      {
-        const unsigned int p =
-          std::min_element(load.begin(), load.end()) - load.begin();
-        owner_[s] = p;
-        load[p] += dofs_[s].size();
-      }
+      std::vector<unsigned long> sizes(dofs_.size());
+      for (unsigned int s = 0; s < dofs_.size(); ++s)
+        sizes[s] = dofs_[s].size();
+      owner_ = assign_subdomains_to_processes(sizes, n_processes_);
       owned_.clear();
-      for (unsigned int s = 0; s < n_subdomains; ++s)
+      for (unsigned int s = 0; s < owner_.size(); ++s)
         if (owner_[s] == rank_)
           owned_.push_back(s);
+    }
+
+
+    template <int dim>
+    void
+    TFETIDual<dim>::cut_body(
+      const unsigned int             b,
+      const DecompositionParameters &parameters,
+      std::vector<std::vector<typename Subdomain<dim>::CellIterator>> &cells,
+      std::vector<std::string>                                        &names,
+      std::vector<unsigned int>                                       &body_of)
+    {
+      const fem::ElasticBody<dim> &body = *bodies_[b];
+      std::vector<unsigned int>    part;
+      unsigned int                 n_pieces = 0;
+      if (distributed_mesh_)
+        n_pieces = distributed_mesh_->n_subdomains(b);
+      else
+      {
+        // every process partitions (so that an error is thrown on every
+        // process alike) and takes the first one's partition, so that
+        // every process has the same one whatever METIS' seeding
+        const unsigned int n_parts =
+          parameters.n_subdomains(b, body.triangulation().n_active_cells());
+        part = partition_cells(body.triangulation(),
+                               n_parts,
+                               parameters.partitioner,
+                               body.name());
+        if (n_processes_ > 1)
+          part = Utilities::MPI::broadcast(communicator_, part, 0);
+        n_pieces = *std::max_element(part.begin(), part.end()) + 1;
+      }
+      first_subdomain_.push_back(cells.size());
+      cells.resize(cells.size() + n_pieces);
+      for (const auto &cell : body.dof_handler().active_cell_iterators())
+        if (!distributed_mesh_)
+          cells[first_subdomain_.back() + part[cell->active_cell_index()]]
+            .push_back(cell);
+        else if (cell->is_locally_owned())
+          cells[first_subdomain_.back() + distributed_mesh_->subdomain_of_cell(
+                                            b, cell->active_cell_index())]
+            .push_back(cell);
+      for (unsigned int p = 0; p < n_pieces; ++p)
+      {
+        names.push_back(body.name() + ", subdomain " + std::to_string(p + 1));
+        body_of.push_back(b);
+      }
+    }
+
+
+    template <int dim>
+    void
+    TFETIDual<dim>::gather_subdomain_dofs()
+    {
+      // (subdomain, size, dofs...) of the owned subdomains, concatenated
+      // over the processes: the gluing rows are numbered alike everywhere
+      std::vector<double> local;
+      for (const unsigned int s : owned_)
+      {
+        local.push_back(s);
+        local.push_back(dofs_[s].size());
+        local.insert(local.end(), dofs_[s].begin(), dofs_[s].end());
+      }
+      const std::vector<double> all =
+        util::concatenate_over_processes(local, communicator_);
+      for (std::size_t i = 0; i < all.size();)
+      {
+        const auto s    = static_cast<unsigned int>(all[i]);
+        const auto size = static_cast<std::size_t>(all[i + 1]);
+        std::vector<types::global_dof_index> &dofs = dofs_[s];
+        dofs.resize(size);
+        for (std::size_t k = 0; k < size; ++k)
+          dofs[k] = static_cast<types::global_dof_index>(all[i + 2 + k]);
+        i += 2 + size;
+      }
+    }
+
+
+    template <int dim>
+    bool
+    TFETIDual<dim>::floats_on_distributed_mesh(const unsigned int b) const
+    {
+      // the support points and components of the prescribed dofs this
+      // process owns, gathered: a surface's worth
+      const fem::ElasticBody<dim> &body = *bodies_[b];
+      const IndexSet     &owned_dofs = body.dof_handler().locally_owned_dofs();
+      std::vector<double> local;
+      std::vector<types::global_dof_index> dofs(body.fe().n_dofs_per_cell());
+      const std::vector<Point<dim>> &unit = body.fe().get_unit_support_points();
+      std::set<types::global_dof_index> listed;
+      for (const auto &cell : body.dof_handler().active_cell_iterators())
+        if (cell->is_locally_owned())
+        {
+          cell->get_dof_indices(dofs);
+          for (unsigned int i = 0; i < dofs.size(); ++i)
+            if (owned_dofs.is_element(dofs[i]) &&
+                listed.insert(dofs[i]).second &&
+                body.constraints().is_constrained(dofs[i]) &&
+                !body.hanging_node_constraints().is_constrained(dofs[i]))
+            {
+              const Point<dim> x =
+                body.mapping().transform_unit_to_real_cell(cell, unit[i]);
+              for (unsigned int d = 0; d < dim; ++d)
+                local.push_back(x[d]);
+              local.push_back(body.fe().system_to_component_index(i).first);
+            }
+        }
+      const std::vector<double> all =
+        util::concatenate_over_processes(local, communicator_);
+      std::vector<Point<dim>>   points;
+      std::vector<unsigned int> components;
+      for (std::size_t i = 0; i < all.size(); i += dim + 1)
+      {
+        Point<dim> x;
+        for (unsigned int d = 0; d < dim; ++d)
+          x[d] = all[i + d];
+        points.push_back(x);
+        components.push_back(static_cast<unsigned int>(all[i + dim]));
+      }
+      return fem::RigidBodyModes<dim>::n_free_motions(points, components) > 0;
     }
 
 

@@ -10,6 +10,7 @@
 #include <decomposition/coarse_problem.h>
 #include <decomposition/constraint_rows.h>
 #include <decomposition/decomposition_parameters.h>
+#include <decomposition/distributed_mesh.h>
 #include <decomposition/dual_preconditioner.h>
 #include <decomposition/multiplier_ownership.h>
 #include <decomposition/subdomain.h>
@@ -145,14 +146,17 @@ namespace dualcontact
        * factorizes the subdomains this process owns (of the processes of
        * @p communicator) with solvers made by @p make_solver (serial ones:
        * each factor stays on its process), builds B, d, G, e and the
-       * coarse problem.  Collective.
+       * coarse problem.  Collective.  With @p distributed_mesh the bodies'
+       * meshes are its distributed ones: the cut and the owners are its,
+       * and each process knows the cells of its own subdomains only.
        */
       TFETIDual(const std::vector<const fem::ElasticBody<dim> *> &bodies,
                 const contact::ContactDiscretization<dim>        &contact,
                 const DecompositionParameters                    &parameters,
                 const std::function<std::unique_ptr<fem::StiffnessSolver>()>
-                        &make_solver,
-                MPI_Comm communicator = MPI_COMM_WORLD);
+                                           &make_solver,
+                MPI_Comm                    communicator     = MPI_COMM_WORLD,
+                const DistributedMesh<dim> *distributed_mesh = nullptr);
 
       unsigned int
       n_multipliers() const override;
@@ -279,6 +283,27 @@ namespace dualcontact
        */
       void
       decompose(const DecompositionParameters &parameters);
+      /**
+       * The cells of every subdomain of body @p b on this process, given
+       * the owned subdomains' names (appended to @p names) and bodies:
+       * all of them on a replicated mesh (partition_cells()), those of the
+       * owned subdomains on a distributed one.
+       */
+      void
+      cut_body(
+        const unsigned int             b,
+        const DecompositionParameters &parameters,
+        std::vector<std::vector<typename Subdomain<dim>::CellIterator>> &cells,
+        std::vector<std::string>                                        &names,
+        std::vector<unsigned int> &body_of);
+      /** dofs_ of every subdomain on every process, from those of the
+       *  owned ones (a distributed mesh; collective). */
+      void
+      gather_subdomain_dofs();
+      /** Whether body @p b, on a distributed mesh, has a rigid-body motion
+       *  its Dirichlet conditions do not hold (collective). */
+      bool
+      floats_on_distributed_mesh(const unsigned int b) const;
       /** The owner of every subdomain: largest first onto the process with
        *  the fewest dofs so far. */
       void
@@ -350,6 +375,8 @@ namespace dualcontact
       MPI_Comm                                   communicator_;
       unsigned int                               n_processes_ = 1, rank_ = 0;
       std::vector<const fem::ElasticBody<dim> *> bodies_;
+      /** The bodies' distributed meshes, or null (replicated meshes). */
+      const DistributedMesh<dim> *distributed_mesh_ = nullptr;
       /** Per subdomain: the Subdomain if owned here, else null. */
       std::vector<std::unique_ptr<Subdomain<dim>>> subdomains_;
       /** Per subdomain (on every process): its body dofs and its owner. */

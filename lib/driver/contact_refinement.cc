@@ -203,7 +203,8 @@ namespace dualcontact
       r.wall_time = wall_time;
       for (unsigned int b = 0; b < scene.n_bodies(); ++b)
       {
-        r.n_cells.push_back(scene.body(b).triangulation().n_active_cells());
+        r.n_cells.push_back(
+          scene.body(b).triangulation().n_global_active_cells());
         r.n_dofs.push_back(scene.body(b).n_dofs());
       }
       for (const auto &pair : contact.pair_results())

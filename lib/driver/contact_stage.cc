@@ -118,7 +118,9 @@ namespace dualcontact
             if (log != nullptr)
               solver->set_monitor(log->monitor());
             return solver;
-          });
+          },
+          MPI_COMM_WORLD,
+          scene_.distributed_mesh());
         describe_decomposition(details);
       }
       else

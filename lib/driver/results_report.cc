@@ -93,9 +93,8 @@ namespace dualcontact
         if (r.max_displacement > 0)
           force_scale =
             std::max(force_scale, r.strain_energy / r.max_displacement);
-        out << prefix
-            << "n_cells = " << scene_.body(b).triangulation().n_active_cells()
-            << "\n";
+        out << prefix << "n_cells = "
+            << scene_.body(b).triangulation().n_global_active_cells() << "\n";
         out << prefix << "n_dofs = " << scene_.body(b).n_dofs() << "\n";
         out << prefix << "strain_energy = " << format_number(r.strain_energy)
             << "\n";
@@ -237,10 +236,11 @@ namespace dualcontact
         const auto    &r          = scene_.results()[b];
         const auto    &statistics = scene_.solver(b).statistics();
         nlohmann::json body;
-        body["name"]    = scene_.body(b).name();
-        body["mesh"]    = scene_.body_parameters()[b].mesh.description();
-        body["n_cells"] = scene_.body(b).triangulation().n_active_cells();
-        body["n_dofs"]  = scene_.body(b).n_dofs();
+        body["name"] = scene_.body(b).name();
+        body["mesh"] = scene_.body_parameters()[b].mesh.description();
+        body["n_cells"] =
+          scene_.body(b).triangulation().n_global_active_cells();
+        body["n_dofs"]           = scene_.body(b).n_dofs();
         body["stiffness_solver"] = {{"name", scene_.solver(b).name()},
                                     {"setup_time_s", statistics.setup_time},
                                     {"solve_time_s", statistics.solve_time},

@@ -80,9 +80,8 @@ namespace dualcontact
       prm.enter_subsection("Stiffness solver");
       const bool automatic = prm.get("Solver") == "automatic";
       prm.leave_subsection();
-      prm.enter_subsection("Decomposition");
-      factor_limit_ = prm.get_double("Memory limit");
-      prm.leave_subsection();
+      decomposition_.parse_parameters(prm);
+      factor_limit_ = decomposition_.memory_limit;
       if (automatic && dealii::Utilities::MPI::job_supports_mpi() &&
           dealii::Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD) > 1)
         for (unsigned int b = 0; b < n_bodies; ++b)
@@ -168,7 +167,11 @@ namespace dualcontact
         // into one subdomain per process (the dofs of each subdomain are
         // numbered contiguously: the rows the process owns)
         std::shared_ptr<dealii::Triangulation<dim>> triangulation;
-        if (n_ranks > 1)
+        // a distributed mesh starts serial on every process
+        // (distribute_meshes())
+        if (n_ranks > 1 && decomposition_.mesh_distribution ==
+                             decomposition::DecompositionParameters::
+                               MeshDistribution::replicated)
           triangulation =
             std::make_shared<dealii::parallel::shared::Triangulation<dim>>(
               MPI_COMM_WORLD,
@@ -188,13 +191,43 @@ namespace dualcontact
         details.push_back(
           parameters.name + ": " + parameters.mesh.description() + ", " +
           std::to_string(triangulation->n_active_cells()) + " cells" +
-          (n_ranks > 1 ? ", METIS partition into " + std::to_string(n_ranks) +
-                           " subdomains" :
-                         ""));
+          (n_ranks > 1 && !has_distributed_meshes() ?
+             ", METIS partition into " + std::to_string(n_ranks) +
+               " subdomains" :
+             ""));
         triangulations_.push_back(triangulation);
       }
       for (const auto &pair : pair_parameters_)
         pair.check_mesh(triangulations_);
+      if (decomposition_.mesh_distribution ==
+          decomposition::DecompositionParameters::MeshDistribution::distributed)
+        distribute_meshes(details);
+    }
+
+
+    template <int dim>
+    void
+    Scene<dim>::distribute_meshes(std::vector<std::string> &details)
+    {
+      std::vector<std::string> names;
+      for (const auto &parameters : body_parameters_)
+        names.push_back(parameters.name);
+      // the serial meshes go to DistributedMesh, which frees them
+      std::vector<std::shared_ptr<dealii::Triangulation<dim>>> serial;
+      serial.swap(triangulations_);
+      distributed_mesh_ = std::make_unique<decomposition::DistributedMesh<dim>>(
+        std::move(serial), names, fe_degree_, decomposition_, MPI_COMM_WORLD);
+      std::ostringstream line;
+      line << "distributed meshes (parallel::fullydistributed): "
+           << distributed_mesh_->owners().size()
+           << " subdomains, active cells per process";
+      const std::vector<unsigned int> &cells =
+        distributed_mesh_->cells_per_process();
+      for (unsigned int p = 0; p < cells.size(); ++p)
+        line << (p == 0 ? " " : ", ") << cells[p];
+      details.push_back(line.str());
+      for (unsigned int b = 0; b < body_parameters_.size(); ++b)
+        triangulations_.push_back(distributed_mesh_->triangulation(b));
     }
 
 

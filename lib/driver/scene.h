@@ -5,6 +5,8 @@
 #include <deal.II/grid/tria.h>
 #include <deal.II/lac/vector.h>
 
+#include <decomposition/decomposition_parameters.h>
+#include <decomposition/distributed_mesh.h>
 #include <driver/body_parameters.h>
 #include <driver/contact_pair_parameters.h>
 #include <driver/obstacle_parameters.h>
@@ -96,6 +98,23 @@ namespace dualcontact
       void
       set_solver_monitor(
         const std::function<void(const std::string &)> &monitor);
+      /** Whether `Decomposition/Mesh distribution = distributed'. */
+      bool
+      has_distributed_meshes() const
+      {
+        return decomposition_.mesh_distribution ==
+               decomposition::DecompositionParameters::MeshDistribution::
+                 distributed;
+      }
+      /**
+       * The bodies' distributed meshes under `Decomposition/Mesh
+       * distribution = distributed' (after create_meshes()), else null.
+       */
+      const decomposition::DistributedMesh<dim> *
+      distributed_mesh() const
+      {
+        return distributed_mesh_.get();
+      }
       /** The mesh of body @p b (after create_meshes()), to flag cells. */
       dealii::Triangulation<dim> &
       triangulation(const unsigned int b)
@@ -176,6 +195,10 @@ namespace dualcontact
        */
       void
       check_size_estimate(const double memory_limit) const;
+      /** The serial meshes of create_meshes() cut into subdomains and
+       *  distributed (DistributedMesh); collective. */
+      void
+      distribute_meshes(std::vector<std::string> &details);
 
       unsigned int fe_degree_ = 1;
       /** Mapping degree of tractions on curved faces (ElasticBody). */
@@ -184,8 +207,11 @@ namespace dualcontact
       std::vector<ObstacleParameters<dim>>    obstacle_parameters_;
       std::vector<ContactPairParameters<dim>> pair_parameters_;
       std::vector<std::shared_ptr<dealii::Triangulation<dim>>> triangulations_;
-      std::vector<std::unique_ptr<fem::ElasticBody<dim>>>      bodies_;
-      std::vector<std::unique_ptr<fem::StiffnessSolver>>       solvers_;
+      /** `Decomposition/Mesh distribution' and the cut it needs. */
+      decomposition::DecompositionParameters               decomposition_;
+      std::unique_ptr<decomposition::DistributedMesh<dim>> distributed_mesh_;
+      std::vector<std::unique_ptr<fem::ElasticBody<dim>>>  bodies_;
+      std::vector<std::unique_ptr<fem::StiffnessSolver>>   solvers_;
       /**
        * Under MPI with `Solver = automatic': body @p b's cholmod copies on
        * this machine against `Decomposition/Memory limit'; beyond it the

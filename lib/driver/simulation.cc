@@ -242,6 +242,14 @@ namespace dualcontact
     {
       Scene<dim> &scene = *scene_;
       print_scene_line();
+      AssertThrow(!scene.has_distributed_meshes() ||
+                    refinement_->n_cycles() == 0,
+                  dealii::ExcMessage(
+                    "`subsection Contact refinement' refines the meshes "
+                    "between solves, which a distributed mesh (`Mesh "
+                    "distribution = distributed' in `subsection "
+                    "Decomposition') does not support yet: use `Mesh "
+                    "distribution = replicated' or no refinement cycles."));
       run_phase("Mesh", [&]() { scene.create_meshes(details_); });
       run_phase("Setup", [&]() { scene.setup(details_); });
 

@@ -1,4 +1,6 @@
+#include <deal.II/base/mpi.h>
 #include <deal.II/base/quadrature_lib.h>
+#include <deal.II/distributed/tria_base.h>
 #include <deal.II/dofs/dof_tools.h>
 #include <deal.II/fe/fe_q.h>
 #include <deal.II/fe/fe_values.h>
@@ -9,6 +11,7 @@
 
 #include <fem/elastic_body.h>
 #include <fem/stiffness_solver.h>
+#include <util/machine.h>
 
 #include <algorithm>
 #include <cmath>
@@ -87,13 +90,20 @@ namespace dualcontact
     void
     ElasticBody<dim>::setup()
     {
-      // Consistency of the scene with the mesh, before anything is built.
+      // Consistency of the scene with the mesh, before anything is built
+      // (on a distributed mesh every process decides on the largest id
+      // without a material, so that all of them throw alike).
+      int missing = -1;
       for (const auto &cell : triangulation_->active_cell_iterators())
-        AssertThrow(materials_.count(cell->material_id()) == 1,
-                    ExcMessage(name_ +
-                               ": the mesh has cells with material id " +
-                               std::to_string(cell->material_id()) +
-                               ", but no material is given for it."));
+        if (!cell->is_artificial() &&
+            materials_.count(cell->material_id()) == 0)
+          missing = std::max<int>(missing, cell->material_id());
+      if (is_distributed())
+        missing = Utilities::MPI::max(missing, communicator());
+      AssertThrow(missing < 0,
+                  ExcMessage(name_ + ": the mesh has cells with material id " +
+                             std::to_string(missing) +
+                             ", but no material is given for it."));
       const std::vector<types::boundary_id> ids =
         triangulation_->get_boundary_ids();
       const auto check_id =
@@ -142,6 +152,15 @@ namespace dualcontact
                                                  *condition.values,
                                                  constraints_,
                                                  condition.components);
+      if (is_distributed())
+      {
+        AssertThrow(hanging_node_constraints_.n_constraints() == 0,
+                    ExcMessage(name_ +
+                               ": a distributed mesh (`Mesh distribution = "
+                               "distributed') with hanging nodes is not "
+                               "supported yet."));
+        gather_dirichlet_lines();
+      }
       constraints_.close();
       for (const auto &line : constraints_.get_lines())
         AssertThrow(std::isfinite(line.inhomogeneity),
@@ -363,6 +382,10 @@ namespace dualcontact
     ElasticBody<dim>::assemble()
     {
       Assert(dof_handler_.n_dofs() > 0, ExcMessage(name_ + ": setup() first."));
+      AssertThrow(!is_distributed(),
+                  ExcMessage(name_ + ": the whole stiffness matrix of a body "
+                                     "on a distributed mesh is assembled "
+                                     "nowhere (TFETI assembles subdomains)."));
       DynamicSparsityPattern dsp(dof_handler_.n_dofs());
       // every cell, also on a parallel::shared::Triangulation (where
       // DoFTools::make_sparsity_pattern would visit the locally owned cells
@@ -486,6 +509,8 @@ namespace dualcontact
       double             max_norm2 = 0;
       for (const auto &cell : dof_handler_.active_cell_iterators())
       {
+        if (!is_counted_here(cell))
+          continue;
         cell_system(cell, scratch, cell_matrix, cell_rhs);
         cell->get_dof_indices(dof_indices);
         for (unsigned int i = 0; i < dofs_per_cell; ++i)
@@ -524,6 +549,21 @@ namespace dualcontact
       }
       summary.max_displacement    = std::sqrt(max_norm2);
       summary.traction_resultants = traction_resultants(scratch);
+      if (is_distributed())
+      {
+        // each process summed its own cells; the residual at a support
+        // dof takes every cell around it
+        const MPI_Comm comm = communicator();
+        summary.strain_energy =
+          Utilities::MPI::sum(summary.strain_energy, comm);
+        summary.external_work =
+          Utilities::MPI::sum(summary.external_work, comm);
+        summary.applied_force =
+          Utilities::MPI::sum(summary.applied_force, comm);
+        summary.max_displacement =
+          Utilities::MPI::max(summary.max_displacement, comm);
+        Utilities::MPI::sum(residual, comm, residual);
+      }
 
       // A dof on two supports is counted once, for the first condition that
       // names it (the one that won in setup()).
@@ -533,8 +573,11 @@ namespace dualcontact
       {
         Tensor<1, dim> &reaction =
           summary.reaction_forces[condition.boundary_id];
+        // on a distributed mesh: the faces of the owned and ghost cells,
+        // each support dof counted by its owner (the cells around a dof
+        // are owned or ghosts on its owner)
         for (const auto &cell : dof_handler_.active_cell_iterators())
-          if (cell->at_boundary())
+          if (!cell->is_artificial() && cell->at_boundary())
             for (const unsigned int f : cell->face_indices())
               if (cell->face(f)->at_boundary() &&
                   cell->face(f)->boundary_id() == condition.boundary_id)
@@ -546,10 +589,13 @@ namespace dualcontact
                     fe_.face_system_to_component_index(i).first;
                   if (condition.components[c] &&
                       constraints_.is_constrained(face_dofs[i]) &&
+                      is_owned_dof(face_dofs[i]) &&
                       counted.insert(face_dofs[i]).second)
                     reaction[c] += residual(face_dofs[i]);
                 }
               }
+        if (is_distributed())
+          reaction = Utilities::MPI::sum(reaction, communicator());
       }
       return summary;
     }
@@ -655,7 +701,7 @@ namespace dualcontact
         TractionResultant            &resultant = resultants[t];
         resultant.boundary_id                   = condition.boundary_id;
         for (const auto &cell : dof_handler_.active_cell_iterators())
-          if (cell->at_boundary())
+          if (is_counted_here(cell) && cell->at_boundary())
             for (const unsigned int f : cell->face_indices())
               if (cell->face(f)->at_boundary() &&
                   cell->face(f)->boundary_id() == condition.boundary_id)
@@ -669,6 +715,13 @@ namespace dualcontact
                 nominal.reinit(cell, f);
                 integrate(condition, nominal, resultant.nominal);
               }
+        if (is_distributed())
+        {
+          resultant.applied =
+            Utilities::MPI::sum(resultant.applied, communicator());
+          resultant.nominal =
+            Utilities::MPI::sum(resultant.nominal, communicator());
+        }
       }
       return resultants;
     }
@@ -679,6 +732,76 @@ namespace dualcontact
     ElasticBody<dim>::max_displacement(const Vector<double> &displacement) const
     {
       return summarize(displacement).max_displacement;
+    }
+
+
+    template <int dim>
+    bool
+    ElasticBody<dim>::is_distributed() const
+    {
+      return dynamic_cast<const parallel::DistributedTriangulationBase<dim> *>(
+               triangulation_.get()) != nullptr;
+    }
+
+
+    template <int dim>
+    MPI_Comm
+    ElasticBody<dim>::communicator() const
+    {
+      const auto *parallel =
+        dynamic_cast<const parallel::TriangulationBase<dim> *>(
+          triangulation_.get());
+      return parallel != nullptr ? parallel->get_communicator() : MPI_COMM_SELF;
+    }
+
+
+    template <int dim>
+    bool
+    ElasticBody<dim>::is_counted_here(
+      const typename DoFHandler<dim>::active_cell_iterator &cell) const
+    {
+      // a replicated mesh (also parallel::shared) sums every cell on every
+      // process; a distributed one its owned cells, summed over processes
+      return !is_distributed() || cell->is_locally_owned();
+    }
+
+
+    template <int dim>
+    bool
+    ElasticBody<dim>::is_owned_dof(const types::global_dof_index dof) const
+    {
+      return !is_distributed() ||
+             dof_handler_.locally_owned_dofs().is_element(dof);
+    }
+
+
+    template <int dim>
+    void
+    ElasticBody<dim>::gather_dirichlet_lines()
+    {
+      // the prescribed values of the owned dofs, concatenated over the
+      // processes: the multiplier rows of every subdomain and the
+      // condensed contact rows need those of dofs this process does not
+      // see (a surface's worth)
+      std::vector<double> local;
+      for (const auto &line : constraints_.get_lines())
+        if (line.entries.empty() &&
+            dof_handler_.locally_owned_dofs().is_element(line.index))
+        {
+          local.push_back(line.index);
+          local.push_back(line.inhomogeneity);
+        }
+      const std::vector<double> all =
+        util::concatenate_over_processes(local, communicator());
+      for (std::size_t i = 0; i < all.size(); i += 2)
+      {
+        const auto dof = static_cast<types::global_dof_index>(all[i]);
+        if (!constraints_.is_constrained(dof))
+        {
+          constraints_.add_line(dof);
+          constraints_.set_inhomogeneity(dof, all[i + 1]);
+        }
+      }
     }
 
 

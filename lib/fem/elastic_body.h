@@ -1,6 +1,7 @@
 #pragma once
 
 #include <deal.II/base/function.h>
+#include <deal.II/base/mpi.h>
 #include <deal.II/base/tensor.h>
 #include <deal.II/dofs/dof_handler.h>
 #include <deal.II/fe/fe_system.h>
@@ -249,7 +250,33 @@ namespace dualcontact
       unsigned int
       n_dofs() const;
 
+      /**
+       * Whether the mesh is distributed (a parallel::fullydistributed
+       * triangulation of TFETI's `Mesh distribution = distributed'): each
+       * process has its own cells and a layer of ghosts, summarize() sums
+       * the owned cells over the processes (collective), and the Dirichlet
+       * lines of constraints() are those of every dof (gathered).
+       */
+      bool
+      is_distributed() const;
+      /** The mesh's communicator (MPI_COMM_SELF for a serial mesh). */
+      MPI_Comm
+      communicator() const;
+
     private:
+      /** Whether this process adds @p cell to sums over the mesh: every
+       *  cell of a replicated mesh, the owned ones of a distributed one. */
+      bool
+      is_counted_here(
+        const typename dealii::DoFHandler<dim>::active_cell_iterator &cell)
+        const;
+      /** Whether this process counts @p dof in sums over dofs. */
+      bool
+      is_owned_dof(const dealii::types::global_dof_index dof) const;
+      /** Adds the Dirichlet lines of the dofs other processes own. */
+      void
+      gather_dirichlet_lines();
+
       /** FEValues and buffers reused over the cells of one loop. */
       struct CellScratch;
 

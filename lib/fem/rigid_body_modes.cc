@@ -12,6 +12,81 @@ namespace dualcontact
   {
     using namespace dealii;
 
+    namespace
+    {
+      /** MtM := diag(eigenvalues) of the symmetric @p MtM and V its
+       *  eigenvectors, by cyclic Jacobi rotations (n <= 6). */
+      void
+      diagonalize(FullMatrix<double> &MtM, FullMatrix<double> &V)
+      {
+        const unsigned int n_rigid = MtM.m();
+        V.reinit(n_rigid, n_rigid);
+        for (unsigned int k = 0; k < n_rigid; ++k)
+          V(k, k) = 1.;
+        for (unsigned int sweep = 0; sweep < 50; ++sweep)
+        {
+          double off = 0;
+          for (unsigned int p = 0; p < n_rigid; ++p)
+            for (unsigned int q = p + 1; q < n_rigid; ++q)
+              off += MtM(p, q) * MtM(p, q);
+          if (off < 1e-30 * (1. + MtM.frobenius_norm()))
+            break;
+          for (unsigned int p = 0; p < n_rigid; ++p)
+            for (unsigned int q = p + 1; q < n_rigid; ++q)
+              if (MtM(p, q) != 0.)
+              {
+                const double theta =
+                  0.5 * std::atan2(2 * MtM(p, q), MtM(q, q) - MtM(p, p));
+                const double c = std::cos(theta), s = std::sin(theta);
+                for (unsigned int k = 0; k < n_rigid; ++k)
+                {
+                  const double kp = MtM(k, p), kq = MtM(k, q);
+                  MtM(k, p) = c * kp - s * kq;
+                  MtM(k, q) = s * kp + c * kq;
+                }
+                for (unsigned int k = 0; k < n_rigid; ++k)
+                {
+                  const double pk = MtM(p, k), qk = MtM(q, k);
+                  MtM(p, k) = c * pk - s * qk;
+                  MtM(q, k) = s * pk + c * qk;
+                }
+                for (unsigned int k = 0; k < n_rigid; ++k)
+                {
+                  const double kp = V(k, p), kq = V(k, q);
+                  V(k, p) = c * kp - s * kq;
+                  V(k, q) = s * kp + c * kq;
+                }
+              }
+        }
+      }
+
+
+      /** Rigid motion @p k of a body with centroid @p centroid at @p x,
+       *  component @p c: translations first, then rotations. */
+      template <int dim>
+      double
+      rigid_motion(const unsigned int k,
+                   const Point<dim>  &centroid,
+                   const Point<dim>  &x,
+                   const unsigned int c)
+      {
+        if (k < dim)
+          return c == k ? 1. : 0.;
+        const Tensor<1, dim> r = x - centroid;
+        if (dim == 2)
+          return c == 0 ? -r[1] : r[0];
+        // 3D: rotation about axis a = k - 3: (e_a x r)_c
+        const unsigned int a = k - dim;
+        const unsigned int b = (a + 1) % 3, d = (a + 2) % 3;
+        if (c == b)
+          return -r[d];
+        if (c == d)
+          return r[b];
+        return 0.;
+      }
+    } // namespace
+
+
     template <int dim>
     RigidBodyModes<dim>::RigidBodyModes(const ElasticBody<dim> &body)
     {
@@ -85,25 +160,9 @@ namespace dualcontact
         }
       centroid /= n_nodes;
 
-      // Rigid motion k at x, component c.
-      const auto mode_value = [&](const unsigned int k,
-                                  const Point<dim>  &x,
-                                  const unsigned int c) -> double
-      {
-        if (k < dim)
-          return c == k ? 1. : 0.;
-        const Tensor<1, dim> r = x - centroid;
-        if (dim == 2)
-          return c == 0 ? -r[1] : r[0];
-        // 3D: rotation about axis a = k - 3: (e_a x r)_c
-        const unsigned int a = k - dim;
-        const unsigned int b = (a + 1) % 3, d = (a + 2) % 3;
-        if (c == b)
-          return -r[d];
-        if (c == d)
-          return r[b];
-        return 0.;
-      };
+      const auto mode_value =
+        [&](const unsigned int k, const Point<dim> &x, const unsigned int c)
+      { return rigid_motion(k, centroid, x, c); };
 
       // Raw motions, each scaled to unit norm over all dofs.
       const unsigned int  n_rigid = dim * (dim + 1) / 2;
@@ -129,45 +188,8 @@ namespace dualcontact
               MtM(k, l) += mode_value(k, points[i], component[i]) * scale[k] *
                            mode_value(l, points[i], component[i]) * scale[l];
         }
-      // Symmetric eigen-decomposition by cyclic Jacobi rotations (n <= 6).
-      FullMatrix<double> V(n_rigid, n_rigid);
-      for (unsigned int k = 0; k < n_rigid; ++k)
-        V(k, k) = 1.;
-      for (unsigned int sweep = 0; sweep < 50; ++sweep)
-      {
-        double off = 0;
-        for (unsigned int p = 0; p < n_rigid; ++p)
-          for (unsigned int q = p + 1; q < n_rigid; ++q)
-            off += MtM(p, q) * MtM(p, q);
-        if (off < 1e-30 * (1. + MtM.frobenius_norm()))
-          break;
-        for (unsigned int p = 0; p < n_rigid; ++p)
-          for (unsigned int q = p + 1; q < n_rigid; ++q)
-            if (MtM(p, q) != 0.)
-            {
-              const double theta =
-                0.5 * std::atan2(2 * MtM(p, q), MtM(q, q) - MtM(p, p));
-              const double c = std::cos(theta), s = std::sin(theta);
-              for (unsigned int k = 0; k < n_rigid; ++k)
-              {
-                const double kp = MtM(k, p), kq = MtM(k, q);
-                MtM(k, p) = c * kp - s * kq;
-                MtM(k, q) = s * kp + c * kq;
-              }
-              for (unsigned int k = 0; k < n_rigid; ++k)
-              {
-                const double pk = MtM(p, k), qk = MtM(q, k);
-                MtM(p, k) = c * pk - s * qk;
-                MtM(q, k) = s * pk + c * qk;
-              }
-              for (unsigned int k = 0; k < n_rigid; ++k)
-              {
-                const double kp = V(k, p), kq = V(k, q);
-                V(k, p) = c * kp - s * kq;
-                V(k, q) = s * kp + c * kq;
-              }
-            }
-      }
+      FullMatrix<double> V;
+      diagonalize(MtM, V);
       // A direction is held when M'M "sees" it at about the level of a
       // single supported node; far below that it is a kernel vector.
       const double threshold = 1e-8 * std::max(n_dirichlet, 1.) / n_dofs;
@@ -272,6 +294,54 @@ namespace dualcontact
       AssertThrow(fixing_dofs_.size() == n_kernel,
                   ExcMessage(name + ": could not choose fixing nodes for the "
                                     "generalized inverse (degenerate mesh?)."));
+    }
+
+
+    template <int dim>
+    unsigned int
+    RigidBodyModes<dim>::n_free_motions(
+      const std::vector<Point<dim>>   &points,
+      const std::vector<unsigned int> &components)
+    {
+      const unsigned int n_rigid = dim * (dim + 1) / 2;
+      if (points.empty())
+        return n_rigid;
+      Point<dim>   centroid;
+      unsigned int n_nodes = 0;
+      for (unsigned int i = 0; i < points.size(); ++i)
+        if (components[i] == 0)
+        {
+          centroid += points[i];
+          ++n_nodes;
+        }
+      // a support holding only other components has no component-0 dof
+      if (n_nodes == 0)
+        for (const Point<dim> &x : points)
+          centroid += x / static_cast<double>(points.size());
+      else
+        centroid /= n_nodes;
+      std::vector<double> scale(n_rigid, 0.);
+      for (unsigned int k = 0; k < n_rigid; ++k)
+      {
+        for (unsigned int i = 0; i < points.size(); ++i)
+          scale[k] +=
+            std::pow(rigid_motion(k, centroid, points[i], components[i]), 2);
+        scale[k] = scale[k] > 0 ? 1. / std::sqrt(scale[k]) : 0.;
+      }
+      FullMatrix<double> MtM(n_rigid, n_rigid), V;
+      for (unsigned int i = 0; i < points.size(); ++i)
+        for (unsigned int k = 0; k < n_rigid; ++k)
+          for (unsigned int l = 0; l < n_rigid; ++l)
+            MtM(k, l) +=
+              rigid_motion(k, centroid, points[i], components[i]) * scale[k] *
+              rigid_motion(l, centroid, points[i], components[i]) * scale[l];
+      diagonalize(MtM, V);
+      // every point is a supported one: the threshold of the constructors
+      // with n_dirichlet = n_dofs
+      unsigned int n_free = 0;
+      for (unsigned int j = 0; j < n_rigid; ++j)
+        n_free += MtM(j, j) < 1e-8 ? 1 : 0;
+      return n_free;
     }
 
 

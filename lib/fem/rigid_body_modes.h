@@ -51,6 +51,18 @@ namespace dualcontact
                      const std::vector<dealii::types::global_dof_index> &dofs,
                      const std::string                                  &name);
 
+      /**
+       * The number of rigid-body motions that Dirichlet conditions at the
+       * dofs with support points @p points and vector components
+       * @p components do not hold (the kernel of M'M as in the
+       * constructors, M the motions at these dofs): a body on a
+       * distributed mesh, whose supported dofs are gathered from the
+       * processes, floats when this is positive.
+       */
+      static unsigned int
+      n_free_motions(const std::vector<dealii::Point<dim>> &points,
+                     const std::vector<unsigned int>       &components);
+
       /** Number of free rigid-body motions, at most dim (dim + 1) / 2. */
       unsigned int
       n_modes() const;

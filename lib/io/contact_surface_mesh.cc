@@ -80,7 +80,7 @@ namespace dualcontact
       for (const auto &cell : slave.dof_handler().active_cell_iterators())
         for (const unsigned int f : cell->face_indices())
         {
-          if (!cell->face(f)->at_boundary() ||
+          if (cell->is_artificial() || !cell->face(f)->at_boundary() ||
               cell->face(f)->boundary_id() != boundary_id)
             continue;
           cell->get_dof_indices(cell_dofs);

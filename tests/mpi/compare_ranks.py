@@ -4,7 +4,7 @@ and asserts that the answers agree.
 
 Usage: compare_ranks.py DUALCONTACT MPIRUN INPUT.prm WORKDIR [TOLERANCE]
                         [--ranks=1,2,4] [--method-N=none|tfeti ...]
-                        [--same-folder]
+                        [--same-folder] [--reference-set=KEY=VALUE ...]
 
 The runs (1 and 2 processes unless --ranks says otherwise; the first
 count must be 1) must converge (exit 0, contact.converged = 1).  Each run
@@ -12,13 +12,14 @@ with N > 1 processes is compared with the 1-process run.  Asserted, with
 relative tolerance TOLERANCE (default 1e-8) for the reals:
   - per contact pair: normal force, tangential force, max pressure;
     the active sets: n_nodes, n_separated, n_stick, n_slip exactly;
-  - per body: strain energy, external work, max displacement
-    (results.txt) and the Euclidean norm of the displacement vector
+  - per body: strain energy, external work, max displacement, the
+    reaction force of every support (results.txt) and the Euclidean norm of the displacement vector
     (statistics.json, bodies[].results.displacement_l2_norm);
   - the total normal force of the first pair equals the applied load
     (body_1.applied_force, its largest component: the scenes with one
     body and one pair press onto an axis-aligned plane) to TOLERANCE in
-    both runs, when the scene has one body and one pair;
+    both runs, when the scene has one body without supports (no
+    reaction force) and one pair;
   - the dual QP ran on the vectors it should (statistics.json,
     contact.qp_vectors): dealii::Vector<double> on 1 process, and on
     N > 1 with the undecomposed dual and a serial stiffness solver
@@ -44,6 +45,10 @@ relative tolerance TOLERANCE (default 1e-8) for the reals:
     (which solution.pvd lists), together holding all n_nodes contact nodes
     and as many faces as the 1-process run's contact_N.vtu, with the same
     integral of pressure_Pa (ParaView's Integrate Variables) to TOLERANCE.
+With --reference-set=KEY=VALUE (repeatable), the reference is one more
+1-process run with `--set KEY=VALUE' (e.g. `Decomposition/Mesh
+distribution=replicated' against an input with a distributed mesh), and
+every run of --ranks, the 1-process one included, is compared with it.
 With --same-folder, the input is then run again into one folder with the
 process counts in decreasing order (4, 2, 1): after each run the folder
 holds exactly the files of that run (the list `.dualcontact_files'), no
@@ -76,9 +81,10 @@ def read_results(path):
     return values
 
 
-def run(app, mpirun, prm, workdir, ranks, folder=None):
+def run(app, mpirun, prm, workdir, ranks, folder=None, settings=(),
+        name=None):
     if folder is None:
-        folder = os.path.join(workdir, f"np{ranks}")
+        folder = os.path.join(workdir, name or f"np{ranks}")
         shutil.rmtree(folder, ignore_errors=True)
         os.makedirs(folder)
     env = dict(os.environ)
@@ -88,6 +94,8 @@ def run(app, mpirun, prm, workdir, ranks, folder=None):
                 "OMP_NUM_THREADS": "1", "OPENBLAS_NUM_THREADS": "1"})
     command = [mpirun, "--allow-run-as-root", "--oversubscribe", "-np",
                str(ranks), app, os.path.abspath(prm)]
+    for setting in settings:
+        command += ["--set", setting]
     start = time.time()
     process = subprocess.run(command, cwd=folder, env=env,
                              capture_output=True, text=True)
@@ -125,7 +133,14 @@ def main():
         sys.exit("compare_ranks.py: --ranks must start with 1 and name more")
     app, mpirun, prm, workdir = arguments[0:4]
     tolerance = float(arguments[4]) if len(arguments) > 4 else 1e-8
+    reference_settings = [a[len("--reference-set="):] for a in sys.argv[1:]
+                          if a.startswith("--reference-set=")]
     runs = [run(app, mpirun, prm, workdir, ranks) for ranks in counts]
+    if reference_settings:
+        # every run against the reference, the 1-process one too
+        runs.insert(0, run(app, mpirun, prm, workdir, 1,
+                           settings=reference_settings, name="reference"))
+        counts = [1] + counts
     failures = 0
 
     def check(ok, text):
@@ -136,18 +151,21 @@ def main():
     out1, r1, s1 = runs[0]
     check(s1["contact"]["qp_vectors"] == "dealii::Vector<double>",
           f"1 process: the QP ran on {s1['contact']['qp_vectors']}")
-    for ranks, (_, _, s) in zip(counts, runs):
+    for ranks, (_, _, s) in zip(counts[1 if reference_settings else 0:],
+                                runs[1 if reference_settings else 0:]):
         if ranks in methods:
             method = s["contact"]["decomposition"]["method"]
             check(method == methods[ranks],
                   f"{ranks} process(es): the dual was {method}, expected "
                   f"{methods[ranks]}")
     for ranks, (out2, r2, s2) in zip(counts[1:], runs[1:]):
-        print(f"--- 1 process against {ranks} processes")
+        print(f"--- 1 process{' (reference)' if reference_settings else ''}"
+              f" against {ranks} processes")
         compare(check, tolerance, ranks, (out1, r1, s1), (out2, r2, s2))
 
     if "--same-folder" in sys.argv[1:]:
-        same_folder(check, app, mpirun, prm, workdir, counts)
+        same_folder(check, app, mpirun, prm, workdir,
+                    counts[1 if reference_settings else 0:])
 
     print("all checks passed" if failures == 0 else "FAILED")
     sys.exit(0 if failures == 0 else 1)
@@ -192,7 +210,10 @@ def compare(check, tolerance, ranks, first, second):
     decomposition = c2.get("decomposition", {"method": "none"})
     serial = {b["stiffness_solver"]["name"] for b in s2.get("bodies", [])
               if "stiffness_solver" in b} <= {"cholmod", "umfpack"}
-    if decomposition["method"] == "none" and serial:
+    if ranks == 1:
+        # a 1-process run against the reference: the answers only
+        pass
+    elif decomposition["method"] == "none" and serial:
         # a serial solver: every process holds the whole factor, and the
         # QP runs replicated, as on one process
         check(c2.get("qp_vectors") == "dealii::Vector<double>"
@@ -228,7 +249,8 @@ def compare(check, tolerance, ranks, first, second):
     exact = re.compile(r"pair_\d+\.n_(nodes|separated|stick|slip|contact)$")
     real = re.compile(r"(pair_\d+\.(normal_force|tangential_force|"
                       r"max_pressure)|body_\d+\.(strain_energy|"
-                      r"external_work|max_displacement))$")
+                      r"external_work|max_displacement|"
+                      r"reaction_force\.boundary_\d+))$")
     for key in sorted(r1):
         if exact.match(key):
             check(r1[key] == r2[key], f"{key}: {r1[key][0]:g} and "
@@ -246,8 +268,9 @@ def compare(check, tolerance, ranks, first, second):
         check(diff <= tolerance, f"{b1['name']}: |u| {n1:.12e}, relative "
               f"difference {diff:.2e}")
 
+    supported = any(k.startswith("body_1.reaction_force") for k in r1)
     if "pair_1.normal_force" in r1 and "pair_2.normal_force" not in r1 \
-            and "body_2.n_dofs" not in r1:
+            and "body_2.n_dofs" not in r1 and not supported:
         for n, r in ((1, r1), (ranks, r2)):
             load = max(abs(v) for v in r["body_1.applied_force"])
             force = r["pair_1.normal_force"][0]
@@ -256,6 +279,8 @@ def compare(check, tolerance, ranks, first, second):
                   f"{force:.12e} = applied load {load:.12e}, relative "
                   f"difference {diff:.2e}")
 
+    if ranks == 1:
+        return
     n_bodies = int(r2["n_bodies"][0])
     with open(os.path.join(out2, "solution.pvtu")) as f:
         pvtu = f.read()
