@@ -126,8 +126,14 @@ namespace dualcontact
      * way the result does not depend on the number of processes beyond
      * round-off.  The recovered field
      * is assembled from the owned subdomains and summed over the processes:
-     * every process gets the whole field of every body (the mesh is
-     * replicated, parallel::shared, and each process writes its cells).
+     * every process gets the whole field of every body, and each process
+     * writes its cells.
+     *
+     * <b>Meshes.</b> Replicated (parallel::shared: every process holds
+     * every cell and takes its subdomains' cells), or distributed
+     * (DistributedMesh: each process holds its subdomains' cells and a
+     * layer of ghosts; the cut and the owners are DistributedMesh's, the
+     * dof lists of the other processes' subdomains are gathered).
      *
      * Hanging nodes (local and contact refinement) are multiplier rows
      * u_h - sum_j w_j u_j = 0, counted with the gluing rows.

@@ -436,34 +436,32 @@ namespace dualcontact
       const auto &iterates =
         contact_ != nullptr ? contact_->coulomb_iterates() : no_iterates;
 
-      // The contact surfaces: one file per pair; under MPI one piece per
-      // pair and process (the faces of the cells the process owns), with
-      // contact_N.pvtu as the record of the pair's pieces.
+      // A contact surface: one file; under MPI one piece per process (the
+      // slave faces of the cells it owns: on a distributed mesh no process
+      // has them all) and STEM.pvtu as the record of the pieces.  Returns
+      // the file to list.
       const std::vector<io::ContactSurfaceMesh<dim>> no_meshes;
       const auto                                    &meshes =
         contact_ != nullptr ? contact_->surface_meshes() : no_meshes;
-      std::vector<std::string> contact_files;
-      for (unsigned int p = 0; p < surfaces.size(); ++p)
+      const auto write_surface =
+        [&](const std::string                                      &stem,
+            const unsigned int                                      p,
+            const typename ContactStage<dim>::Surfaces::value_type &surface)
       {
-        const std::string stem = "contact_" + std::to_string(p + 1);
         if (n_ranks == 1)
         {
           folder.write(stem + ".vtu",
                        [&](std::ostream &out) {
                          io::write_contact_surface<dim>(out,
                                                         meshes[p],
-                                                        surfaces[p]);
+                                                        surface);
                        });
-          contact_files.push_back(stem + ".vtu");
-          continue;
+          return stem + ".vtu";
         }
-        folder.write(stem + "_rank_" + std::to_string(rank) + ".vtu",
-                     [&](std::ostream &out) {
-                       io::write_contact_surface<dim>(out,
-                                                      meshes[p],
-                                                      surfaces[p],
-                                                      rank);
-                     });
+        folder.write(
+          stem + "_rank_" + std::to_string(rank) + ".vtu",
+          [&](std::ostream &out)
+          { io::write_contact_surface<dim>(out, meshes[p], surface, rank); });
         std::vector<std::string> pieces;
         for (unsigned int r = 0; r < n_ranks; ++r)
           pieces.push_back(stem + "_rank_" + std::to_string(r) + ".vtu");
@@ -475,28 +473,27 @@ namespace dualcontact
           for (unsigned int r = 1; r < n_ranks; ++r)
             folder.list_file_of_other_process(pieces[r]);
         }
-        contact_files.push_back(stem + ".pvtu");
-      }
-      // Coulomb iterates (process 0, whole surfaces)
-      if (rank == 0 && !iterates.empty())
+        return stem + ".pvtu";
+      };
+      std::vector<std::string> contact_files;
+      for (unsigned int p = 0; p < surfaces.size(); ++p)
+        contact_files.push_back(
+          write_surface("contact_" + std::to_string(p + 1), p, surfaces[p]));
+      // Coulomb iterates, likewise
+      if (!iterates.empty())
       {
         std::vector<std::pair<double, std::string>> series;
         for (unsigned int k = 0; k < iterates.size(); ++k)
           for (unsigned int p = 0; p < iterates[k].size(); ++p)
-          {
-            const std::string name = "contact_" + std::to_string(p + 1) +
-                                     "_iterate_" + std::to_string(k + 1) +
-                                     ".vtu";
-            folder.write(name,
-                         [&](std::ostream &out) {
-                           io::write_contact_surface<dim>(out,
-                                                          meshes[p],
-                                                          iterates[k][p]);
-                         });
-            series.emplace_back(k + 1, name);
-          }
-        folder.write("coulomb_iterates.pvd",
-                     [&](std::ostream &out) { io::write_pvd(out, series); });
+            series.emplace_back(
+              k + 1,
+              write_surface("contact_" + std::to_string(p + 1) + "_iterate_" +
+                              std::to_string(k + 1),
+                            p,
+                            iterates[k][p]));
+        if (rank == 0)
+          folder.write("coulomb_iterates.pvd",
+                       [&](std::ostream &out) { io::write_pvd(out, series); });
       }
       if (write_vtu)
         io::write_solution<dim>(folder,

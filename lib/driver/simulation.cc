@@ -96,6 +96,14 @@ namespace dualcontact
       scene_        = std::make_unique<Scene<dim>>(prm, parameter_file);
       refinement_   = std::make_unique<ContactRefinement<dim>>(
         prm, scene_->pair_parameters().size());
+      AssertThrow(!scene_->has_distributed_meshes() ||
+                    refinement_->n_cycles() == 0,
+                  dealii::ExcMessage(
+                    "`subsection Contact refinement' refines the meshes "
+                    "between solves, which a distributed mesh (`Mesh "
+                    "distribution = distributed' in `subsection "
+                    "Decomposition') does not support yet: use `Mesh "
+                    "distribution = replicated' or no refinement cycles."));
       // scenes with contact go through a dual; so do scenes without
       // contact that ask for TFETI (then the dual has only gluing and
       // Dirichlet multipliers)
@@ -242,14 +250,6 @@ namespace dualcontact
     {
       Scene<dim> &scene = *scene_;
       print_scene_line();
-      AssertThrow(!scene.has_distributed_meshes() ||
-                    refinement_->n_cycles() == 0,
-                  dealii::ExcMessage(
-                    "`subsection Contact refinement' refines the meshes "
-                    "between solves, which a distributed mesh (`Mesh "
-                    "distribution = distributed' in `subsection "
-                    "Decomposition') does not support yet: use `Mesh "
-                    "distribution = replicated' or no refinement cycles."));
       run_phase("Mesh", [&]() { scene.create_meshes(details_); });
       run_phase("Setup", [&]() { scene.setup(details_); });
 
