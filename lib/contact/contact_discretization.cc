@@ -351,6 +351,105 @@ namespace dualcontact
       }
 
 
+      /** Where a slave node lies on the master body. */
+      template <int dim>
+      struct Placement
+      {
+        bool           found = false;
+        Point<dim>     master_point;
+        Tensor<1, dim> normal;
+        MasterEntries  entries;
+      };
+
+
+      /**
+       * place_on_master_body() for every node of @p nodes (@p positions) on
+       * a distributed master body: every process finds the closest of its
+       * own master faces, the closest over the processes wins (MPI_MINLOC;
+       * equal distances: the lowest process), and the winner places the
+       * node and sends the placement to all (one gather of the placements,
+       * not of the faces).  Collective.
+       */
+      template <int dim>
+      std::vector<Placement<dim>>
+      place_on_distributed_master(const ContactPair<dim>        &pair,
+                                  const fem::ElasticBody<dim>   &master,
+                                  const MasterSurface<dim>      &surface,
+                                  const std::vector<Point<dim>> &positions)
+      {
+        const MPI_Comm     comm = master.communicator();
+        const unsigned int rank = Utilities::MPI::this_mpi_process(comm);
+        struct Closest
+        {
+          double distance_square;
+          int    rank;
+        };
+        std::vector<Closest> closest(positions.size());
+        for (unsigned int i = 0; i < positions.size(); ++i)
+          closest[i] = {surface.n_faces() > 0 ?
+                          surface.closest_face(positions[i]).distance_square :
+                          std::numeric_limits<double>::max(),
+                        static_cast<int>(rank)};
+        const int ierr = MPI_Allreduce(MPI_IN_PLACE,
+                                       closest.data(),
+                                       closest.size(),
+                                       MPI_DOUBLE_INT,
+                                       MPI_MINLOC,
+                                       comm);
+        AssertThrowMPI(ierr);
+
+        // the won nodes: (node, found, master point, normal, entries)
+        std::vector<double> local;
+        for (unsigned int i = 0; i < positions.size(); ++i)
+          if (closest[i].rank == static_cast<int>(rank) &&
+              surface.n_faces() > 0)
+          {
+            ContactNode<dim> node;
+            node.position = positions[i];
+            MasterEntries entries;
+            const bool    found =
+              place_on_master_body(pair, master, surface, node, entries);
+            local.push_back(i);
+            local.push_back(found ? 1 : 0);
+            for (unsigned int d = 0; d < dim; ++d)
+              local.push_back(node.master_point[d]);
+            for (unsigned int d = 0; d < dim; ++d)
+              local.push_back(node.normal[d]);
+            local.push_back(entries.entries.size());
+            for (unsigned int e = 0; e < entries.entries.size(); ++e)
+            {
+              local.push_back(entries.entries[e].dof);
+              local.push_back(entries.entries[e].value);
+              local.push_back(entries.components[e]);
+            }
+          }
+        const std::vector<double> all =
+          util::concatenate_over_processes(local, comm);
+        std::vector<Placement<dim>> placements(positions.size());
+        for (std::size_t k = 0; k < all.size();)
+        {
+          Placement<dim> &placement =
+            placements[static_cast<unsigned int>(all[k++])];
+          placement.found = all[k++] > 0;
+          for (unsigned int d = 0; d < dim; ++d)
+            placement.master_point[d] = all[k++];
+          for (unsigned int d = 0; d < dim; ++d)
+            placement.normal[d] = all[k++];
+          const std::size_t n_entries = all[k++];
+          for (std::size_t e = 0; e < n_entries; ++e, k += 3)
+          {
+            placement.entries.entries.push_back(
+              {pair.master_body,
+               static_cast<types::global_dof_index>(all[k]),
+               all[k + 1]});
+            placement.entries.components.push_back(
+              static_cast<unsigned int>(all[k + 2]));
+          }
+        }
+        return placements;
+      }
+
+
       /** The row of B for the relative displacement of @p node along
        * @p direction: slave minus master. */
       template <int dim>
@@ -440,13 +539,6 @@ namespace dualcontact
         std::vector<Point<dim>> support_points(slave.n_dofs());
         if (slave.is_distributed())
         {
-          AssertThrow(pair.obstacle,
-                      ExcMessage("Contact pair `" + pair.name +
-                                 "': contact between two bodies on a "
-                                 "distributed mesh (`Mesh distribution = "
-                                 "distributed' in `subsection "
-                                 "Decomposition') is not supported yet; "
-                                 "rigid obstacles are."));
           for (const auto &[key, x] : gather_slave_side(pair, slave, side))
             support_points[key] = x;
         }
@@ -470,9 +562,24 @@ namespace dualcontact
         summary.min_gap = std::numeric_limits<double>::max();
         summary.max_gap = -std::numeric_limits<double>::max();
         std::map<types::global_dof_index, unsigned int> node_of_key;
+        // a distributed master body: every node placed at once, over the
+        // processes' faces
+        std::vector<Placement<dim>> placements;
+        if (!pair.obstacle && bodies[pair.master_body]->is_distributed())
+        {
+          std::vector<Point<dim>> positions;
+          for (const auto &entry : side.nodes)
+            positions.push_back(support_points[entry.first]);
+          placements = place_on_distributed_master(pair,
+                                                   *bodies[pair.master_body],
+                                                   *master_surface,
+                                                   positions);
+        }
+        unsigned int index = 0;
         for (const auto &[key, a] : side.nodes)
         {
-          ContactNode<dim> node;
+          const unsigned int i = index++;
+          ContactNode<dim>   node;
           node.pair     = p;
           node.body     = pair.slave_body;
           node.dofs     = a.dofs;
@@ -487,6 +594,14 @@ namespace dualcontact
             if ((node.position - node.master_point).norm() >
                 pair.search_distance)
               continue;
+          }
+          else if (!placements.empty())
+          {
+            if (!placements[i].found)
+              continue;
+            node.master_point = placements[i].master_point;
+            node.normal       = placements[i].normal;
+            master            = placements[i].entries;
           }
           else if (!place_on_master_body(pair,
                                          *bodies[pair.master_body],

@@ -1,6 +1,7 @@
 #include <contact/master_surface.h>
 
 #include <deal.II/base/geometry_info.h>
+#include <deal.II/base/mpi.h>
 
 #include <algorithm>
 #include <cmath>
@@ -38,9 +39,12 @@ namespace dualcontact
                                       const types::boundary_id     boundary_id,
                                       const std::string           &pair_name)
     {
+      // on a distributed mesh the faces of the owned cells: the search
+      // over the processes' surfaces is ContactDiscretization's
       for (const auto &cell : master.dof_handler().active_cell_iterators())
         for (const unsigned int f : cell->face_indices())
-          if (cell->face(f)->at_boundary() &&
+          if ((!master.is_distributed() || cell->is_locally_owned()) &&
+              cell->face(f)->at_boundary() &&
               cell->face(f)->boundary_id() == boundary_id)
           {
             Face face{cell, f, {}, cell->center()};
@@ -48,7 +52,12 @@ namespace dualcontact
               face.vertices.push_back(cell->face(f)->vertex(v));
             faces_.push_back(face);
           }
-      AssertThrow(!faces_.empty(),
+      const unsigned long n_faces =
+        master.is_distributed() ?
+          Utilities::MPI::sum<unsigned long>(faces_.size(),
+                                             master.communicator()) :
+          faces_.size();
+      AssertThrow(n_faces > 0,
                   ExcMessage("Contact pair `" + pair_name +
                              "': the master body `" + master.name() +
                              "' has no boundary with id " +
@@ -66,7 +75,8 @@ namespace dualcontact
                        GeometryInfo<dim>::vertices_per_cell - 1)));
       }
       margin_square_ = std::pow(1e-10 * largest_diagonal, 2);
-      tree_          = pack_rtree(leaves);
+      if (!leaves.empty())
+        tree_ = pack_rtree(leaves);
     }
 
 

@@ -60,8 +60,10 @@ namespace dualcontact
       };
 
       /**
-       * The faces of @p master with boundary id @p boundary_id.  Throws,
-       * naming @p pair_name, if there are none.
+       * The faces of @p master with boundary id @p boundary_id (on a
+       * distributed mesh those of the owned cells: a process may have
+       * none).  Throws, naming @p pair_name, if there are none (on a
+       * distributed mesh: on no process; collective there).
        */
       MasterSurface(const fem::ElasticBody<dim>     &master,
                     const dealii::types::boundary_id boundary_id,

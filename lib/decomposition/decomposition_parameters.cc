@@ -81,10 +81,10 @@ namespace dualcontact
         "and one layer of ghost cells (a parallel::fullydistributed "
         "triangulation built from the serial description): no process "
         "keeps the whole mesh, and the contact search gathers the slave "
-        "surfaces only. Needs `Method = tfeti' and at least one subdomain "
-        "per process; not yet with hanging nodes (`Local refinements', "
-        "`subsection Contact refinement') or contact between two bodies "
-        "(rigid obstacles only).");
+        "surfaces only (a slave node is placed on the master faces of "
+        "whichever process has the closest). Needs `Method = tfeti' and at "
+        "least one subdomain per process; not yet with hanging nodes "
+        "(`Local refinements', `subsection Contact refinement').");
       prm.declare_entry("Cells per subdomain",
                         "1000",
                         Patterns::Integer(1),
