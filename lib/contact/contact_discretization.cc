@@ -543,12 +543,12 @@ namespace dualcontact
             support_points[key] = x;
         }
         else
-        {
-          move_hanging_nodes_to_parents(slave, side);
           DoFTools::map_dofs_to_support_points(slave.mapping(),
                                                slave.dof_handler(),
                                                support_points);
-        }
+        // on the gathered side of a distributed mesh too (the hanging
+        // lines are every process')
+        move_hanging_nodes_to_parents(slave, side);
         const std::unique_ptr<MasterSurface<dim>> master_surface =
           pair.obstacle ?
             nullptr :

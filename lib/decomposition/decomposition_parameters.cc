@@ -83,8 +83,8 @@ namespace dualcontact
         "keeps the whole mesh, and the contact search gathers the slave "
         "surfaces only (a slave node is placed on the master faces of "
         "whichever process has the closest). Needs `Method = tfeti' and at "
-        "least one subdomain per process; not yet with hanging nodes "
-        "(`Local refinements', `subsection Contact refinement').");
+        "least one subdomain per process; not yet with `subsection Contact "
+        "refinement' (it refines between solves).");
       prm.declare_entry("Cells per subdomain",
                         "1000",
                         Patterns::Integer(1),

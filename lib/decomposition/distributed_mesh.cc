@@ -94,13 +94,6 @@ namespace dualcontact
       std::vector<unsigned long>             sizes;
       for (unsigned int b = 0; b < n_bodies; ++b)
       {
-        AssertThrow(!serial[b]->has_hanging_nodes(),
-                    ExcMessage(
-                      names[b] +
-                      ": `Mesh distribution = distributed' in `subsection "
-                      "Decomposition' does not support hanging nodes yet "
-                      "(`Local refinements' of the mesh): use `Mesh "
-                      "distribution = replicated'."));
         const unsigned int n_parts =
           parameters.n_subdomains(b, serial[b]->n_active_cells());
         parts[b] = partition_cells(*serial[b],

@@ -38,9 +38,8 @@ namespace dualcontact
        * @p names; given by value: they are freed here) for finite elements
        * of degree @p fe_degree (the dofs of a subdomain weigh its owner
        * choice).  Collective over @p communicator.  Throws, naming the
-       * parameter, when a body has fewer cells than subdomains, has hanging
-       * nodes (not yet supported on a distributed mesh) or a process would
-       * own no cell of any body.
+       * parameter, when a body has fewer cells than subdomains or a process
+       * would own no cell of any body.
        */
       DistributedMesh(
         std::vector<std::shared_ptr<dealii::Triangulation<dim>>> serial,

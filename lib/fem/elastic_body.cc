@@ -140,6 +140,11 @@ namespace dualcontact
 
       constraints_.clear();
       DoFTools::make_hanging_node_constraints(dof_handler_, constraints_);
+      // on a distributed mesh every process needs the lines of all dofs:
+      // TFETI's multiplier rows and the condensed contact rows are the
+      // same everywhere
+      if (is_distributed())
+        gather_constraint_lines(true);
       // the hanging nodes alone, before the Dirichlet conditions join them
       hanging_node_constraints_.copy_from(constraints_);
       hanging_node_constraints_.close();
@@ -153,14 +158,7 @@ namespace dualcontact
                                                  constraints_,
                                                  condition.components);
       if (is_distributed())
-      {
-        AssertThrow(hanging_node_constraints_.n_constraints() == 0,
-                    ExcMessage(name_ +
-                               ": a distributed mesh (`Mesh distribution = "
-                               "distributed') with hanging nodes is not "
-                               "supported yet."));
-        gather_dirichlet_lines();
-      }
+        gather_constraint_lines(false);
       constraints_.close();
       for (const auto &line : constraints_.get_lines())
         AssertThrow(std::isfinite(line.inhomogeneity),
@@ -777,30 +775,44 @@ namespace dualcontact
 
     template <int dim>
     void
-    ElasticBody<dim>::gather_dirichlet_lines()
+    ElasticBody<dim>::gather_constraint_lines(const bool hanging)
     {
-      // the prescribed values of the owned dofs, concatenated over the
-      // processes: the multiplier rows of every subdomain and the
-      // condensed contact rows need those of dofs this process does not
-      // see (a surface's worth)
+      // the (not yet closed) lines of the owned dofs, concatenated over the
+      // processes as (dof, inhomogeneity, n, (column, weight) x n): the
+      // hanging ones (with entries) or the prescribed ones (without); a
+      // surface's worth, and the same on every process once closed
       std::vector<double> local;
       for (const auto &line : constraints_.get_lines())
-        if (line.entries.empty() &&
+        if (line.entries.empty() != hanging &&
             dof_handler_.locally_owned_dofs().is_element(line.index))
         {
           local.push_back(line.index);
           local.push_back(line.inhomogeneity);
+          local.push_back(line.entries.size());
+          for (const auto &[column, weight] : line.entries)
+          {
+            local.push_back(column);
+            local.push_back(weight);
+          }
         }
       const std::vector<double> all =
         util::concatenate_over_processes(local, communicator());
-      for (std::size_t i = 0; i < all.size(); i += 2)
+      for (std::size_t i = 0; i < all.size();)
       {
-        const auto dof = static_cast<types::global_dof_index>(all[i]);
-        if (!constraints_.is_constrained(dof))
-        {
+        const auto        dof = static_cast<types::global_dof_index>(all[i]);
+        const double      inhomogeneity = all[i + 1];
+        const std::size_t n_entries     = all[i + 2];
+        i += 3;
+        const bool known = constraints_.is_constrained(dof);
+        if (!known)
           constraints_.add_line(dof);
-          constraints_.set_inhomogeneity(dof, all[i + 1]);
-        }
+        for (std::size_t e = 0; e < n_entries; ++e, i += 2)
+          if (!known)
+            constraints_.add_entry(dof,
+                                   static_cast<types::global_dof_index>(all[i]),
+                                   all[i + 1]);
+        if (!known)
+          constraints_.set_inhomogeneity(dof, inhomogeneity);
       }
     }
 

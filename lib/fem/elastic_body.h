@@ -254,8 +254,9 @@ namespace dualcontact
        * Whether the mesh is distributed (a parallel::fullydistributed
        * triangulation of TFETI's `Mesh distribution = distributed'): each
        * process has its own cells and a layer of ghosts, summarize() sums
-       * the owned cells over the processes (collective), and the Dirichlet
-       * lines of constraints() are those of every dof (gathered).
+       * the owned cells over the processes (collective), and the lines of
+       * constraints() and hanging_node_constraints() are those of every
+       * dof (gathered: hanging and prescribed dofs, a surface's worth).
        */
       bool
       is_distributed() const;
@@ -273,9 +274,10 @@ namespace dualcontact
       /** Whether this process counts @p dof in sums over dofs. */
       bool
       is_owned_dof(const dealii::types::global_dof_index dof) const;
-      /** Adds the Dirichlet lines of the dofs other processes own. */
+      /** Adds the hanging-node lines (@p hanging) or the Dirichlet lines
+       *  of the dofs other processes own (a distributed mesh). */
       void
-      gather_dirichlet_lines();
+      gather_constraint_lines(const bool hanging);
 
       /** FEValues and buffers reused over the cells of one loop. */
       struct CellScratch;
