@@ -472,6 +472,45 @@ namespace dualcontact
       }
 
 
+      /** Rows of B as a sparse matrix (columns: the bodies' dofs one after
+       * the other, from @p offsets). */
+      void
+      make_matrix(
+        const std::vector<std::map<types::global_dof_index, double>> &rows,
+        const types::global_dof_index                                 n_columns,
+        SparsityPattern                                              &pattern,
+        SparseMatrix<double>                                         &matrix)
+      {
+        DynamicSparsityPattern dsp(rows.size(), n_columns);
+        for (unsigned int r = 0; r < rows.size(); ++r)
+          for (const auto &[column, value] : rows[r])
+            dsp.add(r, column);
+        pattern.copy_from(dsp);
+        matrix.reinit(pattern);
+        for (unsigned int r = 0; r < rows.size(); ++r)
+          for (const auto &[column, value] : rows[r])
+            matrix.set(r, column, value);
+      }
+
+
+      /** @p rows on the stacked dofs of all bodies, as they are
+       * (unconstrained): the coupling whose transpose gives the nodal
+       * contact forces. */
+      void
+      stack_rows(const std::vector<std::vector<RowEntry>>   &rows,
+                 const std::vector<types::global_dof_index> &offsets,
+                 SparsityPattern                            &pattern,
+                 SparseMatrix<double>                       &matrix)
+      {
+        std::vector<std::map<types::global_dof_index, double>> stacked(
+          rows.size());
+        for (unsigned int r = 0; r < rows.size(); ++r)
+          for (const RowEntry &entry : rows[r])
+            stacked[r][offsets[entry.body] + entry.dof] += entry.value;
+        make_matrix(stacked, offsets.back(), pattern, matrix);
+      }
+
+
       /** Condenses @p rows through the bodies' constraints into @p matrix
        * (columns: the bodies' dofs one after the other, from @p offsets)
        * and the rows' inhomogeneities into @p offset. */
@@ -505,15 +544,42 @@ namespace dualcontact
             else
               condensed[r][offset_b + entry.dof] += entry.value;
           }
-        DynamicSparsityPattern dsp(rows.size(), offsets.back());
-        for (unsigned int r = 0; r < rows.size(); ++r)
-          for (const auto &[column, value] : condensed[r])
-            dsp.add(r, column);
-        pattern.copy_from(dsp);
-        matrix.reinit(pattern);
-        for (unsigned int r = 0; r < rows.size(); ++r)
-          for (const auto &[column, value] : condensed[r])
-            matrix.set(r, column, value);
+        make_matrix(condensed, offsets.back(), pattern, matrix);
+      }
+
+
+      /**
+       * The normal of a slave node on a symmetry plane: a component of the
+       * node's displacement prescribed (a roller, u_c given) while another
+       * is free.  The support takes every force along e_c, so a contact
+       * force with a component along it would be carried by the support:
+       * on a half or quarter model the nodal normal from the faces on one
+       * side of the plane (the master facet's normal, or the average of
+       * the slave faces around the node) tilts out of the plane and the
+       * symmetry reactions of a frictionless contact become nonzero, where
+       * the whole body has its normal in the plane.  Projected on the
+       * plane(s), the normal is the mirror-symmetric one.  A node with all
+       * components prescribed keeps its normal (nothing to mirror).
+       */
+      template <int dim>
+      Tensor<1, dim>
+      symmetric_normal(const Tensor<1, dim>                           &normal,
+                       const std::array<types::global_dof_index, dim> &dofs,
+                       const AffineConstraints<double> &constraints)
+      {
+        Tensor<1, dim> projected    = normal;
+        unsigned int   n_prescribed = 0;
+        for (unsigned int c = 0; c < dim; ++c)
+          if (const auto *line = constraints.get_constraint_entries(dofs[c]);
+              line != nullptr && line->empty())
+          {
+            projected[c] = 0;
+            ++n_prescribed;
+          }
+        if (n_prescribed == 0 || n_prescribed == dim ||
+            projected.norm() < 1e-3 * normal.norm())
+          return normal;
+        return projected / projected.norm();
       }
     } // namespace
 
@@ -609,6 +675,11 @@ namespace dualcontact
                                          node,
                                          master))
             continue;
+          // an obstacle's normal is exact; a master facet's is one side's
+          if (!pair.obstacle)
+            node.normal = symmetric_normal<dim>(node.normal,
+                                                node.dofs,
+                                                slave.constraints());
           node.tangents =
             make_tangents<dim>(node.normal, pair.first_tangent_direction);
           node.gap = (node.master_point - node.position) * node.normal;
@@ -644,9 +715,30 @@ namespace dualcontact
                     tangential_pattern_,
                     tangential_matrix_,
                     tangential_offset_);
+      stack_rows(rows_n, offsets_, full_normal_pattern_, full_normal_matrix_);
+      stack_rows(rows_t,
+                 offsets_,
+                 full_tangential_pattern_,
+                 full_tangential_matrix_);
       gaps_.reinit(nodes_.size());
       for (unsigned int i = 0; i < nodes_.size(); ++i)
         gaps_(i) = nodes_[i].gap;
+    }
+
+
+    template <int dim>
+    Vector<double>
+    ContactDiscretization<dim>::nodal_contact_forces(
+      const Vector<double> &normal_multipliers,
+      const Vector<double> &tangential_multipliers) const
+    {
+      AssertDimension(normal_multipliers.size(), n_nodes());
+      AssertDimension(tangential_multipliers.size(), (dim - 1) * n_nodes());
+      Vector<double> forces(n_dofs());
+      full_normal_matrix_.Tvmult(forces, normal_multipliers);
+      full_tangential_matrix_.Tvmult_add(forces, tangential_multipliers);
+      forces *= -1.;
+      return forces;
     }
 
 

@@ -141,6 +141,22 @@ namespace dualcontact
       dealii::Vector<double>
       normal_bound() const;
 
+      /**
+       * The forces the contact exerts on the bodies' nodes [N; N/m in 2D]
+       * for the multipliers @p normal_multipliers (lambda_N, one per node)
+       * and @p tangential_multipliers (lambda_T, dim - 1 per node, zero at a
+       * frictionless node): -B_full' lambda on the stacked dofs of all
+       * bodies, with B_full the rows before condensation.  Unlike B' lambda
+       * it has the entries at prescribed dofs (a slave node on a support or
+       * a symmetry plane), which belong to the contact force and not to the
+       * support's reaction, and at hanging nodes (which the bodies'
+       * reactions condense to their parents as the rest of the residual).
+       */
+      dealii::Vector<double>
+      nodal_contact_forces(
+        const dealii::Vector<double> &normal_multipliers,
+        const dealii::Vector<double> &tangential_multipliers) const;
+
     private:
       /// Adds the faces of pair @p pair: per slave face, the weights of
       /// its nodes that became contact nodes (@p node_of_key: a slave
@@ -162,9 +178,14 @@ namespace dualcontact
       dealii::SparsityPattern                      tangential_pattern_;
       dealii::SparseMatrix<double>                 normal_matrix_;
       dealii::SparseMatrix<double>                 tangential_matrix_;
-      dealii::Vector<double>                       gaps_;
-      dealii::Vector<double>                       normal_offset_;
-      dealii::Vector<double>                       tangential_offset_;
+      /** The rows before condensation (nodal_contact_forces()). */
+      dealii::SparsityPattern      full_normal_pattern_;
+      dealii::SparsityPattern      full_tangential_pattern_;
+      dealii::SparseMatrix<double> full_normal_matrix_;
+      dealii::SparseMatrix<double> full_tangential_matrix_;
+      dealii::Vector<double>       gaps_;
+      dealii::Vector<double>       normal_offset_;
+      dealii::Vector<double>       tangential_offset_;
     };
   } // namespace contact
 } // namespace dualcontact

@@ -452,6 +452,7 @@ namespace dualcontact
         r.max_gap            = summary.max_gap;
         r.area               = summary.area;
       }
+      compute_contact_forces();
       const unsigned int n = contact_->n_nodes();
       for (unsigned int i = 0; i < n; ++i)
       {
@@ -509,6 +510,54 @@ namespace dualcontact
 
     template <int dim>
     void
+    ContactStage<dim>::compute_contact_forces()
+    {
+      const unsigned int n = contact_->n_nodes();
+      // the multipliers of each pair alone, lambda_T at every node (zero at
+      // a frictionless one)
+      std::vector<dealii::Vector<double>> normal(
+        scene_.pair_parameters().size(), dealii::Vector<double>(n));
+      std::vector<dealii::Vector<double>> tangential(
+        scene_.pair_parameters().size(), dealii::Vector<double>((dim - 1) * n));
+      for (unsigned int i = 0; i < n; ++i)
+      {
+        const unsigned int p = contact_->nodes()[i].pair;
+        normal[p](i)         = result_.lambda(i);
+        const int j          = dual_->frictional_index(i);
+        if (j >= 0)
+          for (unsigned int k = 0; k + 1 < dim; ++k)
+            tangential[p]((dim - 1) * i + k) =
+              result_.lambda(n + (dim - 1) * j + k);
+      }
+      body_contact_forces_.assign(scene_.n_bodies(), dealii::Vector<double>());
+      for (unsigned int b = 0; b < scene_.n_bodies(); ++b)
+        body_contact_forces_[b].reinit(scene_.body(b).n_dofs());
+      for (unsigned int p = 0; p < normal.size(); ++p)
+      {
+        const dealii::Vector<double> forces =
+          contact_->nodal_contact_forces(normal[p], tangential[p]);
+        for (unsigned int b = 0; b < scene_.n_bodies(); ++b)
+          for (dealii::types::global_dof_index i = 0;
+               i < body_contact_forces_[b].size();
+               ++i)
+            body_contact_forces_[b](i) += forces(contact_->body_offset(b) + i);
+        // the force on the slave's nodes, by component through the nodes'
+        // dofs (a slave row touches its own node only): the pair's force
+        // on the master is its opposite
+        const unsigned int slave = scene_.pair_parameters()[p].pair.slave_body;
+        dealii::Tensor<1, dim> on_slave;
+        for (const auto &node : contact_->nodes())
+          if (node.pair == p)
+            for (unsigned int c = 0; c < dim; ++c)
+              on_slave[c] +=
+                forces(contact_->body_offset(slave) + node.dofs[c]);
+        pair_results_[p].contact_force = -on_slave;
+      }
+    }
+
+
+    template <int dim>
+    void
     ContactStage<dim>::reset()
     {
       dual_.reset();
@@ -520,6 +569,7 @@ namespace dualcontact
       surface_meshes_.clear();
       coulomb_iterates_.clear();
       pair_results_.clear();
+      body_contact_forces_.clear();
     }
 
 

@@ -55,6 +55,9 @@ namespace dualcontact
         unsigned int           n_contact    = 0; ///< frictionless, touching
         double                 normal_force = 0;
         dealii::Tensor<1, dim> tangential_force;
+        /** The force the slave exerts on the master (or obstacle), normal
+         *  and tangential together [N, N/m in 2D]. */
+        dealii::Tensor<1, dim> contact_force;
         double                 max_pressure = 0;
         double                 min_gap      = 0;
         double                 max_gap      = 0;
@@ -185,6 +188,16 @@ namespace dualcontact
       {
         return pair_results_;
       }
+      /**
+       * Per body (after recover()): the nodal forces the contact exerts on
+       * it, all its pairs as slave and as master (its dofs, unconstrained;
+       * contact::ContactDiscretization::nodal_contact_forces()).
+       */
+      const std::vector<dealii::Vector<double>> &
+      body_contact_forces() const
+      {
+        return body_contact_forces_;
+      }
 
       /**
        * Whether `Decomposition/Method' resolves to tfeti for this scene
@@ -221,6 +234,10 @@ namespace dualcontact
       contact_surfaces(
         const dealii::Vector<double>              &lambda,
         const std::vector<dealii::Vector<double>> &displacements) const;
+      /** body_contact_forces() and every pair's contact_force from the
+       *  final multipliers (recover()). */
+      void
+      compute_contact_forces();
 
       dealii::ParameterHandler      &prm_;
       Scene<dim>                    &scene_;
@@ -251,6 +268,7 @@ namespace dualcontact
       std::vector<io::ContactSurfaceMesh<dim>>             surface_meshes_;
       std::vector<Surfaces>                                coulomb_iterates_;
       std::vector<PairResults>                             pair_results_;
+      std::vector<dealii::Vector<double>>                  body_contact_forces_;
     };
   } // namespace driver
 } // namespace dualcontact

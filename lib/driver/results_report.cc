@@ -46,6 +46,13 @@ namespace dualcontact
         return text;
       }
 
+      /**
+       * A body's force imbalance below this is round-off (the solves leave
+       * 1e-13 .. 1e-10 of the forces): printed as 0 so that the reference
+       * comparison does not depend on it (statistics.json has the value).
+       */
+      constexpr double force_imbalance_round_off = 1e-10;
+
       template <int dim>
       std::vector<double>
       to_vector(const dealii::Tensor<1, dim> &tensor)
@@ -87,7 +94,8 @@ namespace dualcontact
         // the size of the forces in this body, to recognize round-off
         // zeros: the largest resultant, or energy / displacement when
         // nothing is loaded (prescribed displacements only)
-        double force_scale = r.applied_force.norm();
+        double force_scale =
+          std::max(r.applied_force.norm(), r.contact_force.norm());
         for (const auto &[id, force] : r.reaction_forces)
           force_scale = std::max(force_scale, force.norm());
         if (r.max_displacement > 0)
@@ -108,6 +116,14 @@ namespace dualcontact
         for (const auto &[id, force] : r.reaction_forces)
           out << prefix << "reaction_force.boundary_" << id << " = "
               << format_vector<dim>(force, force_scale) << "\n";
+        if (contact_ != nullptr)
+          out << prefix << "contact_force = "
+              << format_vector<dim>(r.contact_force, force_scale) << "\n";
+        out << prefix << "force_imbalance = "
+            << format_number(r.force_imbalance < force_imbalance_round_off ?
+                               0. :
+                               r.force_imbalance)
+            << "\n";
         // per traction condition: the resultant on the exact surface and
         // the one the load vector carries (ElasticBody::TractionResultant)
         for (unsigned int t = 0; t < r.traction_resultants.size(); ++t)
@@ -166,6 +182,9 @@ namespace dualcontact
             << "\n";
         out << prefix << "tangential_force = "
             << format_vector<dim>(r.tangential_force, scale) << "\n";
+        out << prefix
+            << "contact_force = " << format_vector<dim>(r.contact_force, scale)
+            << "\n";
         out << prefix << "max_pressure = " << format_number(r.max_pressure)
             << "\n";
         out << prefix << (dim == 2 ? "contact_length = " : "contact_area = ")
@@ -258,7 +277,9 @@ namespace dualcontact
                            {"displacement_l2_norm",
                             scene_.displacements()[b].l2_norm()},
                            {"applied_force", to_vector<dim>(r.applied_force)},
-                           {"reaction_force_by_boundary_id", reactions}};
+                           {"reaction_force_by_boundary_id", reactions},
+                           {"contact_force", to_vector<dim>(r.contact_force)},
+                           {"force_imbalance", r.force_imbalance}};
 
         nlohmann::json tractions = nlohmann::json::array();
         for (const auto &resultant : r.traction_resultants)
@@ -362,6 +383,7 @@ namespace dualcontact
              {"max_initial_gap_m", r.max_gap},
              {"normal_force", r.normal_force},
              {"tangential_force", to_vector<dim>(r.tangential_force)},
+             {"contact_force", to_vector<dim>(r.contact_force)},
              {"max_pressure_Pa", r.max_pressure},
              {dim == 2 ? "contact_length_m" : "contact_area_m2",
               r.contact_measure}});

@@ -351,11 +351,18 @@ namespace dualcontact
 
     template <int dim>
     void
-    Scene<dim>::postprocess()
+    Scene<dim>::postprocess(
+      const std::vector<dealii::Vector<double>> *contact_forces)
     {
+      Assert(contact_forces == nullptr ||
+               contact_forces->size() == bodies_.size(),
+             dealii::ExcInternalError());
       results_.resize(bodies_.size());
       for (unsigned int b = 0; b < bodies_.size(); ++b)
-        results_[b] = bodies_[b]->summarize(displacements_[b]);
+        results_[b] = bodies_[b]->summarize(displacements_[b],
+                                            contact_forces != nullptr ?
+                                              &(*contact_forces)[b] :
+                                              nullptr);
     }
 
 

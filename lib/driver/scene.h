@@ -80,9 +80,14 @@ namespace dualcontact
       /** Solve phase (no contact): u = K^{-1} f per body. */
       void
       solve(std::vector<std::string> &details);
-      /** Postprocessing phase: BodyResults of every body. */
+      /**
+       * Postprocessing phase: BodyResults of every body; @p contact_forces
+       * (per body, ContactStage::body_contact_forces()) enter the reactions
+       * and the force balance, null for a scene without contact.
+       */
       void
-      postprocess();
+      postprocess(
+        const std::vector<dealii::Vector<double>> *contact_forces = nullptr);
       /**
        * Refinement phase (ContactRefinement): drop the bodies (their dofs,
        * systems, displacements and results; a ContactStage must have let

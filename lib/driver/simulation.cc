@@ -225,6 +225,26 @@ namespace dualcontact
 
     template <int dim>
     void
+    Simulation<dim>::report_force_balance(const Scene<dim> &scene)
+    {
+      for (unsigned int b = 0; b < scene.n_bodies(); ++b)
+        if (const double imbalance = scene.results()[b].force_imbalance;
+            !(imbalance <= force_balance_warning_threshold))
+        {
+          std::ostringstream line;
+          line << std::setprecision(3) << "Warning: the forces on "
+               << scene.body(b).name()
+               << " do not balance: |applied + reactions + contact| is "
+               << imbalance
+               << " of the largest of them (a solver tolerance too loose "
+                  "for the forces, or a solve that did not converge).";
+          details_.push_back(line.str());
+        }
+    }
+
+
+    template <int dim>
+    void
     Simulation<dim>::print_scene_line()
     {
       const Scene<dim> &scene = *scene_;
@@ -376,8 +396,10 @@ namespace dualcontact
         run_phase("Postprocessing",
                   [&]()
                   {
-                    scene.postprocess();
+                    scene.postprocess(
+                      has_contact ? &contact_->body_contact_forces() : nullptr);
                     report_traction_resultants(scene);
+                    report_force_balance(scene);
                   });
         if (n_cycles == 0)
           break;

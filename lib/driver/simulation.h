@@ -116,6 +116,16 @@ namespace dualcontact
       /** Relative difference of applied and nominal traction resultant
        * above which the console warns [-]. */
       static constexpr double traction_warning_threshold = 1e-3;
+      /**
+       * A warning line for every body whose forces do not balance
+       * (ElasticBody::Summary::force_imbalance above
+       * force_balance_warning_threshold).
+       */
+      void
+      report_force_balance(const Scene<dim> &scene);
+      /** Relative force imbalance of a body above which the console warns
+       *  [-]: an equilibrium solve leaves round-off, 1e-12 and below. */
+      static constexpr double force_balance_warning_threshold = 1e-8;
 
       dealii::ParameterHandler   &prm_;
       const std::string           parameter_file_;

@@ -484,9 +484,12 @@ namespace dualcontact
 
     template <int dim>
     typename ElasticBody<dim>::Summary
-    ElasticBody<dim>::summarize(const Vector<double> &displacement) const
+    ElasticBody<dim>::summarize(const Vector<double> &displacement,
+                                const Vector<double> *contact_force) const
     {
       AssertDimension(displacement.size(), n_dofs());
+      Assert(contact_force == nullptr || contact_force->size() == n_dofs(),
+             ExcDimensionMismatch(contact_force->size(), n_dofs()));
       Summary summary;
       // f was assembled with the constraints condensed, so the load and the
       // residual K_full u - f_full are rebuilt from the unconstrained cell
@@ -501,6 +504,8 @@ namespace dualcontact
       Tensor<1, dim>     mean;
       std::vector<types::global_dof_index> dof_indices(dofs_per_cell);
       Vector<double>                       residual(n_dofs());
+      // the vector component of every dof of the cells summed here
+      std::vector<int> component_of_dof(n_dofs(), -1);
       // Support points of all components coincide: the nodal displacement
       // is gathered through the component-0 dofs of each cell.
       const unsigned int n_nodes   = fe_.base_element(0).n_dofs_per_cell();
@@ -535,6 +540,7 @@ namespace dualcontact
           // is the sum of the load entries of that component.
           summary.applied_force[scratch.component[i]] += cell_rhs(i);
           residual(dof_indices[i]) += local_Ku(i) - cell_rhs(i);
+          component_of_dof[dof_indices[i]] = scratch.component[i];
         }
         for (unsigned int node = 0; node < n_nodes; ++node)
         {
@@ -562,9 +568,23 @@ namespace dualcontact
           Utilities::MPI::max(summary.max_displacement, comm);
         Utilities::MPI::sum(residual, comm, residual);
       }
+      if (contact_force != nullptr)
+      {
+        residual -= *contact_force;
+        // each dof by the process that owns it (the owned cells hold the
+        // owned dofs)
+        for (types::global_dof_index i = 0; i < n_dofs(); ++i)
+          if (component_of_dof[i] >= 0 && is_owned_dof(i))
+            summary.contact_force[component_of_dof[i]] += (*contact_force)(i);
+        if (is_distributed())
+          summary.contact_force =
+            Utilities::MPI::sum(summary.contact_force, communicator());
+      }
+      condense_hanging_nodes(residual);
 
       // A dof on two supports is counted once, for the first condition that
-      // names it (the one that won in setup()).
+      // names it (the one that won in setup()).  Hanging dofs are not
+      // supports: condense_residual() gave their share to their parents.
       std::set<types::global_dof_index>    counted;
       std::vector<types::global_dof_index> face_dofs(fe_.n_dofs_per_face());
       for (const auto &condition : dirichlet_)
@@ -587,6 +607,7 @@ namespace dualcontact
                     fe_.face_system_to_component_index(i).first;
                   if (condition.components[c] &&
                       constraints_.is_constrained(face_dofs[i]) &&
+                      !hanging_node_constraints_.is_constrained(face_dofs[i]) &&
                       is_owned_dof(face_dofs[i]) &&
                       counted.insert(face_dofs[i]).second)
                     reaction[c] += residual(face_dofs[i]);
@@ -595,7 +616,42 @@ namespace dualcontact
         if (is_distributed())
           reaction = Utilities::MPI::sum(reaction, communicator());
       }
+      summary.force_imbalance = force_imbalance(summary);
       return summary;
+    }
+
+
+    template <int dim>
+    void
+    ElasticBody<dim>::condense_hanging_nodes(Vector<double> &residual) const
+    {
+      // r = C' r_full: the residual of a hanging dof belongs to its parents
+      // with the constraint's weights (its shape function is part of
+      // theirs).  Left where it is, it is lost to a support whose vertex is
+      // a parent (an edge from the support into a refined zone) and the
+      // reactions do not balance the loads.  Closed lines name parents only.
+      for (const auto &line : hanging_node_constraints_.get_lines())
+      {
+        for (const auto &[parent, weight] : line.entries)
+          residual(parent) += weight * residual(line.index);
+        residual(line.index) = 0;
+      }
+    }
+
+
+    template <int dim>
+    double
+    ElasticBody<dim>::force_imbalance(const Summary &summary)
+    {
+      Tensor<1, dim> sum = summary.applied_force + summary.contact_force;
+      double         scale =
+        std::max(summary.applied_force.norm(), summary.contact_force.norm());
+      for (const auto &[id, force] : summary.reaction_forces)
+      {
+        sum += force;
+        scale = std::max(scale, force.norm());
+      }
+      return scale > 0 ? sum.norm() / scale : 0.;
     }
 
 

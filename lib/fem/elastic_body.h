@@ -178,15 +178,36 @@ namespace dualcontact
         /** See reaction_forces() [N, N/m in 2D]. */
         std::map<dealii::types::boundary_id, dealii::Tensor<1, dim>>
           reaction_forces;
+        /**
+         * Resultant of the contact forces on the body [N, N/m in 2D] (zero
+         * unless summarize() was given them).
+         */
+        dealii::Tensor<1, dim> contact_force;
+        /**
+         * |applied + sum of reactions + contact| over the largest of those
+         * forces: zero for a body in equilibrium (round-off and the solve's
+         * accuracy); 0 when no force acts.
+         */
+        double force_imbalance = 0;
         /** Largest nodal displacement magnitude [m]. */
         double max_displacement = 0;
         /** See traction_resultants(), one per traction condition. */
         std::vector<TractionResultant> traction_resultants;
       };
 
-      /** All of Summary for @p displacement, in one pass over the cells. */
+      /**
+       * All of Summary for @p displacement, in one pass over the cells.
+       * @p contact_force: the nodal forces the contact exerts on the body
+       * (its dofs, unconstrained numbering; contact::ContactDiscretization::
+       * nodal_contact_forces()), or null for a body without contact.  The
+       * reactions are the residual K_full u - f_full - f_contact condensed
+       * through the hanging-node constraints (r = C' r_full), summed over
+       * the prescribed dofs of each support: the contact force at a
+       * prescribed dof is not the support's.
+       */
       Summary
-      summarize(const dealii::Vector<double> &displacement) const;
+      summarize(const dealii::Vector<double> &displacement,
+                const dealii::Vector<double> *contact_force = nullptr) const;
 
       /** Strain energy 1/2 int eps(u) : C : eps(u) dx [J, J/m in 2D]. */
       double
@@ -278,6 +299,13 @@ namespace dualcontact
        *  of the dofs other processes own (a distributed mesh). */
       void
       gather_constraint_lines(const bool hanging);
+      /** @p residual (all dofs) condensed through the hanging-node
+       *  constraints: each hanging dof's entry moved to its parents. */
+      void
+      condense_hanging_nodes(dealii::Vector<double> &residual) const;
+      /** Summary::force_imbalance of @p summary's forces. */
+      static double
+      force_imbalance(const Summary &summary);
 
       /** FEValues and buffers reused over the cells of one loop. */
       struct CellScratch;

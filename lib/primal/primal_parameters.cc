@@ -39,10 +39,14 @@ namespace dualcontact
                         dealii::Patterns::Double(0., 2.),
                         "Relaxation parameter of SSOR, in (0, 2) [-].");
       prm.declare_entry("CGC tolerance",
-                        "1e-10",
+                        "1e-11",
                         dealii::Patterns::Double(0.),
                         "CGC stops when its projected-gradient criterion is "
-                        "at most this times ||b|| [-].");
+                        "at most this times ||b|| [-]. The bodies' force "
+                        "balance is as good as this relative to the whole "
+                        "scene's loads: 1e-10 left the bridge pier's "
+                        "lightest body out of balance by 1.1e-8 of its own "
+                        "forces, 1e-11 by 8e-11 (9 % more CG steps).");
       prm.declare_entry("CGC maximum iterations",
                         "100000",
                         dealii::Patterns::Integer(1),

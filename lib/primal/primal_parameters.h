@@ -29,7 +29,7 @@ namespace dualcontact
 
       /** CGC: stop when the projected gradient criterion <= tolerance
        * ||b|| (b the load of the current Uzawa iterate). */
-      double cgc_tolerance = 1e-10;
+      double cgc_tolerance = 1e-11;
       /** CGC: limit on the CG steps of one CGC solve. */
       unsigned int cgc_max_iterations = 100000;
       /** Remark 7.3: facet problems of the first `CGC loose iterations`
