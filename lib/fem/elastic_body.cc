@@ -584,7 +584,7 @@ namespace dualcontact
 
       // A dof on two supports is counted once, for the first condition that
       // names it (the one that won in setup()).  Hanging dofs are not
-      // supports: condense_residual() gave their share to their parents.
+      // supports: condense_hanging_nodes() gave their share to their parents.
       std::set<types::global_dof_index>    counted;
       std::vector<types::global_dof_index> face_dofs(fe_.n_dofs_per_face());
       for (const auto &condition : dirichlet_)
