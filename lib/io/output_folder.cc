@@ -94,6 +94,32 @@ namespace dualcontact
         std::atomic<std::size_t> n_folders{0};
       };
 
+      /**
+       * Whether @p part (of the output folder @p path) exists; throws naming
+       * the folder, the parameter (@p parameter_location, if not empty) and
+       * the cause if that cannot be told (std::filesystem would throw its
+       * own filesystem_error, which names neither).  The constructor checks
+       * with the parameter named; create_folder() checks again, as the
+       * path may have changed since.
+       */
+      bool
+      exists_or_throw(const fs::path    &part,
+                      const std::string &path,
+                      const std::string &parameter_location)
+      {
+        std::error_code error;
+        const bool      found = fs::exists(part, error);
+        AssertThrow(!error,
+                    dealii::ExcMessage("Cannot write the output folder `" +
+                                       path + "'" +
+                                       (parameter_location.empty() ?
+                                          std::string() :
+                                          " " + parameter_location) +
+                                       ": `" + part.string() +
+                                       "': " + error.message() + "."));
+        return found;
+      }
+
       CleanupList &
       cleanup_list()
       {
@@ -251,8 +277,11 @@ namespace dualcontact
       // writable directory.
       fs::path existing = fs::absolute(fs::path(path)).lexically_normal();
       std::error_code error;
-      while (!fs::exists(existing, error) && existing.has_parent_path() &&
-             existing != existing.parent_path())
+      // a part of the path that cannot be looked at (a symbolic-link loop,
+      // a folder without search permission) is an error, not a part that
+      // does not exist
+      while (!exists_or_throw(existing, path, parameter_location) &&
+             existing.has_parent_path() && existing != existing.parent_path())
         existing = existing.parent_path();
       AssertThrow(fs::is_directory(existing, error),
                   dealii::ExcMessage("Cannot write the output folder `" + path +
@@ -304,7 +333,7 @@ namespace dualcontact
       // remember which folders are new, so that a failed run removes them
       std::vector<fs::path> missing;
       for (fs::path folder = fs::absolute(fs::path(path_)).lexically_normal();
-           !fs::exists(folder);
+           !exists_or_throw(folder, path_, "");
            folder = folder.parent_path())
         missing.push_back(folder);
       for (auto folder = missing.rbegin(); folder != missing.rend(); ++folder)
