@@ -10,6 +10,7 @@
 #include <atomic>
 #include <cerrno>
 #include <csignal>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -127,6 +128,21 @@ namespace dualcontact
         return list;
       }
 
+      /**
+       * Run by exit(): what an uncommitted run left (nothing after a
+       * commit, which empties the list; after a failure the destructor has
+       * removed them already, and this finds nothing).
+       */
+      extern "C" void
+      remove_temporaries_at_exit()
+      {
+        CleanupList &list = cleanup_list();
+        for (std::size_t i = 0; i < list.n_files; ++i)
+          (void)unlink(list.files[i].c_str());
+        for (std::size_t i = list.n_folders; i > 0; --i)
+          (void)rmdir(list.folders[i - 1].c_str());
+      }
+
       extern "C" void
       remove_temporaries_and_exit(const int signal_number)
       {
@@ -149,6 +165,9 @@ namespace dualcontact
     OutputFolder::install_signal_handlers()
     {
       (void)cleanup_list(); // reserve its storage now, not in the handler
+      // a library that ends the process with exit() (libfclib does when an
+      // HDF5 call fails) skips the destructors that remove the temporaries
+      std::atexit(remove_temporaries_at_exit);
       struct sigaction action;
       std::memset(&action, 0, sizeof(action));
       action.sa_handler = remove_temporaries_and_exit;
@@ -372,7 +391,22 @@ namespace dualcontact
                   dealii::ExcMessage("Cannot write the file `" +
                                      temporary.string() + "': " + cause(errno) +
                                      "."));
-      writer(out);
+      try
+      {
+        writer(out);
+      }
+      catch (const dealii::ExceptionBase &)
+      {
+        // deal.II's writers end with ExcIO ("An input/output error has
+        // occurred.") when the stream failed: name the file and the cause
+        const int number = errno;
+        if (out)
+          throw; // the writer's own error, which says what it is
+        AssertThrow(false,
+                    dealii::ExcMessage("Writing the file `" +
+                                       temporary.string() +
+                                       "' failed: " + cause(number) + "."));
+      }
       out.close();
       AssertThrow(out,
                   dealii::ExcMessage("Writing the file `" + temporary.string() +
