@@ -2,6 +2,8 @@
 
 #include <contact/rigid_obstacle.h>
 
+#include <algorithm>
+#include <cmath>
 #include <sstream>
 
 namespace dualcontact
@@ -16,9 +18,16 @@ namespace dualcontact
         : point_(point)
         , normal_(outward_normal)
     {
-      AssertThrow(outward_normal.norm() > 0,
-                  ExcMessage("A plane obstacle needs a nonzero normal."));
-      normal_ /= outward_normal.norm();
+      // scaled by the largest component first, so that the norm of a
+      // normal such as (1e308, 1e308) does not overflow
+      double largest = 0;
+      for (unsigned int d = 0; d < dim; ++d)
+        largest = std::max(largest, std::abs(outward_normal[d]));
+      AssertThrow(largest > 0 && std::isfinite(largest),
+                  ExcMessage("A plane obstacle needs a nonzero finite "
+                             "normal."));
+      normal_ /= largest;
+      normal_ /= normal_.norm();
     }
 
 
@@ -96,6 +105,9 @@ namespace dualcontact
         Tensor<1, dim - 1> g;
         for (unsigned int d = 0; d + 1 < dim; ++d)
           g[d] = (s[d] - x[d]) + (h - x[dim - 1]) * grad_h[d];
+        // a slope that overflows: stop here, the normal below says so
+        if (!std::isfinite(g.norm()))
+          break;
         // (I + a a') step = -g  by Sherman-Morrison
         const double       a2      = grad_h * grad_h;
         Tensor<1, dim - 1> step    = -g + ((grad_h * g) / (1 + a2)) * grad_h;
@@ -119,6 +131,14 @@ namespace dualcontact
       }
       closest[dim - 1] = h;
       normal[dim - 1]  = 1;
+      // scaled by its largest component first: a steep slope (1e200)
+      // squared would overflow the norm; a slope that overflows itself
+      // leaves the normal not finite, for the caller to name (see
+      // driver::ObstacleParameters)
+      double largest = 0;
+      for (unsigned int d = 0; d < dim; ++d)
+        largest = std::max(largest, std::abs(normal[d]));
+      normal /= largest;
       normal /= normal.norm();
     }
 

@@ -4,8 +4,11 @@
 #include <deal.II/base/utilities.h>
 
 #include <driver/obstacle_parameters.h>
+#include <io/checked_function.h>
 #include <io/parameter_file.h>
 
+#include <algorithm>
+#include <cmath>
 #include <sstream>
 
 namespace dualcontact
@@ -25,6 +28,55 @@ namespace dualcontact
       {
         return dim == 2 ? "0, 1" : "0, 0, 1";
       }
+
+      /**
+       * A graph obstacle whose normal is checked where the contact search
+       * projects: a slope that overflows (the height's central difference,
+       * e.g. of 1.7e308*tanh(1e9*x)) is refused naming the parameter and
+       * the point.  Its heights are checked by the io::CheckedFunction it
+       * is given.
+       */
+      template <int dim>
+      class CheckedGraphObstacle : public contact::GraphObstacle<dim>
+      {
+      public:
+        CheckedGraphObstacle(
+          std::shared_ptr<const dealii::Function<dim - 1>> height,
+          const std::string                               &expression,
+          const std::string                               &parameter_location)
+            : contact::GraphObstacle<dim>(std::move(height), expression)
+            , expression_(expression)
+            , parameter_location_(parameter_location)
+        {
+        }
+
+        void
+        project(const dealii::Point<dim> &x,
+                dealii::Point<dim>       &closest,
+                dealii::Tensor<1, dim>   &normal) const override
+        {
+          contact::GraphObstacle<dim>::project(x, closest, normal);
+          bool finite = true;
+          for (unsigned int d = 0; d < dim; ++d)
+            finite = finite && std::isfinite(normal[d]);
+          if (finite)
+            return;
+          std::ostringstream message;
+          message << "The height function `" << expression_ << "' "
+                  << parameter_location_
+                  << " has no finite slope where the contact search projects "
+                     "the point (";
+          for (unsigned int d = 0; d < dim; ++d)
+            message << (d == 0 ? "" : ", ") << x[d];
+          message << "): check it for an overflow or a jump to infinity.";
+          AssertThrow(false, dealii::ExcMessage(message.str()));
+        }
+
+      private:
+        std::string expression_;
+        std::string parameter_location_;
+      };
+
 
       template <int dim>
       dealii::Tensor<1, dim>
@@ -88,16 +140,23 @@ namespace dualcontact
       {
         const dealii::Tensor<1, dim> point_vector =
           parse_vector<dim>(prm.get("Point"));
-        const dealii::Tensor<1, dim> normal =
+        dealii::Tensor<1, dim> normal =
           parse_vector<dim>(prm.get("Outward normal"));
-        AssertThrow(normal.norm() > 0,
+        // scaled by its largest component before it is normalized: the
+        // norm of (1e308, 1e308) overflows, that of (0, 1e-300) underflows
+        double largest = 0;
+        for (unsigned int d = 0; d < dim; ++d)
+          largest = std::max(largest, std::abs(normal[d]));
+        AssertThrow(largest > 0,
                     dealii::ExcMessage(
                       "The outward normal of " + path + " is zero " +
                       io::parameter_location(path, "Outward normal") +
                       ": give the direction from the obstacle towards the "
                       "bodies."));
+        normal /= largest;
+        normal /= normal.norm();
         obstacle = std::make_shared<contact::PlaneObstacle<dim>>(
-          dealii::Point<dim>(point_vector), normal / normal.norm());
+          dealii::Point<dim>(point_vector), normal);
       }
       else
       {
@@ -123,8 +182,16 @@ namespace dualcontact
                         " (variables: " + variables + "; constant: pi): " +
                         dealii::Utilities::trim(info.str())));
         }
-        obstacle =
-          std::make_shared<contact::GraphObstacle<dim>>(height, expression);
+        // the heights the contact search evaluates are checked to be
+        // finite, naming the entry and the point
+        const std::string location =
+          io::parameter_location(path, "Height function");
+        obstacle = std::make_shared<CheckedGraphObstacle<dim>>(
+          std::make_shared<io::CheckedFunction<dim - 1>>(height,
+                                                         expression,
+                                                         location),
+          expression,
+          location);
       }
     }
 

@@ -4,6 +4,7 @@
 
 #include <driver/results_report.h>
 #include <driver/simulation.h>
+#include <fem/rigid_body_modes.h>
 #include <io/parameter_file.h>
 
 #include <algorithm>
@@ -61,6 +62,47 @@ namespace dualcontact
     } // namespace
 
 
+    namespace
+    {
+      /**
+       * The FCLIB export's refusal of a body that rigid-body motions move
+       * (@p why): its K is singular, and the contact problem with the
+       * equality constraints of SMALSE-M is not one FCLIB holds.
+       */
+      std::string
+      fclib_floating_body_message(const std::string &body,
+                                  const std::string &why)
+      {
+        return "The FCLIB export " +
+               io::parameter_location("Output", "FCLIB problem") +
+               " needs bodies held by Dirichlet conditions, but " + body +
+               " " + why +
+               ": its stiffness matrix is singular, and the contact problem "
+               "(with rigid-body modes) is not an FCLIB problem. Hold the "
+               "body, or set `FCLIB problem = none'.";
+      }
+    } // namespace
+
+
+    template <int dim>
+    void
+    Simulation<dim>::check_fclib_bodies_held(const Scene<dim> &scene) const
+    {
+      for (unsigned int b = 0; b < scene.n_bodies(); ++b)
+      {
+        const unsigned int n_modes =
+          fem::RigidBodyModes<dim>(scene.body(b)).n_modes();
+        AssertThrow(n_modes == 0,
+                    dealii::ExcMessage(fclib_floating_body_message(
+                      scene.body(b).name(),
+                      "has " + std::to_string(n_modes) +
+                        (n_modes == 1 ? " rigid-body motion" :
+                                        " rigid-body motions") +
+                        " that its Dirichlet conditions do not hold")));
+      }
+    }
+
+
     template <int dim>
     Simulation<dim>::Simulation(dealii::ParameterHandler   &prm,
                                 const std::string          &parameter_file,
@@ -94,6 +136,28 @@ namespace dualcontact
       // before anything runs BLAS: the factorizations, the dense F
       blas_threads_ = fem::StiffnessSolver::apply_blas_threads(prm);
       scene_        = std::make_unique<Scene<dim>>(prm, parameter_file);
+      // what FCLIB cannot hold is refused now, not after the solve: Tresca
+      // or orthotropic friction, a floating body (K singular)
+      if (output_.fclib_problem != "none" && scene_->has_contact())
+      {
+        for (const auto &pair : scene_->pair_parameters())
+          AssertThrow(
+            pair.pair.friction.type ==
+                contact::FrictionLaw::Type::frictionless ||
+              pair.pair.friction.type ==
+                contact::FrictionLaw::Type::coulomb_isotropic,
+            dealii::ExcMessage(
+              "FCLIB export " +
+              io::parameter_location("Output", "FCLIB problem") +
+              ": contact pair `" + pair.pair.name +
+              "' has Tresca or orthotropic friction; FCLIB problems hold "
+              "isotropic Coulomb friction only (frictionless pairs are "
+              "written with mu = 0)."));
+        for (const auto &body : scene_->body_parameters())
+          AssertThrow(!body.dirichlet.empty(),
+                      dealii::ExcMessage(fclib_floating_body_message(
+                        body.name, "has no Dirichlet condition")));
+      }
       refinement_   = std::make_unique<ContactRefinement<dim>>(
         prm, scene_->pair_parameters().size());
       AssertThrow(!scene_->has_distributed_meshes() ||
@@ -272,6 +336,8 @@ namespace dualcontact
       print_scene_line();
       run_phase("Mesh", [&]() { scene.create_meshes(details_); });
       run_phase("Setup", [&]() { scene.setup(details_); });
+      if (scene.has_contact() && output_.fclib_problem != "none")
+        check_fclib_bodies_held(scene);
 
       console_ << "Bodies:" << std::endl;
       unsigned long n_cells = 0, n_dofs = 0;
@@ -372,6 +438,8 @@ namespace dualcontact
                     });
         }
         run_phase("Setup", [&]() { scene.setup(details_); });
+        if (cycle == 0 && has_contact && output_.fclib_problem != "none")
+          check_fclib_bodies_held(scene);
         // TFETI needs no global K (FCLIB's export does: it writes the
         // undecomposed problem)
         run_phase("Assembly",

@@ -93,6 +93,15 @@ namespace dualcontact
       void
       check_finite_results() const;
 
+      /**
+       * With `FCLIB problem' set: throw naming the body if a body of
+       * @p scene has rigid-body motions its Dirichlet conditions do not
+       * hold (after the setup, before assembly and solve; a body without
+       * any Dirichlet condition is refused when the scene is read).
+       */
+      void
+      check_fclib_bodies_held(const Scene<dim> &scene) const;
+
       /** Why the contact solver did not converge, with its residuals. */
       std::string
       failure_message() const;

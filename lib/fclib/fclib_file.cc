@@ -2,6 +2,7 @@
 
 #include <fclib/fclib_file.h>
 #include <fclib/file_layout.h>
+#include <fclib/libfclib_call.h>
 #include <fclib/silent_hdf5_errors.h>
 
 #include <hdf5.h>
@@ -177,17 +178,25 @@ namespace dualcontact
       }
 
 
+      /** Throws naming @p path and the cause unless libfclib wrote it. */
       void
-      check_written(const int status, const std::string &what)
+      check_written(const int status, const std::string &path)
       {
+        const int error_number = errno;
         AssertThrow(status == 1,
-                    dealii::ExcMessage("libfclib could not write " + what));
+                    dealii::ExcMessage(
+                      "Cannot write the FCLIB file `" + path + "': " +
+                      write_failure_cause(path, error_number)));
       }
 
 
-      /** /solution with r, u (and v for the global form) into @p path. */
+      /**
+       * /solution with r, u (and v for the global form) into @p temporary,
+       * which becomes @p path.
+       */
       void
       write_solution(const std::string            &path,
+                     const std::string            &temporary,
                      const dealii::Vector<double> &r,
                      const dealii::Vector<double> &u,
                      const dealii::Vector<double> *v = nullptr)
@@ -199,8 +208,8 @@ namespace dualcontact
         solution.v = v ? vv.data() : nullptr;
         solution.r = rr.data();
         solution.u = uu.data();
-        check_written(fclib_write_solution(&solution, path.c_str()),
-                      "the solution into `" + path + "'");
+        check_written(fclib_write_solution(&solution, temporary.c_str()),
+                      path);
       }
 
 
@@ -339,10 +348,13 @@ namespace dualcontact
     {
       check_is_form(path, Form::local);
       // before libfclib allocates from the headers (see FileLayout)
-      const FileLayout       layout(path, Form::local);
-      const SilentHdf5Errors silent;
+      const FileLayout layout(path, Form::local);
       std::unique_ptr<fclib_local, void (*)(fclib_local *)> p(
-        fclib_read_local(path.c_str()), fclib_delete_local);
+        nullptr, fclib_delete_local);
+      {
+        const LibfclibCall call(path, "read");
+        p.reset(fclib_read_local(path.c_str()));
+      }
       AssertThrow(p && p->W && p->q && p->mu,
                   dealii::ExcMessage("libfclib could not read the local "
                                      "problem in `" +
@@ -372,10 +384,13 @@ namespace dualcontact
     {
       check_is_form(path, Form::global);
       // before libfclib allocates from the headers (see FileLayout)
-      const FileLayout       layout(path, Form::global);
-      const SilentHdf5Errors silent;
+      const FileLayout layout(path, Form::global);
       std::unique_ptr<fclib_global, void (*)(fclib_global *)> p(
-        fclib_read_global(path.c_str()), fclib_delete_global);
+        nullptr, fclib_delete_global);
+      {
+        const LibfclibCall call(path, "read");
+        p.reset(fclib_read_global(path.c_str()));
+      }
       AssertThrow(p && p->M && p->H && p->f && p->w && p->mu,
                   dealii::ExcMessage("libfclib could not read the global "
                                      "problem in `" +
@@ -434,15 +449,14 @@ namespace dualcontact
       local.spacedim = problem.spacedim();
       local.info     = &info.info;
       {
-        const SilentHdf5Errors silent;
-        check_written(fclib_write_local(&local, file.name().c_str()),
-                      "`" + file.name() + "'");
-      }
-      if (r.size() > 0)
-      {
-        dealii::Vector<double> u;
-        problem.velocity(u, r);
-        write_solution(file.name(), r, u);
+        const LibfclibCall call(path, "write", file.name());
+        check_written(fclib_write_local(&local, file.name().c_str()), path);
+        if (r.size() > 0)
+        {
+          dealii::Vector<double> u;
+          problem.velocity(u, r);
+          write_solution(path, file.name(), r, u);
+        }
       }
       file.commit();
     }
@@ -476,17 +490,16 @@ namespace dualcontact
       global.spacedim = problem.spacedim();
       global.info     = &info.info;
       {
-        const SilentHdf5Errors silent;
-        check_written(fclib_write_global(&global, file.name().c_str()),
-                      "`" + file.name() + "'");
-      }
-      if (r.size() > 0)
-      {
-        dealii::Vector<double> v, u(r.size());
-        problem.velocity(v, r);
-        problem.H().Tvmult(u, v);
-        u += problem.w();
-        write_solution(file.name(), r, u, &v);
+        const LibfclibCall call(path, "write", file.name());
+        check_written(fclib_write_global(&global, file.name().c_str()), path);
+        if (r.size() > 0)
+        {
+          dealii::Vector<double> v, u(r.size());
+          problem.velocity(v, r);
+          problem.H().Tvmult(u, v);
+          u += problem.w();
+          write_solution(path, file.name(), r, u, &v);
+        }
       }
       file.commit();
     }
@@ -500,11 +513,13 @@ namespace dualcontact
       const FileLayout layout(path, form_of(path));
       if (!layout.has_solution())
         return {};
-      const std::size_t      size = layout.contact_size();
-      const SilentHdf5Errors silent;
+      const std::size_t size = layout.contact_size();
       std::unique_ptr<fclib_solution, void (*)(fclib_solution *)> s(
-        fclib_read_solution(path.c_str()),
-        [](fclib_solution *p) { fclib_delete_solutions(p, 1); });
+        nullptr, [](fclib_solution *p) { fclib_delete_solutions(p, 1); });
+      {
+        const LibfclibCall call(path, "read the solution of");
+        s.reset(fclib_read_solution(path.c_str()));
+      }
       AssertThrow(s && s->r,
                   dealii::ExcMessage("libfclib could not read the solution "
                                      "in `" +

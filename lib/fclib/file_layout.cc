@@ -2,11 +2,14 @@
 
 #include <fclib/file_layout.h>
 #include <fclib/silent_hdf5_errors.h>
+#include <util/available_memory.h>
 
 #include <hdf5.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <limits>
+#include <vector>
 
 namespace dualcontact
 {
@@ -135,6 +138,67 @@ namespace dualcontact
           return value;
         }
 
+        /**
+         * Reads the whole data set @p name, converted to @p memory_type as
+         * libfclib will read it: a damaged file (a flipped byte in a chunk,
+         * a heap or a type message) makes HDF5 fail there, and libfclib
+         * end the process without naming the file.
+         */
+        void
+        require_readable(const std::string &name,
+                         const hid_t        memory_type) const
+        {
+          const std::int64_t n = extent(name);
+          const Handle set(H5Dopen2(file_.get(), name.c_str(), H5P_DEFAULT),
+                           H5Dclose);
+          AssertThrow(set.valid(), error(name, "cannot be opened"));
+          read_into_buffer(name, set.get(), memory_type, n);
+        }
+
+        /** The string data set @p name (libfclib's info records). */
+        void
+        require_readable_string(const std::string &name) const
+        {
+          const std::int64_t n = extent(name);
+          const Handle set(H5Dopen2(file_.get(), name.c_str(), H5P_DEFAULT),
+                           H5Dclose);
+          AssertThrow(set.valid(), error(name, "cannot be opened"));
+          const Handle type(H5Dget_type(set.get()), H5Tclose);
+          AssertThrow(type.valid() &&
+                        H5Tget_class(type.get()) == H5T_STRING,
+                      error(name, "is not a string"));
+          // libfclib reads fixed-length strings only (H5LT)
+          AssertThrow(H5Tis_variable_str(type.get()) == 0,
+                      error(name, "is a variable-length string"));
+          read_into_buffer(name, set.get(), type.get(), n);
+        }
+
+        /** The group @p name must open (libfclib opens it). */
+        void
+        require_group(const std::string &name) const
+        {
+          AssertThrow(exists(name), error(name, "is missing"));
+          const Handle group(H5Gopen2(file_.get(), name.c_str(), H5P_DEFAULT),
+                             H5Gclose);
+          AssertThrow(group.valid(),
+                      error(name,
+                            "cannot be opened as a group (the file is "
+                            "damaged)"));
+          // libfclib looks names up by iterating the group (H5LTfind_
+          // dataset): a damaged link table fails there
+          const auto each_link =
+            [](hid_t, const char *, const H5L_info_t *, void *) -> herr_t
+          { return 0; };
+          AssertThrow(H5Literate(group.get(),
+                                 H5_INDEX_NAME,
+                                 H5_ITER_NATIVE,
+                                 nullptr,
+                                 each_link,
+                                 nullptr) >= 0,
+                      error(name,
+                            "cannot be listed: its table of names is damaged"));
+        }
+
         /** Requires the data set @p name to have @p expected entries. */
         void
         require_extent(const std::string &name,
@@ -156,6 +220,34 @@ namespace dualcontact
         }
 
       private:
+        void
+        read_into_buffer(const std::string &name,
+                         const hid_t        set,
+                         const hid_t        memory_type,
+                         const std::int64_t n) const
+        {
+          const std::uint64_t bytes =
+            std::uint64_t(std::max<std::int64_t>(n, 1)) *
+            H5Tget_size(memory_type);
+          const std::uint64_t available = util::available_memory();
+          AssertThrow(available == 0 || bytes <= available,
+                      error(name,
+                            "needs " + std::to_string(bytes) +
+                              " bytes, more than the " +
+                              std::to_string(available) +
+                              " bytes of memory available"));
+          std::vector<char> buffer(bytes);
+          AssertThrow(H5Dread(set,
+                              memory_type,
+                              H5S_ALL,
+                              H5S_ALL,
+                              H5P_DEFAULT,
+                              buffer.data()) >= 0,
+                      error(name,
+                            "cannot be read: HDF5 fails on its data (the "
+                            "file is damaged)"));
+        }
+
         std::string      path_;
         SilentHdf5Errors silent_; // before file_: H5Fopen may fail
         Handle           file_;
@@ -213,6 +305,67 @@ namespace dualcontact
             file.require_extent(group + array, nzmax, group + "/nzmax");
         }
         return {m, n};
+      }
+
+
+      /**
+       * Every data set of the matrix group @p group that libfclib reads,
+       * read here first (check_matrix() has checked their sizes).
+       */
+      void
+      check_matrix_readable(const LayoutReader &file, const std::string &group)
+      {
+        file.require_group(group);
+        for (const char *name : {"/nzmax", "/m", "/n", "/nz", "/p", "/i"})
+          file.require_readable(group + name, H5T_NATIVE_INT);
+        file.require_readable(group + "/x", H5T_NATIVE_DOUBLE);
+        // the optional matrix info: libfclib reads it when `conditioning'
+        // is there
+        if (file.exists(group + "/conditioning"))
+        {
+          for (const char *name : {"/conditioning", "/determinant"})
+            file.require_readable(group + name, H5T_NATIVE_DOUBLE);
+          file.require_readable(group + "/rank", H5T_NATIVE_INT);
+          if (file.exists(group + "/comment"))
+            file.require_readable_string(group + "/comment");
+        }
+      }
+
+
+      /**
+       * What libfclib reads besides the matrices: the groups, spacedim, the
+       * vectors, the info strings and the solution.  Read here first, so
+       * that a damaged file is refused naming the data set: libfclib would
+       * end the process on the first HDF5 call that fails.
+       */
+      void
+      check_readable(const LayoutReader &file,
+                     const std::string  &root,
+                     const Form          form,
+                     const bool          has_solution)
+      {
+        file.require_group(root);
+        file.require_readable(root + "/spacedim", H5T_NATIVE_INT);
+        file.require_group(root + "/vectors");
+        for (const char *name :
+             form == Form::local ? std::vector<const char *>{"/q", "/mu"} :
+                                   std::vector<const char *>{"/f", "/w", "/mu"})
+          file.require_readable(root + "/vectors" + name, H5T_NATIVE_DOUBLE);
+        if (file.exists(root + "/info"))
+        {
+          file.require_group(root + "/info");
+          for (const char *name : {"/title", "/description", "/math_info"})
+            if (file.exists(root + "/info" + name))
+              file.require_readable_string(root + "/info" + name);
+        }
+        if (!has_solution)
+          return;
+        // libfclib reads u and r (and v of a global problem) together
+        file.require_group("/solution");
+        for (const char *name : {"/solution/r", "/solution/u"})
+          file.require_readable(name, H5T_NATIVE_DOUBLE);
+        if (form == Form::global)
+          file.require_readable("/solution/v", H5T_NATIVE_DOUBLE);
       }
     } // namespace
 
@@ -295,6 +448,14 @@ namespace dualcontact
                   file.error("/solution/l",
                              "is present: multipliers of equality "
                              "constraints are not supported"));
+      if (form == Form::local)
+        check_matrix_readable(file, root + "/W");
+      else
+      {
+        check_matrix_readable(file, root + "/M");
+        check_matrix_readable(file, root + "/H");
+      }
+      check_readable(file, root, form, has_solution_);
     }
 
 

@@ -4,6 +4,7 @@
 #include <deal.II/base/utilities.h>
 #include <deal.II/lac/vector.h>
 
+#include <io/checked_function.h>
 #include <io/function_expression.h>
 #include <io/parameter_file.h>
 
@@ -63,7 +64,10 @@ namespace dualcontact
             "; constant: pi): " +
             shorten_for_message(dealii::Utilities::trim(info.str()), 400)));
       }
-      return function;
+      // every value where the scene uses it is checked to be finite
+      return std::make_shared<CheckedFunction<dim>>(function,
+                                                    expressions,
+                                                    parameter_location);
     }
 
 

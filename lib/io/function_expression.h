@@ -17,6 +17,9 @@ namespace dualcontact
      *
      * Throws an ExcMessage naming @p parameter_location if the number of
      * expressions is wrong or an expression does not parse or evaluate.
+     * The function returned is a CheckedFunction: a value that is not
+     * finite where it is evaluated throws, naming the parameter and the
+     * point.
      */
     template <int dim>
     std::shared_ptr<const dealii::Function<dim>>

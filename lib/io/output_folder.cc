@@ -10,6 +10,7 @@
 #include <atomic>
 #include <cerrno>
 #include <csignal>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -94,11 +95,52 @@ namespace dualcontact
         std::atomic<std::size_t> n_folders{0};
       };
 
+      /**
+       * Whether @p part (of the output folder @p path) exists; throws naming
+       * the folder, the parameter (@p parameter_location, if not empty) and
+       * the cause if that cannot be told (std::filesystem would throw its
+       * own filesystem_error, which names neither).  The constructor checks
+       * with the parameter named; create_folder() checks again, as the
+       * path may have changed since.
+       */
+      bool
+      exists_or_throw(const fs::path    &part,
+                      const std::string &path,
+                      const std::string &parameter_location)
+      {
+        std::error_code error;
+        const bool      found = fs::exists(part, error);
+        AssertThrow(!error,
+                    dealii::ExcMessage("Cannot write the output folder `" +
+                                       path + "'" +
+                                       (parameter_location.empty() ?
+                                          std::string() :
+                                          " " + parameter_location) +
+                                       ": `" + part.string() +
+                                       "': " + error.message() + "."));
+        return found;
+      }
+
       CleanupList &
       cleanup_list()
       {
         static CleanupList list;
         return list;
+      }
+
+      /**
+       * Run by exit(): what an uncommitted run left (nothing after a
+       * commit, which empties the list; after a failure the destructor has
+       * removed them already, and this finds nothing).
+       */
+      extern "C" void
+      remove_temporaries_at_exit()
+      {
+        CleanupList &list = cleanup_list();
+        for (std::size_t i = 0; i < list.n_files; ++i)
+          (void)unlink(list.files[i].c_str());
+        for (std::size_t i = list.n_folders; i > 0; --i)
+          (void)rmdir(list.folders[i - 1].c_str());
       }
 
       extern "C" void
@@ -123,6 +165,9 @@ namespace dualcontact
     OutputFolder::install_signal_handlers()
     {
       (void)cleanup_list(); // reserve its storage now, not in the handler
+      // a library that ends the process with exit() (libfclib does when an
+      // HDF5 call fails) skips the destructors that remove the temporaries
+      std::atexit(remove_temporaries_at_exit);
       struct sigaction action;
       std::memset(&action, 0, sizeof(action));
       action.sa_handler = remove_temporaries_and_exit;
@@ -251,8 +296,11 @@ namespace dualcontact
       // writable directory.
       fs::path existing = fs::absolute(fs::path(path)).lexically_normal();
       std::error_code error;
-      while (!fs::exists(existing, error) && existing.has_parent_path() &&
-             existing != existing.parent_path())
+      // a part of the path that cannot be looked at (a symbolic-link loop,
+      // a folder without search permission) is an error, not a part that
+      // does not exist
+      while (!exists_or_throw(existing, path, parameter_location) &&
+             existing.has_parent_path() && existing != existing.parent_path())
         existing = existing.parent_path();
       AssertThrow(fs::is_directory(existing, error),
                   dealii::ExcMessage("Cannot write the output folder `" + path +
@@ -304,7 +352,7 @@ namespace dualcontact
       // remember which folders are new, so that a failed run removes them
       std::vector<fs::path> missing;
       for (fs::path folder = fs::absolute(fs::path(path_)).lexically_normal();
-           !fs::exists(folder);
+           !exists_or_throw(folder, path_, "");
            folder = folder.parent_path())
         missing.push_back(folder);
       for (auto folder = missing.rbegin(); folder != missing.rend(); ++folder)
@@ -343,7 +391,22 @@ namespace dualcontact
                   dealii::ExcMessage("Cannot write the file `" +
                                      temporary.string() + "': " + cause(errno) +
                                      "."));
-      writer(out);
+      try
+      {
+        writer(out);
+      }
+      catch (const dealii::ExceptionBase &)
+      {
+        // deal.II's writers end with ExcIO ("An input/output error has
+        // occurred.") when the stream failed: name the file and the cause
+        const int number = errno;
+        if (out)
+          throw; // the writer's own error, which says what it is
+        AssertThrow(false,
+                    dealii::ExcMessage("Writing the file `" +
+                                       temporary.string() +
+                                       "' failed: " + cause(number) + "."));
+      }
       out.close();
       AssertThrow(out,
                   dealii::ExcMessage("Writing the file `" + temporary.string() +

@@ -60,6 +60,66 @@ namespace dualcontact
                  line;
       }
 
+      /**
+       * Where @p text stops being UTF-8: the offset of the first byte that
+       * does not begin or continue a well-formed sequence (an overlong form,
+       * a surrogate and a code point beyond U+10FFFF are not well formed),
+       * std::string::npos if it is UTF-8 throughout.
+       */
+      std::size_t
+      first_non_utf8_byte(const std::string &text)
+      {
+        const auto byte = [&](const std::size_t i)
+        { return static_cast<unsigned char>(text[i]); };
+        std::size_t i = 0;
+        while (i < text.size())
+        {
+          const unsigned char lead = byte(i);
+          std::size_t         n    = 0; // continuation bytes that follow
+          unsigned char       low = 0x80, high = 0xBF; // of the second byte
+          if (lead < 0x80)
+            n = 0;
+          else if (lead >= 0xC2 && lead <= 0xDF)
+            n = 1;
+          else if (lead >= 0xE0 && lead <= 0xEF)
+          {
+            n = 2;
+            if (lead == 0xE0)
+              low = 0xA0; // overlong
+            else if (lead == 0xED)
+              high = 0x9F; // surrogates
+          }
+          else if (lead >= 0xF0 && lead <= 0xF4)
+          {
+            n = 3;
+            if (lead == 0xF0)
+              low = 0x90; // overlong
+            else if (lead == 0xF4)
+              high = 0x8F; // beyond U+10FFFF
+          }
+          else
+            return i;
+          if (n > 0 && i + n >= text.size()) // cut short
+            return i;
+          for (std::size_t k = 1; k <= n; ++k)
+          {
+            const unsigned char next = byte(i + k);
+            if (next < (k == 1 ? low : 0x80) || next > (k == 1 ? high : 0xBF))
+              return i;
+          }
+          i += n + 1;
+        }
+        return std::string::npos;
+      }
+
+      std::string
+      hex_byte(const char c)
+      {
+        static const char digits[] = "0123456789ABCDEF";
+        const auto        b        = static_cast<unsigned char>(c);
+        return std::string("0x") + digits[b >> 4] + digits[b & 0xF];
+      }
+
       /** deal.II's comment rule: `#' starts one unless written `\#'. */
       std::string
       without_comment(const std::string &line)
@@ -101,6 +161,49 @@ namespace dualcontact
         for (auto &c : upper)
           c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
         return text.rfind(keyword, 0) == 0 || text.rfind(upper, 0) == 0;
+      }
+
+
+      /**
+       * Throw naming the file, the line and, for a `set' line whose value
+       * holds it, the entry: @p text (line @p line of @p file_name, in the
+       * subsection @p path, without its comment) has a byte that is not
+       * UTF-8 at @p bad.  deal.II would take the bytes as they are, but the
+       * parameter check's JSON round trip (check_double_entries()) and every
+       * file that echoes parameters (used_parameters.prm, statistics.json)
+       * need UTF-8.
+       */
+      [[noreturn]] void
+      throw_non_utf8(const std::string &file_name,
+                     const unsigned int line,
+                     const std::string &path,
+                     const std::string &text,
+                     const std::size_t  bad)
+      {
+        const std::string where =
+          "`" + file_name + "', line " + std::to_string(line);
+        const std::string advice =
+          ": save the file as UTF-8 (only comments may hold other bytes).";
+        const auto equals = text.find('=');
+        if (starts_with_keyword(text, "set ") && equals != std::string::npos &&
+            bad > equals)
+        {
+          const std::string entry =
+            dealii::Utilities::trim(text.substr(4, equals - 4));
+          const std::size_t value_start =
+            text.find_first_not_of(" \t", equals + 1);
+          throw dealii::ExcMessage(
+            where + ", entry `" + entry + "' " +
+            (path.empty() ? std::string("at the top level") :
+                            "in `subsection " + path + "'") +
+            ": the value is not valid UTF-8 (byte " + hex_byte(text[bad]) +
+            " at position " + std::to_string(bad - value_start + 1) +
+            " of the value)" + advice);
+        }
+        throw dealii::ExcMessage(where + ": the line is not valid UTF-8 (byte " +
+                                 hex_byte(text[bad]) + " at position " +
+                                 std::to_string(bad + 1) +
+                                 " of the line without its comment)" + advice);
       }
 
       /** Where an entry was set: file and line, for the duplicate message. */
@@ -184,6 +287,9 @@ namespace dualcontact
           std::string path;
           for (const auto &name : stack)
             path = join_path(path, name);
+          if (const std::size_t bad = first_non_utf8_byte(text);
+              bad != std::string::npos)
+            throw_non_utf8(file_name, first_line, path, text, bad);
           if (starts_with_keyword(text, "subsection "))
           {
             stack.push_back(dealii::Utilities::trim(text.substr(11)));
@@ -284,7 +390,22 @@ namespace dualcontact
     {
       std::stringstream json_text;
       prm.print_parameters(json_text, dealii::ParameterHandler::JSON);
-      for_each_entry(nlohmann::json::parse(json_text.str()),
+      nlohmann::json tree;
+      try
+      {
+        tree = nlohmann::json::parse(json_text.str());
+      }
+      catch (const nlohmann::json::exception &)
+      {
+        // the files and `--set' options are checked for UTF-8 as they are
+        // read (outline_parameter_file(), apply_parameter_overrides()):
+        // only a value set otherwise gets here
+        AssertThrow(false,
+                    dealii::ExcMessage(
+                      "A parameter value is not valid UTF-8: give the "
+                      "parameters in UTF-8."));
+      }
+      for_each_entry(tree,
                      "",
                      [](const std::string &path,
                         const std::string &entry,
@@ -542,6 +663,21 @@ namespace dualcontact
     {
       for (const auto &entry : overrides)
       {
+        if (const std::size_t bad = first_non_utf8_byte(entry.text);
+            bad != std::string::npos)
+        {
+          const bool in_value = first_non_utf8_byte(entry.subsection_path() +
+                                                    entry.entry) ==
+                                std::string::npos;
+          throw dealii::ExcMessage(
+            "The option `--set' " +
+            (in_value ?
+               "of " + parameter_location(entry.subsection_path(), entry.entry) +
+                 " gives a value that" :
+               std::string("names a parameter that")) +
+            " is not valid UTF-8 (byte " + hex_byte(entry.text[bad]) +
+            "): give it in UTF-8.");
+        }
         const std::string where = "given by `--set " + entry.text + "'";
         if (!prm.subsection_path_exists(entry.subsections))
         {

@@ -110,6 +110,10 @@ namespace dualcontact
      * - a file that includes itself, directly or through others (deal.II
      *   recurses until the stack overflows), or includes deeper than
      *   max_include_depth: the message lists the chain of files.
+     * - a line whose text (without its comment) is not UTF-8: the message
+     *   names the file, the line and, for a value, the entry (deal.II
+     *   would keep the bytes, which the JSON round trip of
+     *   check_double_entries() cannot parse); comments may hold any bytes.
      * A UTF-8 byte-order mark at the start of a file is skipped.
      */
     ParameterFileOutline

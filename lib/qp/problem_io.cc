@@ -1,4 +1,5 @@
 #include <qp/problem_io.h>
+#include <util/available_memory.h>
 
 #include <deal.II/base/exceptions.h>
 
@@ -6,8 +7,11 @@
 
 #include <algorithm>
 #include <charconv>
+#include <cerrno>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
@@ -24,25 +28,93 @@ namespace dualcontact
       std::string
       slurp(const std::string &filename, const std::string &what)
       {
+        const std::string kind =
+          (what.empty() ? std::string("file") : what + " file");
+        // fopen() opens a directory, whose "size" from fseek/ftell is
+        // anything up to LONG_MAX: refuse what is not a regular file
+        std::error_code                   error;
+        const std::filesystem::file_status status =
+          std::filesystem::status(filename, error);
+        AssertThrow(!std::filesystem::is_directory(status),
+                    dealii::ExcMessage("Cannot read " + kind + " '" +
+                                       filename + "': it is a directory."));
+        AssertThrow(error || std::filesystem::is_regular_file(status),
+                    dealii::ExcMessage("Cannot read " + kind + " '" +
+                                       filename +
+                                       "': it is not a regular file."));
         std::FILE *file = std::fopen(filename.c_str(), "rb");
         AssertThrow(file != nullptr,
-                    dealii::ExcMessage(
-                      "Cannot open " +
-                      (what.empty() ? std::string("file") : what) + " file '" +
-                      filename + "'."));
+                    dealii::ExcMessage("Cannot open " + kind + " '" +
+                                       filename + "': " +
+                                       std::strerror(errno) + "."));
         std::string content;
         std::fseek(file, 0, SEEK_END);
         const long size = std::ftell(file);
         std::fseek(file, 0, SEEK_SET);
+        const std::uint64_t available = util::available_memory();
+        if (size > 0 && available > 0 &&
+            static_cast<std::uint64_t>(size) > available)
+        {
+          std::fclose(file);
+          AssertThrow(false,
+                      dealii::ExcMessage(
+                        "Cannot read " + kind + " '" + filename + "': it has " +
+                        std::to_string(size) + " bytes, more than the " +
+                        std::to_string(available) +
+                        " bytes of memory available (MemAvailable in "
+                        "/proc/meminfo)."));
+        }
         if (size > 0)
         {
           content.resize(static_cast<std::size_t>(size));
           const std::size_t n_read =
             std::fread(content.data(), 1, content.size(), file);
+          const bool failed = std::ferror(file) != 0;
+          const int  number = errno;
           content.resize(n_read);
+          if (failed)
+          {
+            std::fclose(file);
+            AssertThrow(false,
+                        dealii::ExcMessage("Cannot read " + kind + " '" +
+                                           filename +
+                                           "': " + std::strerror(number) +
+                                           "."));
+          }
         }
         std::fclose(file);
         return content;
+      }
+
+
+      /**
+       * Throws, through @p cursor (file and line), unless the memory a
+       * matrix of @p n_rows rows and @p n_entries stored entries needs is
+       * available: the arrays of the triplets, of the counting sort and of
+       * the sparse matrix take some 40 bytes a row and 40 an entry, and
+       * the solvers' vectors a few more a row.  A size line of 10^9 rows
+       * would otherwise end in std::bad_alloc, naming nothing.
+       */
+      template <typename Cursor>
+      void
+      check_memory_for_matrix(const Cursor       &cursor,
+                              const std::uint64_t n_rows,
+                              const std::uint64_t n_cols,
+                              const std::uint64_t n_entries)
+      {
+        const std::uint64_t available = util::available_memory();
+        if (available == 0)
+          return; // unknown
+        const std::uint64_t needed = 80 * n_rows + 40 * n_entries;
+        if (needed <= available)
+          return;
+        std::ostringstream text;
+        text << std::setprecision(3) << "the size line announces a " << n_rows
+             << " x " << n_cols << " matrix with " << n_entries
+             << " entries, which needs about " << needed / 1e9
+             << " GB to read and solve, but only " << available / 1e9
+             << " GB of memory are available (MemAvailable in /proc/meminfo)";
+        cursor.fail(text.str());
       }
 
 
@@ -367,6 +439,14 @@ namespace dualcontact
         cursor.fail("invalid matrix size");
       if (symmetric && n_rows != n_cols)
         cursor.fail("a symmetric matrix must be square");
+      // (the entries at most as many as the rest of the file can hold:
+      // an entry count beyond that is the error checked below)
+      check_memory_for_matrix(
+        cursor,
+        n_rows,
+        n_cols,
+        std::min<std::uint64_t>(n_entries, (cursor.end - cursor.pos) / 6 + 1) *
+          (symmetric ? 2 : 1));
       cursor.next_line();
       // an entry line takes at least 6 bytes ("1 1 1\n"): check the
       // announced count against the file before reserving memory for it

@@ -17,6 +17,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <fstream>
 #include <iomanip>
 #include <limits>
@@ -485,6 +486,37 @@ namespace dualcontact
                     dealii::ExcMessage("Cannot write `" + json_file + "'"));
         json << summary.dump(2) << "\n";
       }
+
+
+      /**
+       * Runs @p action (reading or solving the problem of @p file): an error
+       * whose message does not name the file is rethrown with "FCLIB file
+       * `FILE'" and @p what in front.  A damaged file can hold values that
+       * the reader takes (finite, but 1e300) and that fail later, in the
+       * reduction to local form or in the solver, whose messages know no
+       * file.
+       */
+      template <typename Action>
+      auto
+      naming_file(const std::string &file,
+                  const std::string &what,
+                  const Action      &action) -> decltype(action())
+      {
+        try
+        {
+          return action();
+        }
+        catch (const dealii::ExceptionBase &e)
+        {
+          const std::string message = exception_message(e);
+          if (message.find(file) != std::string::npos)
+            throw;
+          AssertThrow(false,
+                      dealii::ExcMessage("FCLIB file `" + file + "'" + what +
+                                         ": " + message));
+        }
+        std::abort(); // not reached
+      }
     } // namespace
 
 
@@ -576,8 +608,16 @@ namespace dualcontact
       {
         const Settings settings = read_settings(options);
         nlohmann::json summary;
-        LocalProblem   problem =
-          read_problem(options.file, settings.storage, out, summary);
+        LocalProblem   problem = naming_file(options.file,
+                                           "",
+                                           [&]()
+                                           {
+                                             return read_problem(
+                                               options.file,
+                                               settings.storage,
+                                               out,
+                                               summary);
+                                           });
         if (options.info_only)
         {
           print_info(problem, out, summary);
@@ -590,8 +630,14 @@ namespace dualcontact
         bool                   converged = false;
         if (settings.loop.model == Model::newton)
         {
-          const NewtonSolver newton(problem, settings.loop.newton);
-          const auto         result = newton.solve(r);
+          const auto result = naming_file(options.file,
+                                          " (solving its problem)",
+                                          [&]()
+                                          {
+                                            const NewtonSolver newton(
+                                              problem, settings.loop.newton);
+                                            return newton.solve(r);
+                                          });
           print_newton_result(result, settings, out);
           compare_with_stored_solution(options.file, problem, r, out, summary);
           add_newton_result(result, settings, summary);
@@ -599,11 +645,17 @@ namespace dualcontact
         }
         else
         {
-          const LocalSolver local_solver(problem,
-                                         settings.qp,
-                                         settings.coulomb,
-                                         settings.loop);
-          const auto        result = local_solver.solve(r);
+          const auto result = naming_file(options.file,
+                                          " (solving its problem)",
+                                          [&]()
+                                          {
+                                            const LocalSolver local_solver(
+                                              problem,
+                                              settings.qp,
+                                              settings.coulomb,
+                                              settings.loop);
+                                            return local_solver.solve(r);
+                                          });
           print_result(result, settings, out);
           compare_with_stored_solution(options.file, problem, r, out, summary);
           add_result(result, settings, summary);

@@ -69,6 +69,27 @@ main()
           "a folder below a file is refused: " + message);
   }
 
+  // a symbolic-link loop on the way (issue 49): the folder, the parameter
+  // and the cause named, not std::filesystem's raw error
+  {
+    fs::create_symlink("loop", root / "loop");
+    const std::string message = error_of(
+      [&]()
+      {
+        OutputFolder folder((root / "loop" / "out").string(),
+                            "(`set Output folder' in `subsection Output')");
+        folder.lock();
+      });
+    check(message.find("Cannot write the output folder `" +
+                       (root / "loop" / "out").string() +
+                       "' (`set Output folder' in `subsection Output'): `") !=
+              std::string::npos &&
+            message.find("Too many levels of symbolic links") !=
+              std::string::npos,
+          "a symbolic-link loop names the folder, parameter and cause: " +
+            message);
+  }
+
   // a full disk: the message names the file and the cause (the temporary
   // name is made a link to /dev/full, where every write fails with ENOSPC)
   if (fs::exists("/dev/full"))

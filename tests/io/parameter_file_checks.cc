@@ -14,6 +14,8 @@
 #include <iostream>
 #include <sstream>
 #include <string>
+#include <utility>
+#include <vector>
 #include <test_tools.h>
 
 namespace fs = std::filesystem;
@@ -34,6 +36,7 @@ namespace
   declare(dealii::ParameterHandler &prm)
   {
     prm.declare_entry("Dimension", "3", dealii::Patterns::Integer(2, 3));
+    prm.declare_entry("Title", "", dealii::Patterns::Anything());
     prm.enter_subsection("Body 1");
     prm.declare_entry("Young's modulus", "1", dealii::Patterns::Double());
     prm.declare_entry("Name", "a", dealii::Patterns::Selection("a|b"));
@@ -113,6 +116,64 @@ main()
       "byte-order mark skipped");
     check(subsection_path_at_line("bom.prm", 3) == "Body 1",
           "byte-order mark: subsection path after it");
+  }
+
+  // bytes that are not UTF-8 (issue 49): a value is refused naming the
+  // file, the line and the entry, any other line naming the line; comments
+  // keep any bytes; UTF-8 of two, three and four bytes is taken as it is
+  {
+    const auto error_of_file = [](const std::string &name,
+                                  const std::string &text)
+    {
+      write(name, text);
+      dealii::ParameterHandler prm;
+      declare(prm);
+      return error_of([&] { parse_parameter_file(prm, name, false); });
+    };
+    check(contains(error_of_file("latin1.prm",
+                                 "set Dimension = 2\nsubsection Body 1\n"
+                                 "  set Name = a\xE9\xFF\nend\n"),
+                   "`latin1.prm', line 3, entry `Name' in `subsection Body "
+                   "1': the value is not valid UTF-8 (byte 0xE9 at position "
+                   "2 of the value)"),
+          "non-UTF-8 value: file, line, entry and byte named");
+    check(error_of_file("comment.prm",
+                        "set Dimension = 2 # caf\xE9\xFF\n# \xC0\n")
+            .empty(),
+          "non-UTF-8 bytes in comments are kept");
+    check(error_of_file("utf8.prm",
+                        "set Title = caf\xC3\xA9 \xE2\x82\xAC "
+                        "\xF0\x9F\x98\x80\n")
+            .empty(),
+          "UTF-8 of 2, 3 and 4 bytes is taken");
+    for (const auto &[bytes, what] :
+         std::vector<std::pair<std::string, std::string>>{
+           {"\xC0\xAF", "overlong"},
+           {"\xED\xA0\x80", "surrogate"},
+           {"\xF4\x90\x80\x80", "beyond U+10FFFF"},
+           {"\xE2\x82", "cut short"},
+           {"\x80", "lone continuation byte"}})
+      check(contains(error_of_file("bad_utf8.prm", "set Title = x" + bytes +
+                                                     "\n"),
+                     "line 1, entry `Title' at the top level: the value is "
+                     "not valid UTF-8 (byte 0x"),
+            "refused: " + what);
+    check(contains(error_of_file("line.prm",
+                                 "set Dimension = 2\n\xFF\xFE junk\n"),
+                   "`line.prm', line 2: the line is not valid UTF-8 (byte "
+                   "0xFF at position 1"),
+          "a line of bytes: the line named");
+    dealii::ParameterHandler prm;
+    declare(prm);
+    check(contains(error_of(
+                     [&]
+                     {
+                       apply_parameter_overrides(
+                         prm, {parse_parameter_override("Title=a\xE9")}, false);
+                     }),
+                   "The option `--set' of (`set Title' at the top level) "
+                   "gives a value that is not valid UTF-8 (byte 0xE9)"),
+          "--set with a non-UTF-8 value: the entry named");
   }
 
   // subnormal and unparsable doubles name the parameter

@@ -13,8 +13,10 @@
 
 #include <qp/membrane_generator.h>
 #include <qp/problem_io.h>
+#include <util/available_memory.h>
 
 #include <cmath>
+#include <cstdint>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -228,6 +230,31 @@ main()
   expect_error(dir + "/bad13.json",
                {"constraints[0]", "4294967298", "exceed the problem size 3"},
                "a cone count * 3 beyond 2^32 does not wrap");
+
+  // issue 49: a directory given as the Hessian file is named as one (fopen
+  // opened it and its "size" went into std::string::resize)
+  std::filesystem::create_directories(dir + "/folder.mtx");
+  write(dir + "/bad14.json", R"({"hessian": "folder.mtx", "rhs": "b.txt"})");
+  expect_error(dir + "/bad14.json",
+               {"folder.mtx", "is a directory"},
+               "a directory as the Hessian file");
+  // issue 49: a size line of 2147483646 rows asks for ~170 GB: refused
+  // against MemAvailable before anything is allocated (it was
+  // std::bad_alloc); skipped on a machine with that much memory free
+  write(dir + "/rows.mtx",
+        "%%MatrixMarket matrix coordinate real general\n"
+        "2147483646 2147483646 1\n1 1 2\n");
+  write(dir + "/bad15.json", R"({"hessian": "rows.mtx", "rhs": "b.txt"})");
+  const std::uint64_t available = dualcontact::util::available_memory();
+  if (available > 0 && available < 80ull * 2147483646ull)
+    expect_error(dir + "/bad15.json",
+                 {"rows.mtx:2",
+                  "announces a 2147483646 x 2147483646 matrix",
+                  "MemAvailable"},
+                 "a size line beyond the memory available");
+  else
+    std::cout << "skipped: the size-line memory check (MemAvailable "
+              << available << " bytes)" << std::endl;
 
   std::filesystem::remove_all(dir);
   return qptest::checker().finish("qp/qpsolve_problem_io");
