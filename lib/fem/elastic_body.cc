@@ -80,7 +80,7 @@ namespace dualcontact
     template <int dim>
     void
     ElasticBody<dim>::set_body_force(
-      std::shared_ptr<const Function<dim>> body_force)
+      std::shared_ptr<Function<dim>> body_force)
     {
       body_force_ = std::move(body_force);
     }
@@ -137,7 +137,19 @@ namespace dualcontact
                              std::to_string(dim) + " components."));
 
       dof_handler_.distribute_dofs(fe_);
+      make_constraints();
 
+      // a new set of dofs: the system of the old ones is gone
+      stiffness_.clear();
+      sparsity_.reinit(0, 0, 0);
+      load_.reinit(0);
+    }
+
+
+    template <int dim>
+    void
+    ElasticBody<dim>::make_constraints()
+    {
       constraints_.clear();
       DoFTools::make_hanging_node_constraints(dof_handler_, constraints_);
       // on a distributed mesh every process needs the lines of all dofs:
@@ -169,11 +181,46 @@ namespace dualcontact
                                "expression (a division by zero, the square "
                                "root or logarithm of a negative number, an "
                                "overflow)."));
+    }
 
-      // a new set of dofs: the system of the old ones is gone
-      stiffness_.clear();
-      sparsity_.reinit(0, 0, 0);
-      load_.reinit(0);
+
+    template <int dim>
+    void
+    ElasticBody<dim>::set_load_time(const double time)
+    {
+      for (auto &condition : dirichlet_)
+        condition.values->set_time(time);
+      for (auto &condition : tractions_)
+        condition.traction->set_time(time);
+      if (body_force_)
+        body_force_->set_time(time);
+      // the prescribed values at the new time; the lines (which dofs, which
+      // hanging nodes) are those of setup(), so K is unchanged
+      if (dof_handler_.n_dofs() > 0)
+        make_constraints();
+    }
+
+
+    template <int dim>
+    void
+    ElasticBody<dim>::assemble_load()
+    {
+      Assert(is_assembled(), ExcMessage(name_ + ": assemble() first."));
+      load_ = 0.;
+      CellScratch        scratch(mapping_, curved_mapping_, fe_);
+      FullMatrix<double> cell_matrix;
+      Vector<double>     cell_rhs;
+      std::vector<types::global_dof_index> dof_indices(fe_.n_dofs_per_cell());
+      for (const auto &cell : dof_handler_.active_cell_iterators())
+      {
+        cell_system(cell, scratch, cell_matrix, cell_rhs);
+        cell->get_dof_indices(dof_indices);
+        // the inhomogeneities through the cell matrix, as assemble() does
+        constraints_.distribute_local_to_global(cell_rhs,
+                                                dof_indices,
+                                                load_,
+                                                cell_matrix);
+      }
     }
 
 
@@ -465,9 +512,11 @@ namespace dualcontact
     template <int dim>
     void
     ElasticBody<dim>::solve(StiffnessSolver &solver,
-                            Vector<double>  &displacement) const
+                            Vector<double>  &displacement,
+                            const bool       factorize) const
     {
-      solver.initialize(stiffness_);
+      if (factorize)
+        solver.initialize(stiffness_);
       displacement.reinit(n_dofs());
       solver.solve(displacement, load_);
       distribute(displacement);
