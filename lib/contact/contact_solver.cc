@@ -262,11 +262,13 @@ namespace dualcontact
         result.multipliers_per_process = {
           static_cast<unsigned int>(lambda.size())};
       }
+      // the first Coulomb iterate is bonded, also when warm started: the
+      // bounds of the previous step's normal multipliers can be too small
+      // for the new load of a floating body (an infeasible Tresca QP)
+      dual_.update_slip_bounds(nullptr);
       if (initial_multipliers_.size() == dual_.n_multipliers())
       {
-        // a warm start (the previous load step's multipliers): the
-        // Coulomb bounds start from its normal multipliers instead of the
-        // bonded first iterate
+        // a warm start: the previous load step's multipliers
         if constexpr (std::is_same_v<V, Distributed>)
         {
           for (const auto i : lambda.locally_owned_elements())
@@ -275,10 +277,7 @@ namespace dualcontact
         }
         else
           lambda = initial_multipliers_;
-        dual_.update_slip_bounds(&initial_multipliers_);
       }
-      else
-        dual_.update_slip_bounds(nullptr);
 
       const bool has_coulomb = dual_.has_coulomb_friction();
 

@@ -105,10 +105,10 @@ namespace dualcontact
       set_final_recovery(bool recover);
 
       /**
-       * Start the QPs from @p lambda (all multipliers, the whole vector;
-       * empty: from zero with a bonded first Coulomb iterate), and the
-       * Coulomb bounds from its normal multipliers: a load step
-       * warm-started from the previous step's multipliers.
+       * Start the first QP from @p lambda (all multipliers, the whole
+       * vector; empty: from zero): a load step warm-started from the
+       * previous step's multipliers.  The first Coulomb iterate stays
+       * bonded (the previous step's bounds may not carry the new load).
        */
       void
       set_initial_multipliers(const dealii::Vector<double> &lambda);

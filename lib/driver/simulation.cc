@@ -438,7 +438,8 @@ namespace dualcontact
       /**
        * Whether results.txt's key @p key goes into history.csv: a force
        * (not a traction's nominal one or a relative difference), a count,
-       * an area or contact length, the dissipated energy.
+       * an area or contact length, an energy (strain, external work,
+       * dissipated), the largest displacement and pressure.
        */
       bool
       is_history_key(const std::string &key)
@@ -452,7 +453,9 @@ namespace dualcontact
         return key.find("force") != std::string::npos ||
                last.rfind("n_", 0) == 0 || last == "area" ||
                last == "contact_length" || last == "contact_area" ||
-               last == "dissipated_energy";
+               last == "strain_energy" || last == "external_work" ||
+               last == "dissipated_energy" || last == "max_displacement" ||
+               last == "max_pressure";
       }
     } // namespace
 
