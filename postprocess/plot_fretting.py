@@ -3,7 +3,7 @@
 tangential displacement, from history.csv (inputs/fretting.prm).
 
 Usage: plot_fretting.py HISTORY.csv --amplitude A [--press-time T0]
-                        [--force KEY] [PICTURE.png]
+                        [--force KEY] [--output PICTURE.png]
 
 The displacement is the input's triangle wave: 0 up to T0 (default 1, the
 press), then 0 -> A over T0 .. T0 + 1, A -> -A over the next 2, -A -> A
@@ -34,7 +34,7 @@ def displacement(t, amplitude, t0):
 def main():
     parser = argparse.ArgumentParser()
     parser.add_argument("history")
-    parser.add_argument("picture", nargs="?")
+    parser.add_argument("--output", dest="picture")
     parser.add_argument("--amplitude", type=float, required=True)
     parser.add_argument("--press-time", type=float, default=1.0)
     parser.add_argument("--force", default="pair_1.tangential_force.x")

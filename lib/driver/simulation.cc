@@ -439,14 +439,14 @@ namespace dualcontact
        * Whether results.txt's key @p key goes into history.csv: a force
        * (not a traction's nominal one or a relative difference), a count,
        * an area or contact length, an energy (strain, external work,
-       * dissipated), the largest displacement and pressure.
+       * dissipated), the largest displacement and pressure, and every
+       * body's force imbalance (each step must balance).
        */
       bool
       is_history_key(const std::string &key)
       {
         const std::string last = key.substr(key.find_last_of('.') + 1);
-        if (key.find("imbalance") != std::string::npos ||
-            key.find("nominal") != std::string::npos ||
+        if (key.find("nominal") != std::string::npos ||
             key.find("relative") != std::string::npos ||
             key.rfind("contact.", 0) == 0 || key.rfind("refinement.", 0) == 0)
           return false;
@@ -455,7 +455,7 @@ namespace dualcontact
                last == "contact_length" || last == "contact_area" ||
                last == "strain_energy" || last == "external_work" ||
                last == "dissipated_energy" || last == "max_displacement" ||
-               last == "max_pressure";
+               last == "max_pressure" || last == "force_imbalance";
       }
     } // namespace
 

@@ -16,7 +16,8 @@ sticking ones.  Both carry the same tangential force (the load) to 1e-8
 and normal force (the reaction to the indentation) to 1e-4,
 and the history dissipates (almost) nothing: total.dissipated_energy below
 1e-3 of Q times the largest tangential displacement of the static run
-(its slip is of that order).
+(its slip is of that order); every step's forces balance
+(force_imbalance <= 1e-8).
 """
 import argparse
 import csv
@@ -112,6 +113,11 @@ def main():
     check(abs(dissipated) <= 1e-3 * q * reach,
           "history: dissipated energy <= 1e-3 Q |u|max",
           "%.3e (Q |u|max = %.3e)" % (dissipated, q * reach))
+    # every step balances: applied + reactions + contact = 0 per body
+    imbalance = max(float(v) for r in rows for k, v in r.items()
+                    if k.endswith(".force_imbalance"))
+    check(imbalance <= 1e-8, "every step: body_N.force_imbalance <= 1e-8",
+          "%.3e" % imbalance)
     print("%d failure(s)" % failures)
     return 1 if failures else 0
 

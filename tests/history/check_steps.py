@@ -16,7 +16,8 @@ size of its quantity (a vector's norm).  Also asserted: the history's
 results.txt is its last step's (the same forces as the last row), and
 history.csv has one row per step with step and time.
 
-Every run must exit 0.
+Every run must exit 0, and every step's forces balance (every body's
+force_imbalance in history.csv <= 1e-8).
 """
 import argparse
 import csv
@@ -72,6 +73,8 @@ def run(args, name, times):
 def compare(row, static, label, tolerance):
     worst, worst_key, n = 0.0, "-", 0
     for key, numbers in static.items():
+        if "imbalance" in key:
+            continue  # round-off sized: asserted below instead
         components = ([(key, numbers[0])] if len(numbers) == 1 else
                       [(key + "." + "xyz"[c], numbers[c])
                        for c in range(len(numbers))])
@@ -124,6 +127,11 @@ def main():
         compare(rows[k], read_results(os.path.join(static, "results.txt")),
                 "step %d (t = %s) against one step at t = %s"
                 % (k + 1, times[k], times[k]), args.tolerance)
+    # every step balances: applied + reactions + contact = 0 per body
+    imbalance = max(float(v) for r in rows for k, v in r.items()
+                    if k.endswith(".force_imbalance"))
+    check(imbalance <= 1e-8, "every step: body_N.force_imbalance <= 1e-8",
+          "%.3e" % imbalance)
     print("%d failure(s)" % failures)
     return 1 if failures else 0
 
