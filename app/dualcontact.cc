@@ -7,6 +7,7 @@
 #include <deal.II/base/utilities.h>
 #include <util/blas_kernels.h>
 
+#include <driver/parameter_reference.h>
 #include <driver/scene_parameters.h>
 #include <driver/simulation.h>
 #include <io/console_log.h>
@@ -26,7 +27,7 @@ namespace
     out
       << "Usage: dualcontact FILE.prm [--set \"Subsection/Entry=value\"]... "
          "[--validate]\n"
-         "       dualcontact --print-parameters\n"
+         "       dualcontact --print-parameters[=prm|json]\n"
          "       dualcontact --help | --version\n"
          "\n"
          "Computes the scene described in the parameter file FILE.prm "
@@ -49,6 +50,11 @@ namespace
          "                      allowed values and its documentation, as a\n"
          "                      parameter file (one body; `Body 2', ... work\n"
          "                      the same way)\n"
+         "  --print-parameters=json\n"
+         "                      the same as JSON (machine-readable: every\n"
+         "                      subsection, entry, default, pattern and\n"
+         "                      documentation; scripts/parameter_reference\n"
+         "                      makes the manual's reference from it)\n"
          "  --help              this text\n"
          "  --version           the version\n"
          "\n"
@@ -168,22 +174,15 @@ main(int argc, char *argv[])
         std::cout << "dualcontact " << DUALCONTACT_VERSION << std::endl;
       return 0;
     }
-    if (arguments.size() == 1 && argument == "--print-parameters")
+    if (arguments.size() == 1 && (argument == "--print-parameters" ||
+                                  argument.rfind("--print-parameters=", 0) == 0))
     {
-      dealii::ParameterHandler prm;
-      driver::SceneLayout      layout;
-      layout.n_obstacles     = 1;
-      layout.n_contact_pairs = 1;
-      driver::SceneParameters::declare_parameters(prm, layout);
+      const auto format =
+        argument == "--print-parameters" ?
+          driver::ParameterReference::Format::prm :
+          driver::ParameterReference::parse_format(argument.substr(19));
       if (is_rank_0)
-      {
-        std::cout << "# dualcontact " << DUALCONTACT_VERSION
-                  << ": all parameters, with documentation, default "
-                     "and allowed values.\n# Shown for one body, one "
-                     "obstacle and one contact pair; `Body 2', `Obstacle "
-                     "2', `Contact pair 2', ... have the same entries.\n\n";
-        io::print_documented_parameters(prm, std::cout);
-      }
+        driver::ParameterReference::print(std::cout, format);
       return 0;
     }
 

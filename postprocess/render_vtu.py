@@ -30,7 +30,7 @@ place) and on the contact surfaces.
 
 Reads through VTK's Python module (Debian's python3-vtk9, under
 /usr/bin/python3; postprocess/contact_vtu.py), not ParaView: Debian 12's
-python3-paraview conflicts with python3-vtk9 (README.md, *Postprocessing*).
+python3-paraview conflicts with python3-vtk9 (doc/manual/output.md, "Postprocessing").
 postprocess/render_paraview.py is the ParaView counterpart with more options.
 """
 import argparse
