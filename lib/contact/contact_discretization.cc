@@ -727,6 +727,23 @@ namespace dualcontact
 
 
     template <int dim>
+    void
+    ContactDiscretization<dim>::update_offsets(
+      const std::vector<const fem::ElasticBody<dim> *> &bodies)
+    {
+      AssertDimension(bodies.size() + 1, offsets_.size());
+      // B_full applied to the prescribed values (the inhomogeneities, zero
+      // at free dofs) is what condense_rows() sums into the offsets
+      Vector<double> prescribed(n_dofs());
+      for (unsigned int b = 0; b < bodies.size(); ++b)
+        for (const auto &line : bodies[b]->constraints().get_lines())
+          prescribed(offsets_[b] + line.index) = line.inhomogeneity;
+      full_normal_matrix_.vmult(normal_offset_, prescribed);
+      full_tangential_matrix_.vmult(tangential_offset_, prescribed);
+    }
+
+
+    template <int dim>
     Vector<double>
     ContactDiscretization<dim>::nodal_contact_forces(
       const Vector<double> &normal_multipliers,

@@ -142,6 +142,15 @@ namespace dualcontact
       normal_bound() const;
 
       /**
+       * normal_offset() and tangential_offset() again from the bodies'
+       * current constraints (the prescribed values of a new load step,
+       * fem::ElasticBody::set_load_time()); the constraint lines, and hence
+       * B, must be those of the construction.
+       */
+      void
+      update_offsets(const std::vector<const fem::ElasticBody<dim> *> &bodies);
+
+      /**
        * The forces the contact exerts on the bodies' nodes [N; N/m in 2D]
        * for the multipliers @p normal_multipliers (lambda_N, one per node)
        * and @p tangential_multipliers (lambda_T, dim - 1 per node, zero at a

@@ -102,6 +102,14 @@ namespace dualcontact
 
     template <int dim>
     void
+    ContactSolver<dim>::set_initial_multipliers(const dealii::Vector<double> &lambda)
+    {
+      initial_multipliers_ = lambda;
+    }
+
+
+    template <int dim>
+    void
     ContactSolver<dim>::set_final_recovery(const bool recover)
     {
       final_recovery_ = recover;
@@ -254,7 +262,22 @@ namespace dualcontact
         result.multipliers_per_process = {
           static_cast<unsigned int>(lambda.size())};
       }
+      // the first Coulomb iterate is bonded, also when warm started: the
+      // bounds of the previous step's normal multipliers can be too small
+      // for the new load of a floating body (an infeasible Tresca QP)
       dual_.update_slip_bounds(nullptr);
+      if (initial_multipliers_.size() == dual_.n_multipliers())
+      {
+        // a warm start: the previous load step's multipliers
+        if constexpr (std::is_same_v<V, Distributed>)
+        {
+          for (const auto i : lambda.locally_owned_elements())
+            lambda(i) = initial_multipliers_(i);
+          lambda.compress(dealii::VectorOperation::insert);
+        }
+        else
+          lambda = initial_multipliers_;
+      }
 
       const bool has_coulomb = dual_.has_coulomb_friction();
 

@@ -104,6 +104,15 @@ namespace dualcontact
       void
       set_final_recovery(bool recover);
 
+      /**
+       * Start the first QP from @p lambda (all multipliers, the whole
+       * vector; empty: from zero): a load step warm-started from the
+       * previous step's multipliers.  The first Coulomb iterate stays
+       * bonded (the previous step's bounds may not carry the new load).
+       */
+      void
+      set_initial_multipliers(const dealii::Vector<double> &lambda);
+
     private:
       /** solve() on the vectors @p V of the QP. */
       template <typename V>
@@ -140,6 +149,7 @@ namespace dualcontact
       WorkingSetParameters                working_set_parameters_;
       std::function<void(const Result &)> coulomb_monitor_;
       bool                                final_recovery_ = true;
+      dealii::Vector<double>              initial_multipliers_;
     };
   } // namespace contact
 } // namespace dualcontact

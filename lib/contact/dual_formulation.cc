@@ -324,6 +324,19 @@ namespace dualcontact
     DualFormulation<3>::add_contact_blocks(
       qp::SeparableSet<dealii::TrilinosWrappers::MPI::Vector> &,
       const std::vector<int> &) const;
+    template <int dim>
+    void
+    DualFormulation<dim>::update_load(const VectorType &)
+    {
+      AssertThrow(false,
+                  dealii::ExcMessage(
+                    "Load steps (`subsection Load steps') are not "
+                    "supported by this dual formulation yet: use the "
+                    "undecomposed dual (`set Method = none' in `subsection "
+                    "Decomposition')."));
+    }
+
+
     template class DualFormulation<2>;
     template class DualFormulation<3>;
   } // namespace contact

@@ -130,6 +130,17 @@ namespace dualcontact
       make_problem() const = 0;
 
       /**
+       * The load of a new load step (driver::LoadSteps): the bodies' loads
+       * and the contact's offsets as they are now, and the slip
+       * @p previous_slip = B_T u of the previous step (dim - 1 values per
+       * contact node; empty: none), on which friction acts from now on
+       * (design.md, "Load history").  F stays.  The default throws: a dual
+       * without load steps.
+       */
+      virtual void
+      update_load(const VectorType &previous_slip);
+
+      /**
        * The displacements of every body (each with its constraints
        * distributed) for multipliers @p lambda.  When no active constraint
        * determines a rigid-body motion: with @p require_determined this

@@ -224,18 +224,7 @@ namespace dualcontact
                                                       inverse_,
                                                       implicit_description);
 
-      // d = B K^+ f - [c; -o_T]
-      Vector<double> u = load_;
-      inverse_.apply(u);
-      d_.reinit(n_multipliers());
-      rows_.vmult(d_, u);
-      const Vector<double> c = contact.normal_bound();
-      for (unsigned int i = 0; i < contact.n_nodes(); ++i)
-        d_(i) -= c(i);
-      for (unsigned int j = 0; j < frictional_nodes_.size(); ++j)
-        for (unsigned int k = 0; k + 1 < dim; ++k)
-          d_(contact.n_nodes() + (dim - 1) * j + k) +=
-            contact.tangential_offset()((dim - 1) * frictional_nodes_[j] + k);
+      form_linear_term();
 
       // The transforms of the QP the solvers see: G with orthonormal rows,
       // and the scale of F.
@@ -245,6 +234,62 @@ namespace dualcontact
         d_);
 
       distribute_multipliers(parameters);
+    }
+
+
+    template <int dim>
+    void
+    DualProblem<dim>::form_linear_term()
+    {
+      // d = B K^+ f - [c; s - o_T], s the slip of the previous load step
+      // (design.md, "Load history"; zero for the static problem)
+      Vector<double> u = load_;
+      inverse_.apply(u);
+      d_.reinit(n_multipliers());
+      rows_.vmult(d_, u);
+      const Vector<double> c = contact_.normal_bound();
+      for (unsigned int i = 0; i < contact_.n_nodes(); ++i)
+        d_(i) -= c(i);
+      for (unsigned int j = 0; j < frictional_nodes_.size(); ++j)
+        for (unsigned int k = 0; k + 1 < dim; ++k)
+        {
+          const unsigned int t = (dim - 1) * frictional_nodes_[j] + k;
+          d_(contact_.n_nodes() + (dim - 1) * j + k) +=
+            contact_.tangential_offset()(t) -
+            (previous_slip_.size() > 0 ? previous_slip_(t) : 0.);
+        }
+    }
+
+
+    template <int dim>
+    void
+    DualProblem<dim>::update_load(const Vector<double> &previous_slip)
+    {
+      Assert(previous_slip.size() == 0 ||
+               previous_slip.size() == (dim - 1) * contact_.n_nodes(),
+             ExcDimensionMismatch(previous_slip.size(),
+                                  (dim - 1) * contact_.n_nodes()));
+      previous_slip_ = previous_slip;
+      rigid_body_fit_.set_previous_slip(&previous_slip_);
+      for (unsigned int b = 0; b < bodies_.size(); ++b)
+      {
+        const types::global_dof_index offset = contact_.body_offset(b);
+        for (unsigned int i = 0; i < bodies_[b]->n_dofs(); ++i)
+          load_(offset + i) = bodies_[b]->load_vector()(i);
+      }
+      for (unsigned int k = 0; k < rigid_modes_.size(); ++k)
+        e_(k) = rigid_modes_[k] * load_;
+      equalities_ = std::make_unique<OrthonormalEqualities>(G_rows_, e_);
+      form_linear_term();
+      // F, its factorizations and its scale are those of the construction
+      if (is_distributed())
+      {
+        const std::vector<unsigned int> &owned_rows =
+          distribution_->owned_rows();
+        for (unsigned int k = 0; k < owned_rows.size(); ++k)
+          d_distributed_->begin()[k] = d_(owned_rows[k]);
+        equalities_->distribute(*distribution_);
+      }
     }
 
 

@@ -163,6 +163,18 @@ namespace dualcontact
       unsigned int
       n_rigid_body_modes() const override;
 
+      /**
+       * The load of a new load step: f and e from the bodies' load vectors
+       * (re-assembled, fem::ElasticBody::assemble_load()), c and o_T from
+       * the contact's offsets (ContactDiscretization::update_offsets()),
+       * and the previous step's slip s = B_T u^(k-1) (all nodes, dim - 1
+       * per node; empty: zero), so that friction acts on the slip
+       * increment: d = B K^+ f - [c; s - o_T].  F and the factorizations
+       * stay.
+       */
+      void
+      update_load(const dealii::Vector<double> &previous_slip) override;
+
       /** The same as DualFormulation::update_slip_bounds() from
        *  distributed multipliers (collective). */
       void
@@ -314,6 +326,10 @@ namespace dualcontact
         const dealii::Vector<double>        &u,
         std::vector<dealii::Vector<double>> &displacements) const;
 
+      /** d from load_, the contact's offsets and previous_slip_. */
+      void
+      form_linear_term();
+
       /**
        * rho / lambda_max(P F P) of SMALSE-M's coarse projector when its
        * `Projector penalty factor' is automatic: 10 for bounds and boxes,
@@ -357,6 +373,8 @@ namespace dualcontact
       std::vector<VectorType> G_rows_;
       VectorType              e_;
       VectorType              d_;
+      /** The slip B_T u of the previous load step (empty: none). */
+      VectorType previous_slip_;
       /** The rigid-body amplitudes of the recovery. */
       RigidBodyFit<dim> rigid_body_fit_;
       /** The transforms of the QP: F / s, d / s, and G~, e~. */

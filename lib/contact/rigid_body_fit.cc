@@ -51,9 +51,14 @@ namespace dualcontact
         if (r < n_nodes)
           residual -= c(r);
         else
-          residual += contact_.tangential_offset()(
+        {
+          const unsigned int t =
             (dim - 1) * frictional_nodes_[(r - n_nodes) / (dim - 1)] +
-            (r - n_nodes) % (dim - 1));
+            (r - n_nodes) % (dim - 1);
+          residual += contact_.tangential_offset()(t);
+          if (previous_slip_ != nullptr && previous_slip_->size() > 0)
+            residual -= (*previous_slip_)(t);
+        }
         for (unsigned int k = 0; k < m; ++k)
         {
           sums[m * m + k] -= G_rows_[k](r) * residual;

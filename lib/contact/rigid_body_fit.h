@@ -53,6 +53,17 @@ namespace dualcontact
           MPI_Comm                         communicator,
           const bool                       require_determined) const;
 
+      /**
+       * The slip of the previous load step (dim - 1 values per contact
+       * node; empty: none), which the tangential rows then hold to: their
+       * residual is B_T u + o_T - s (@p slip must outlive this object).
+       */
+      void
+      set_previous_slip(const dealii::Vector<double> *slip)
+      {
+        previous_slip_ = slip;
+      }
+
     private:
       /** u += R alpha, (G_A G_A') alpha = rhs; @p GGt is regularized. */
       bool
@@ -66,6 +77,7 @@ namespace dualcontact
       const std::vector<unsigned int>           &frictional_nodes_;
       const std::vector<dealii::Vector<double>> &rigid_modes_;
       const std::vector<dealii::Vector<double>> &G_rows_;
+      const dealii::Vector<double>              *previous_slip_ = nullptr;
     };
   } // namespace contact
 } // namespace dualcontact

@@ -144,7 +144,9 @@ namespace dualcontact
                             "expressions separated by `;' (one per "
                             "component; those not selected in `Components' "
                             "are ignored), functions of the placed position "
-                            "x, y(, z) [m]; the constant pi is known.");
+                            "x, y(, z) [m] and of the time t of a load step "
+                            "(`subsection Load steps'; t = 1 without); the "
+                            "constant pi is known.");
         });
 
       io::for_each_numbered_subsection(
@@ -166,7 +168,8 @@ namespace dualcontact
                             "of the undeformed surface, in global "
                             "coordinates): dim expressions separated by `;', "
                             "functions of the placed position x, y(, z) "
-                            "[m]; the constant pi is known.");
+                            "[m] and of the load step's time t; the "
+                            "constant pi is known.");
         });
 
       prm.declare_entry("Body force",
@@ -175,7 +178,7 @@ namespace dualcontact
                         "Body force b [N/m^3] (e.g. density times gravity: "
                         "`0; 0; -7850*9.81'): dim expressions separated by "
                         "`;', functions of the placed position x, y(, z) "
-                        "[m].");
+                        "[m] and of the load step's time t.");
     }
 
 

@@ -240,6 +240,23 @@ namespace dualcontact
 
     template <int dim>
     void
+    ContactStage<dim>::start_load_step()
+    {
+      AssertThrow(primal_parameters_.contact_solver != "primal",
+                  dealii::ExcMessage(
+                    "Load steps run on the dual only: `set Contact solver "
+                    "= dual' with `subsection Load steps'."));
+      contact_->update_offsets(scene_.bodies());
+      previous_slip_ = slip_;
+      dual_->update_load(previous_slip_);
+      warm_start_ = result_.lambda;
+      // the iterates of this step only (written per step)
+      coulomb_iterates_.clear();
+    }
+
+
+    template <int dim>
+    void
     ContactStage<dim>::solve(std::vector<std::string> &details)
     {
       if (primal_parameters_.contact_solver == "primal")
@@ -287,6 +304,8 @@ namespace dualcontact
                                          coulomb_parameters_,
                                          working_set_parameters_);
       solver.set_final_recovery(false); // recover() does it, once
+      if (warm_start_.size() > 0)
+        solver.set_initial_multipliers(warm_start_);
       if (run_log_ != nullptr)
       {
         const auto start = std::chrono::steady_clock::now();
@@ -428,6 +447,20 @@ namespace dualcontact
       else
         scene_.displacements() = result_.displacements;
       surfaces_ = contact_surfaces(result_.lambda, scene_.displacements());
+      // the slip of this step, and the work of friction on its increment
+      slip_ = tangential_displacement(scene_.displacements());
+      dissipated_energy_.resize(scene_.pair_parameters().size(), 0.);
+      for (unsigned int i = 0; i < contact_->n_nodes(); ++i)
+        if (const int j = dual_->frictional_index(i); j >= 0)
+          for (unsigned int k = 0; k + 1 < dim; ++k)
+          {
+            const unsigned int t = (dim - 1) * i + k;
+            const double       increment =
+              slip_(t) - (previous_slip_.size() > 0 ? previous_slip_(t) : 0.);
+            dissipated_energy_[contact_->nodes()[i].pair] +=
+              result_.lambda(contact_->n_nodes() + (dim - 1) * j + k) *
+              increment;
+          }
       // the slave faces of every pair over its contact nodes (in the
       // pair's node order, as in surfaces_)
       surface_meshes_.clear();
@@ -570,6 +603,26 @@ namespace dualcontact
       coulomb_iterates_.clear();
       pair_results_.clear();
       body_contact_forces_.clear();
+      slip_.reinit(0);
+      previous_slip_.reinit(0);
+      warm_start_.reinit(0);
+      dissipated_energy_.clear();
+    }
+
+
+    template <int dim>
+    dealii::Vector<double>
+    ContactStage<dim>::tangential_displacement(
+      const std::vector<dealii::Vector<double>> &displacements) const
+    {
+      dealii::Vector<double> u(contact_->n_dofs());
+      for (unsigned int b = 0; b < displacements.size(); ++b)
+        for (unsigned int k = 0; k < displacements[b].size(); ++k)
+          u(contact_->body_offset(b) + k) = displacements[b](k);
+      dealii::Vector<double> bt((dim - 1) * contact_->n_nodes());
+      contact_->tangential_matrix().vmult(bt, u);
+      bt += contact_->tangential_offset();
+      return bt;
     }
 
 
@@ -611,7 +664,13 @@ namespace dualcontact
         out.weight   = node.weight;
         out.gap      = c(i) - bn(i);
         for (unsigned int k = 0; k + 1 < dim; ++k)
-          out.slip += bt((dim - 1) * i + k) * node.tangents[k];
+        {
+          const unsigned int t = (dim - 1) * i + k;
+          out.slip += bt(t) * node.tangents[k];
+          out.slip_increment +=
+            (bt(t) - (previous_slip_.size() > 0 ? previous_slip_(t) : 0.)) *
+            node.tangents[k];
+        }
 
         const bool separated =
           !(lambda(i) > status_tolerance_ * max_lambda[node.pair]);

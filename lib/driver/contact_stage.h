@@ -92,6 +92,16 @@ namespace dualcontact
       /** Factorization phase: the dual problem (factorizes every K). */
       void
       setup_dual_problem(std::vector<std::string> &details);
+      /**
+       * A new load step (driver::LoadSteps), once the scene's loads are at
+       * its time (Scene::set_load_time(), Scene::assemble_loads()): the
+       * contact offsets of the new prescribed values, the dual's linear
+       * term with friction on the slip increment since the last recover(),
+       * and the next solve() warm-started from the last multipliers.  F and
+       * the factorizations stay.
+       */
+      void
+      start_load_step();
       /** QP phase: the QP (or the Coulomb fixed point over QPs). */
       void
       solve(std::vector<std::string> &details);
@@ -189,6 +199,16 @@ namespace dualcontact
         return pair_results_;
       }
       /**
+       * Per pair: the energy dissipated by friction [J, J/m in 2D] over the
+       * load steps so far, sum over steps and nodes of lambda_T,i . (slip
+       * increment)_i (recover()).
+       */
+      const std::vector<double> &
+      dissipated_energy() const
+      {
+        return dissipated_energy_;
+      }
+      /**
        * Per body (after recover()): the nodal forces the contact exerts on
        * it, all its pairs as slave and as master (its dofs, unconstrained;
        * contact::ContactDiscretization::nodal_contact_forces()).
@@ -234,6 +254,11 @@ namespace dualcontact
       contact_surfaces(
         const dealii::Vector<double>              &lambda,
         const std::vector<dealii::Vector<double>> &displacements) const;
+      /** B_T u + o_T of @p displacements ((dim - 1) values per contact
+       *  node): the relative tangential displacement. */
+      dealii::Vector<double>
+      tangential_displacement(
+        const std::vector<dealii::Vector<double>> &displacements) const;
       /** body_contact_forces() and every pair's contact_force from the
        *  final multipliers (recover()). */
       void
@@ -269,6 +294,13 @@ namespace dualcontact
       std::vector<Surfaces>                                coulomb_iterates_;
       std::vector<PairResults>                             pair_results_;
       std::vector<dealii::Vector<double>>                  body_contact_forces_;
+      /** B_T u + o_T of the last recover() (empty before the first). */
+      dealii::Vector<double> slip_;
+      /** slip_ when the current load step started (empty: the first). */
+      dealii::Vector<double> previous_slip_;
+      /** The multipliers the next solve() starts from (empty: zero). */
+      dealii::Vector<double> warm_start_;
+      std::vector<double>    dissipated_energy_;
     };
   } // namespace driver
 } // namespace dualcontact

@@ -190,6 +190,18 @@ namespace dualcontact
         out << prefix << (dim == 2 ? "contact_length = " : "contact_area = ")
             << format_number(r.contact_measure) << "\n";
       }
+      if (with_dissipation_ && contact_ != nullptr)
+      {
+        // a load history: the work of friction on the slip increments
+        double total = 0;
+        for (unsigned int p = 0; p < contact_->dissipated_energy().size(); ++p)
+        {
+          out << "pair_" << p + 1 << ".dissipated_energy = "
+              << format_number(contact_->dissipated_energy()[p]) << "\n";
+          total += contact_->dissipated_energy()[p];
+        }
+        out << "total.dissipated_energy = " << format_number(total) << "\n";
+      }
       if (cycles_ != nullptr && !cycles_->empty())
       {
         out << "refinement.n_solves = " << cycles_->size() << "\n";
@@ -444,8 +456,12 @@ namespace dualcontact
 
     template <int dim>
     void
-    ResultsReport<dim>::write_output(io::OutputFolder &folder,
-                                     const bool        write_vtu) const
+    ResultsReport<dim>::write_output(
+      io::OutputFolder                            &folder,
+      const bool                                   write_vtu,
+      const std::string                           &suffix,
+      const double                                 time,
+      std::vector<std::pair<double, std::string>> *series) const
     {
       const unsigned int n_ranks =
         dealii::Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD);
@@ -499,8 +515,8 @@ namespace dualcontact
       };
       std::vector<std::string> contact_files;
       for (unsigned int p = 0; p < surfaces.size(); ++p)
-        contact_files.push_back(
-          write_surface("contact_" + std::to_string(p + 1), p, surfaces[p]));
+        contact_files.push_back(write_surface(
+          "contact_" + std::to_string(p + 1) + suffix, p, surfaces[p]));
       // Coulomb iterates, likewise
       if (!iterates.empty())
       {
@@ -509,19 +525,22 @@ namespace dualcontact
           for (unsigned int p = 0; p < iterates[k].size(); ++p)
             series.emplace_back(
               k + 1,
-              write_surface("contact_" + std::to_string(p + 1) + "_iterate_" +
-                              std::to_string(k + 1),
+              write_surface("contact_" + std::to_string(p + 1) + suffix +
+                              "_iterate_" + std::to_string(k + 1),
                             p,
                             iterates[k][p]));
         if (rank == 0)
-          folder.write("coulomb_iterates.pvd",
+          folder.write("coulomb_iterates" + suffix + ".pvd",
                        [&](std::ostream &out) { io::write_pvd(out, series); });
       }
       if (write_vtu)
         io::write_solution<dim>(folder,
                                 scene_.elastic_bodies(),
                                 scene_.displacements(),
-                                contact_files);
+                                contact_files,
+                                suffix,
+                                time,
+                                series);
     }
 
 

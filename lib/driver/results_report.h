@@ -9,6 +9,8 @@
 #include <io/output_folder.h>
 
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace dualcontact
 {
@@ -40,8 +42,18 @@ namespace dualcontact
        * and solution.pvd listing solution.pvtu and the contact surfaces), the
        * Coulomb iterates (whole) and the records.
        */
+      /**
+       * A load step of a history: @p suffix in every name (`_step_K'), and
+       * with @p series the step's records at @p time appended to it
+       * instead of solution.pvd (io::write_solution).
+       */
       void
-      write_output(io::OutputFolder &folder, const bool write_vtu) const;
+      write_output(io::OutputFolder                            &folder,
+                   const bool                                   write_vtu,
+                   const std::string                           &suffix = "",
+                   const double                                 time   = 0.,
+                   std::vector<std::pair<double, std::string>> *series =
+                     nullptr) const;
 
       /**
        * The scene's contact problem as FCLIB file(s) (`Output/FCLIB
@@ -74,6 +86,17 @@ namespace dualcontact
         cycles_ = cycles;
       }
 
+      /**
+       * Whether results.txt has the energy dissipated by friction
+       * (`pair_N.dissipated_energy', `total.dissipated_energy'
+       * [J, J/m in 2D], ContactStage::dissipated_energy()): a load history.
+       */
+      void
+      set_dissipated_energy(const bool with_dissipation)
+      {
+        with_dissipation_ = with_dissipation;
+      }
+
       /** The text of results.txt. */
       std::string
       results_text() const;
@@ -87,6 +110,7 @@ namespace dualcontact
       const std::string        parameter_file_;
       const std::vector<typename ContactRefinement<dim>::CycleRecord> *cycles_ =
         nullptr;
+      bool with_dissipation_ = false;
     };
   } // namespace driver
 } // namespace dualcontact

@@ -249,6 +249,7 @@ namespace dualcontact
         body->set_traction_conditions(parameters.tractions);
         if (parameters.has_body_force)
           body->set_body_force(parameters.body_force);
+        body->set_load_time(load_time_);
         body->setup();
         std::string line =
           parameters.name + ": " + std::to_string(body->n_dofs()) + " dofs";
@@ -328,13 +329,33 @@ namespace dualcontact
 
     template <int dim>
     void
-    Scene<dim>::solve(std::vector<std::string> &details)
+    Scene<dim>::set_load_time(const double time)
+    {
+      load_time_ = time;
+      for (auto &body : bodies_)
+        body->set_load_time(time);
+    }
+
+
+    template <int dim>
+    void
+    Scene<dim>::assemble_loads()
+    {
+      for (auto &body : bodies_)
+        body->assemble_load();
+    }
+
+
+    template <int dim>
+    void
+    Scene<dim>::solve(std::vector<std::string> &details, const bool factorize)
     {
       displacements_.resize(bodies_.size());
       for (unsigned int b = 0; b < bodies_.size(); ++b)
       {
-        configure_solver(*solvers_[b], *bodies_[b]);
-        bodies_[b]->solve(*solvers_[b], displacements_[b]);
+        if (factorize)
+          configure_solver(*solvers_[b], *bodies_[b]);
+        bodies_[b]->solve(*solvers_[b], displacements_[b], factorize);
         const auto        &statistics = solvers_[b]->statistics();
         std::ostringstream line;
         line << std::setprecision(3) << bodies_[b]->name() << ": "

@@ -77,9 +77,30 @@ namespace dualcontact
       void
       assemble(std::vector<std::string> &details,
                const bool                global_systems = true);
-      /** Solve phase (no contact): u = K^{-1} f per body. */
+      /**
+       * The time of the load step to compute (driver::LoadSteps; 1, the
+       * static problem, by default): every load expression is evaluated
+       * at @p time, and the bodies' constraints get their prescribed values
+       * at it (now, and in every later setup()).
+       */
       void
-      solve(std::vector<std::string> &details);
+      set_load_time(const double time);
+      /** The time of set_load_time(). */
+      double
+      load_time() const
+      {
+        return load_time_;
+      }
+      /**
+       * f of every body again at the load time (after assemble(); K and
+       * the factorizations stay).
+       */
+      void
+      assemble_loads();
+      /** Solve phase (no contact): u = K^{-1} f per body; @p factorize
+       *  false: with the factorizations of the last call (a load step). */
+      void
+      solve(std::vector<std::string> &details, const bool factorize = true);
       /**
        * Postprocessing phase: BodyResults of every body; @p contact_forces
        * (per body, ContactStage::body_contact_forces()) enter the reactions
@@ -206,6 +227,8 @@ namespace dualcontact
       distribute_meshes(std::vector<std::string> &details);
 
       unsigned int fe_degree_ = 1;
+      /** See set_load_time(). */
+      double load_time_ = 1.;
       /** Mapping degree of tractions on curved faces (ElasticBody). */
       unsigned int                            curved_load_mapping_degree_ = 4;
       std::vector<BodyParameters<dim>>        body_parameters_;

@@ -8,6 +8,7 @@
 #include <driver/contact_refinement.h>
 #include <driver/obstacle_parameters.h>
 #include <driver/output_parameters.h>
+#include <driver/load_steps.h>
 #include <driver/scene_parameters.h>
 #include <fem/stiffness_solver.h>
 #include <io/parameter_file.h>
@@ -124,6 +125,7 @@ namespace dualcontact
       contact::CoulombParameters::declare_parameters(prm);
       primal::PrimalParameters::declare_parameters(prm);
       ContactRefinement<3>::declare_parameters(prm);
+      LoadSteps::declare_parameters(prm);
 
       if (layout.dimension == 2)
       {

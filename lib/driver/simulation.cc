@@ -5,6 +5,7 @@
 #include <driver/results_report.h>
 #include <driver/simulation.h>
 #include <fem/rigid_body_modes.h>
+#include <io/contact_surface_writer.h>
 #include <io/parameter_file.h>
 
 #include <algorithm>
@@ -119,6 +120,7 @@ namespace dualcontact
                  dealii::TimerOutput::wall_times)
         , output_(read_output_parameters(prm))
     {
+      load_steps_.parse_parameters(prm);
       run_log_.set_parameters(output_);
       output_folder_ = std::make_unique<io::OutputFolder>(
         output_.folder, io::parameter_location("Output", "Output folder"));
@@ -174,6 +176,20 @@ namespace dualcontact
       prm.enter_subsection("Decomposition");
       const bool tfeti = prm.get("Method") == "tfeti";
       prm.leave_subsection();
+      AssertThrow(!load_steps_.is_history() ||
+                    (!tfeti && !scene_->has_distributed_meshes()),
+                  dealii::ExcMessage(
+                    "A load history (more than one step in `subsection Load "
+                    "steps') runs on the undecomposed dual only, not yet on "
+                    "TFETI: `set Method = none' in `subsection "
+                    "Decomposition'."));
+      AssertThrow(!load_steps_.is_history() ||
+                    prm.get("Contact solver") != "primal",
+                  dealii::ExcMessage(
+                    "A load history (more than one step in `subsection Load "
+                    "steps') runs on the dual only: `set Contact solver = "
+                    "dual'."));
+      scene_->set_load_time(load_steps_.times.front());
       if (scene_->has_contact() || tfeti)
       {
         contact_ = std::make_unique<ContactStage<dim>>(prm, output_, *scene_);
@@ -398,9 +414,191 @@ namespace dualcontact
       if (!contact_->result().coulomb_changes.empty())
         message << std::setprecision(3) << " Last Coulomb change of psi: "
                 << contact_->result().coulomb_changes.back() << ".";
+      if (load_steps_.is_history() && failed_step_ >= 0)
+        message << std::setprecision(6) << " The load history stopped at step "
+                << failed_step_ + 1 << " of " << load_steps_.times.size()
+                << " (t = " << load_steps_.times[failed_step_]
+                << "): the output is that step's.";
       message << " The output was written all the same, flagged as not "
                  "converged.";
       return message.str();
+    }
+
+
+    template <int dim>
+    void
+    Simulation<dim>::solve_step(const unsigned int step)
+    {
+      Scene<dim> &scene = *scene_;
+      if (contact_ != nullptr)
+      {
+        run_phase("QP", [&]() { contact_->solve(details_); });
+        run_phase("Recovery", [&]() { contact_->recover(details_); });
+      }
+      else
+        run_phase("Solve", [&]() { scene.solve(details_, step == 0); });
+      run_phase("Postprocessing",
+                [&]()
+                {
+                  scene.postprocess(
+                    contact_ ? &contact_->body_contact_forces() : nullptr);
+                  report_traction_resultants(scene);
+                  report_force_balance(scene);
+                });
+    }
+
+
+    template <int dim>
+    void
+    Simulation<dim>::run_load_steps()
+    {
+      Scene<dim>        &scene   = *scene_;
+      const unsigned int n_steps = load_steps_.times.size();
+      failed_step_               = -1;
+      // a refinement cycle computes the history again: its rows replace
+      history_header_.clear();
+      history_rows_.clear();
+      pvd_series_.clear();
+      for (unsigned int step = 0; step < n_steps; ++step)
+      {
+        const double time = load_steps_.times[step];
+        if (step > 0)
+          run_phase("Load step",
+                    [&]()
+                    {
+                      scene.set_load_time(time);
+                      scene.assemble_loads();
+                      if (contact_ != nullptr)
+                        contact_->start_load_step();
+                    });
+        if (load_steps_.is_history())
+          console_ << "Load step " << step + 1 << " of " << n_steps
+                   << ", t = " << time << std::endl;
+        solve_step(step);
+        if (load_steps_.is_history())
+        {
+          console_ << step_line(step) << std::endl;
+          record_history_row(step);
+          if (output_.write_vtu)
+          {
+            // every process writes its pieces of the step (collective)
+            ResultsReport<dim> report(*scene_, contact_.get(), parameter_file_);
+            report.write_output(*output_folder_,
+                                true,
+                                "_step_" + std::to_string(step + 1),
+                                time,
+                                &pvd_series_);
+          }
+        }
+        if (contact_ != nullptr && !contact_->result().converged)
+        {
+          failed_step_ = step;
+          break;
+        }
+      }
+    }
+
+
+    namespace
+    {
+      /**
+       * Whether results.txt's key @p key goes into history.csv: a force
+       * (not a traction's nominal one or a relative difference), a count,
+       * an area or contact length, an energy (strain, external work,
+       * dissipated), the largest displacement and pressure, and every
+       * body's force imbalance (each step must balance).
+       */
+      bool
+      is_history_key(const std::string &key)
+      {
+        const std::string last = key.substr(key.find_last_of('.') + 1);
+        if (key.find("nominal") != std::string::npos ||
+            key.find("relative") != std::string::npos ||
+            key.rfind("contact.", 0) == 0 || key.rfind("refinement.", 0) == 0)
+          return false;
+        return key.find("force") != std::string::npos ||
+               last.rfind("n_", 0) == 0 || last == "area" ||
+               last == "contact_length" || last == "contact_area" ||
+               last == "strain_energy" || last == "external_work" ||
+               last == "dissipated_energy" || last == "max_displacement" ||
+               last == "max_pressure" || last == "force_imbalance";
+      }
+    } // namespace
+
+
+    template <int dim>
+    void
+    Simulation<dim>::record_history_row(const unsigned int step)
+    {
+      ResultsReport<dim> report(*scene_, contact_.get(), parameter_file_);
+      report.set_dissipated_energy(true);
+      std::vector<std::pair<std::string, std::string>> row;
+      {
+        std::ostringstream time;
+        time << std::setprecision(12) << load_steps_.times[step];
+        row.emplace_back("step", std::to_string(step + 1));
+        row.emplace_back("time", time.str());
+      }
+      std::istringstream text(report.results_text());
+      for (std::string line; std::getline(text, line);)
+      {
+        const auto equals = line.find('=');
+        if (line.empty() || line[0] == '#' || equals == std::string::npos)
+          continue;
+        const std::string key = dealii::Utilities::trim(line.substr(0, equals));
+        if (!is_history_key(key))
+          continue;
+        const std::vector<std::string> values =
+          dealii::Utilities::split_string_list(line.substr(equals + 1), ',');
+        if (values.size() == 1)
+          row.emplace_back(key, values[0]);
+        else
+          for (unsigned int c = 0; c < values.size() && c < 3; ++c)
+            row.emplace_back(key + "." + std::string(1, "xyz"[c]), values[c]);
+      }
+      if (history_header_.empty())
+        for (const auto &[key, value] : row)
+          history_header_.push_back(key);
+      // in the header's columns (a key the first step did not have is left
+      // out, one it had and this step has not is empty)
+      std::vector<std::string> values(history_header_.size());
+      for (const auto &[key, value] : row)
+        for (unsigned int c = 0; c < history_header_.size(); ++c)
+          if (history_header_[c] == key)
+            values[c] = value;
+      history_rows_.push_back(values);
+    }
+
+
+    template <int dim>
+    std::string
+    Simulation<dim>::step_line(const unsigned int step) const
+    {
+      std::ostringstream line;
+      line << std::setprecision(6) << "  step " << step + 1 << " of "
+           << load_steps_.times.size() << ", t = " << load_steps_.times[step];
+      if (contact_ != nullptr)
+      {
+        unsigned int iterations = 0;
+        for (const auto &q : contact_->result().qp_statistics)
+          iterations += q.iterations;
+        line << ": " << iterations << " QP iterations, "
+             << contact_->result().qp_statistics.size() << " QP"
+             << (contact_->result().qp_statistics.size() == 1 ? "" : "s");
+        if (!contact_->result().coulomb_changes.empty())
+          line << " (" << contact_->result().coulomb_changes.size()
+               << " Coulomb iterates)";
+        for (unsigned int p = 0; p < contact_->pair_results().size(); ++p)
+        {
+          const auto &r = contact_->pair_results()[p];
+          line << "; " << scene_->pair_parameters()[p].pair.name << ": "
+               << r.n_stick << " stick, " << r.n_slip << " slip, "
+               << r.n_separated << " separated";
+        }
+        if (!contact_->result().converged)
+          line << "; NOT CONVERGED";
+      }
+      return line.str();
     }
 
 
@@ -437,6 +635,8 @@ namespace dualcontact
                       scene.refine(details_);
                     });
         }
+        // every cycle computes the whole history on its meshes
+        scene.set_load_time(load_steps_.times.front());
         run_phase("Setup", [&]() { scene.setup(details_); });
         if (cycle == 0 && has_contact && output_.fclib_problem != "none")
           check_fclib_bodies_held(scene);
@@ -456,19 +656,8 @@ namespace dualcontact
           run_phase("Contact search", [&]() { contact.discretize(details_); });
           run_phase("Factorization",
                     [&]() { contact.setup_dual_problem(details_); });
-          run_phase("QP", [&]() { contact.solve(details_); });
-          run_phase("Recovery", [&]() { contact.recover(details_); });
         }
-        else
-          run_phase("Solve", [&]() { scene.solve(details_); });
-        run_phase("Postprocessing",
-                  [&]()
-                  {
-                    scene.postprocess(
-                      has_contact ? &contact_->body_contact_forces() : nullptr);
-                    report_traction_resultants(scene);
-                    report_force_balance(scene);
-                  });
+        run_load_steps();
         if (n_cycles == 0)
           break;
 
@@ -530,10 +719,18 @@ namespace dualcontact
       // process 0 also the master files and the records
       ResultsReport<dim> report(scene, contact_.get(), parameter_file_);
       report.set_refinement_cycles(&cycles_);
+      report.set_dissipated_energy(load_steps_.is_history());
       run_phase("Output",
                 [&]()
                 {
-                  report.write_output(*output_folder_, output_.write_vtu);
+                  if (!load_steps_.is_history() || !output_.write_vtu)
+                    report.write_output(*output_folder_, output_.write_vtu);
+                  else if (is_output_rank_)
+                    // the steps' files are written: their series
+                    output_folder_->write("solution.pvd",
+                                          [&](std::ostream &out) {
+                                            io::write_pvd(out, pvd_series_);
+                                          });
                   if (has_contact && output_.fclib_problem != "none")
                     report.write_fclib_problem(*output_folder_,
                                                output_.fclib_problem);
@@ -542,7 +739,27 @@ namespace dualcontact
       // here (the list of files and the timing table included), then all
       // files renamed at once
       if (is_output_rank_)
+      {
         report.write_records(*output_folder_, prm_, timer_);
+        if (load_steps_.is_history())
+          output_folder_->write("history.csv",
+                                [&](std::ostream &out)
+                                {
+                                  for (unsigned int c = 0;
+                                       c < history_header_.size();
+                                       ++c)
+                                    out << (c == 0 ? "" : ",")
+                                        << history_header_[c];
+                                  out << "\n";
+                                  for (const auto &row : history_rows_)
+                                  {
+                                    for (unsigned int c = 0; c < row.size();
+                                         ++c)
+                                      out << (c == 0 ? "" : ",") << row[c];
+                                    out << "\n";
+                                  }
+                                });
+      }
 
       const std::string failure = has_contact && !contact_->result().converged ?
                                     failure_message() :

@@ -6,6 +6,7 @@
 
 #include <driver/contact_refinement.h>
 #include <driver/contact_stage.h>
+#include <driver/load_steps.h>
 #include <driver/output_parameters.h>
 #include <driver/run_log.h>
 #include <driver/scene.h>
@@ -106,6 +107,29 @@ namespace dualcontact
       std::string
       failure_message() const;
 
+      /**
+       * The load steps of one cycle on the set-up, assembled (and, with
+       * contact, factorized) scene: per step the loads at its time, the
+       * solve, the postprocessing; a step that does not converge ends the
+       * history (failed_step_).
+       */
+      void
+      run_load_steps();
+      /** QP and Recovery (or Solve), Postprocessing of step @p step. */
+      void
+      solve_step(const unsigned int step);
+      /**
+       * One row of history.csv for step @p step: the step, its time, and
+       * results.txt's forces (a vector's components as KEY.x, KEY.y,
+       * KEY.z), counts, areas and the dissipated energy.
+       */
+      void
+      record_history_row(const unsigned int step);
+      /** The console line of a load step: time, QP iterations, Coulomb
+       *  iterates, stick / slip counts. */
+      std::string
+      step_line(const unsigned int step) const;
+
       /** The scene line: dimension, bodies, element, solvers. */
       void
       print_scene_line();
@@ -143,6 +167,15 @@ namespace dualcontact
       const bool                  is_output_rank_;
       dealii::TimerOutput         timer_;
 
+      /** Subsection `Load steps', read once. */
+      LoadSteps load_steps_;
+      /** history.csv: its columns and one row per step computed. */
+      std::vector<std::string>              history_header_;
+      std::vector<std::vector<std::string>> history_rows_;
+      /** solution.pvd of a history: the records of every step. */
+      std::vector<std::pair<double, std::string>> pvd_series_;
+      /** The step that did not converge (-1: none). */
+      int failed_step_ = -1;
       /** Subsection `Output', read once. */
       const OutputParameters output_;
       /** OpenBLAS' threads and why ("2 (automatic: load average ...)"). */

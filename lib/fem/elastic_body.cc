@@ -80,7 +80,7 @@ namespace dualcontact
     template <int dim>
     void
     ElasticBody<dim>::set_body_force(
-      std::shared_ptr<const Function<dim>> body_force)
+      std::shared_ptr<Function<dim>> body_force)
     {
       body_force_ = std::move(body_force);
     }
@@ -137,43 +137,35 @@ namespace dualcontact
                              std::to_string(dim) + " components."));
 
       dof_handler_.distribute_dofs(fe_);
-
-      constraints_.clear();
-      DoFTools::make_hanging_node_constraints(dof_handler_, constraints_);
-      // on a distributed mesh every process needs the lines of all dofs:
-      // TFETI's multiplier rows and the condensed contact rows are the
-      // same everywhere
-      if (is_distributed())
-        gather_constraint_lines(true);
-      // the hanging nodes alone, before the Dirichlet conditions join them
-      hanging_node_constraints_.copy_from(constraints_);
-      hanging_node_constraints_.close();
-      // Conditions are applied in the order given: where two boundaries meet,
-      // the first condition on a dof wins (AffineConstraints keeps the first).
-      for (const auto &condition : dirichlet_)
-        VectorTools::interpolate_boundary_values(mapping_,
-                                                 dof_handler_,
-                                                 condition.boundary_id,
-                                                 *condition.values,
-                                                 constraints_,
-                                                 condition.components);
-      if (is_distributed())
-        gather_constraint_lines(false);
-      constraints_.close();
-      for (const auto &line : constraints_.get_lines())
-        AssertThrow(std::isfinite(line.inhomogeneity),
-                    ExcMessage(name_ +
-                               ": a prescribed displacement (`set "
-                               "Displacement' of a `Dirichlet N') is not "
-                               "finite at a boundary node: check its "
-                               "expression (a division by zero, the square "
-                               "root or logarithm of a negative number, an "
-                               "overflow)."));
+      make_constraints();
 
       // a new set of dofs: the system of the old ones is gone
       stiffness_.clear();
       sparsity_.reinit(0, 0, 0);
       load_.reinit(0);
+    }
+
+
+    template <int dim>
+    void
+    ElasticBody<dim>::assemble_load()
+    {
+      Assert(is_assembled(), ExcMessage(name_ + ": assemble() first."));
+      load_ = 0.;
+      CellScratch        scratch(mapping_, curved_mapping_, fe_);
+      FullMatrix<double> cell_matrix;
+      Vector<double>     cell_rhs;
+      std::vector<types::global_dof_index> dof_indices(fe_.n_dofs_per_cell());
+      for (const auto &cell : dof_handler_.active_cell_iterators())
+      {
+        cell_system(cell, scratch, cell_matrix, cell_rhs);
+        cell->get_dof_indices(dof_indices);
+        // the inhomogeneities through the cell matrix, as assemble() does
+        constraints_.distribute_local_to_global(cell_rhs,
+                                                dof_indices,
+                                                load_,
+                                                cell_matrix);
+      }
     }
 
 
@@ -465,9 +457,11 @@ namespace dualcontact
     template <int dim>
     void
     ElasticBody<dim>::solve(StiffnessSolver &solver,
-                            Vector<double>  &displacement) const
+                            Vector<double>  &displacement,
+                            const bool       factorize) const
     {
-      solver.initialize(stiffness_);
+      if (factorize)
+        solver.initialize(stiffness_);
       displacement.reinit(n_dofs());
       solver.solve(displacement, load_);
       distribute(displacement);

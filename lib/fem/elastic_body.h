@@ -109,7 +109,7 @@ namespace dualcontact
         const std::vector<TractionCondition<dim>> &conditions);
       /** Body force b [N/m^3] (dim components); none by default. */
       void
-      set_body_force(std::shared_ptr<const dealii::Function<dim>> body_force);
+      set_body_force(std::shared_ptr<dealii::Function<dim>> body_force);
 
       /**
        * Distribute the degrees of freedom and build the constraints.
@@ -128,6 +128,23 @@ namespace dualcontact
        */
       void
       assemble();
+
+      /**
+       * Evaluate every load (prescribed displacements, tractions, body
+       * force) at @p time from now on (Function::set_time()), and, after
+       * setup(), rebuild the constraints with the prescribed values at that
+       * time: a load step (driver::LoadSteps).  K does not change.
+       */
+      void
+      set_load_time(const double time);
+
+      /**
+       * Assemble f alone (after assemble()), at the loads' current time and
+       * with the current constraints' inhomogeneities: the load of a step,
+       * K and its factorizations kept.
+       */
+      void
+      assemble_load();
 
       /** Whether assemble() was called since the last setup(). */
       bool
@@ -150,10 +167,14 @@ namespace dualcontact
         dealii::SparseMatrix<double>                              &matrix,
         dealii::Vector<double>                                    &load) const;
 
-      /** Solve K u = f with @p solver (factorizes K) and distribute. */
+      /**
+       * Solve K u = f with @p solver and distribute; @p factorize false
+       * reuses the solver's factorization of K (a later load step).
+       */
       void
       solve(StiffnessSolver        &solver,
-            dealii::Vector<double> &displacement) const;
+            dealii::Vector<double> &displacement,
+            const bool              factorize = true) const;
 
       /** Set constrained entries of @p displacement from the constraints. */
       void
@@ -307,6 +328,10 @@ namespace dualcontact
       static double
       force_imbalance(const Summary &summary);
 
+      /** The hanging-node and Dirichlet constraints (setup(), and again
+       *  for the prescribed values of a new load time). */
+      void
+      make_constraints();
       /** FEValues and buffers reused over the cells of one loop. */
       struct CellScratch;
 
@@ -351,7 +376,7 @@ namespace dualcontact
       std::map<dealii::types::material_id, IsotropicMaterial> materials_;
       std::vector<DirichletCondition<dim>>                    dirichlet_;
       std::vector<TractionCondition<dim>>                     tractions_;
-      std::shared_ptr<const dealii::Function<dim>>            body_force_;
+      std::shared_ptr<dealii::Function<dim>>            body_force_;
       dealii::AffineConstraints<double>                       constraints_;
       dealii::AffineConstraints<double> hanging_node_constraints_;
       dealii::SparsityPattern           sparsity_;

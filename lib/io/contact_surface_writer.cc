@@ -31,7 +31,7 @@ namespace dualcontact
       };
 
       /** The point fields, in the order of the file. */
-      constexpr std::array<Field, 8> fields = {
+      constexpr std::array<Field, 9> fields = {
         {{"pressure_Pa", "Float64", 1},
          {"normal_force_N", "Float64", 1},
          {"area_weight_m2", "Float64", 1},
@@ -39,13 +39,14 @@ namespace dualcontact
          {"tangential_traction_Pa", "Float64", 3},
          {"slip_m", "Float64", 3},
          {"status", "Int32", 1},
-         {"normal", "Float64", 3}}};
+         {"normal", "Float64", 3},
+         {"slip_increment_m", "Float64", 3}}};
 
       /** The values of one point of the file (3 components per vector). */
       struct PointValues
       {
         double                pressure = 0, force = 0, weight = 0, gap = 0;
-        std::array<double, 3> traction{}, slip{}, normal{};
+        std::array<double, 3> traction{}, slip{}, normal{}, increment{};
         int                   status = contact_status::no_contact_node;
       };
 
@@ -86,6 +87,7 @@ namespace dualcontact
                           coefficient,
                           node.tangential_traction);
           add_scaled<dim>(values.slip, coefficient, node.slip);
+          add_scaled<dim>(values.increment, coefficient, node.slip_increment);
           add_scaled<dim>(values.normal, coefficient, node.normal);
         }
         if (is_contact_node)
@@ -164,6 +166,7 @@ namespace dualcontact
         arrays[5]->InsertNextTuple(v.slip.data());
         arrays[6]->InsertNextTuple1(v.status);
         arrays[7]->InsertNextTuple(v.normal.data());
+        arrays[8]->InsertNextTuple(v.increment.data());
       }
 
       auto grid = vtkSmartPointer<vtkUnstructuredGrid>::New();

@@ -58,8 +58,12 @@ namespace dualcontact
       double pressure = 0;
       /** sum_k lambda_T,k t_k / w [Pa]: the tangential traction. */
       dealii::Tensor<1, dim> tangential_traction;
-      /** sum_k (B_T u + o_T)_k t_k [m]: relative tangential displacement. */
+      /** sum_k (B_T u + o_T)_k t_k [m]: relative tangential displacement,
+       *  accumulated over the load steps. */
       dealii::Tensor<1, dim> slip;
+      /** The part of slip of the last load step [m] (the whole slip for
+       *  a single step). */
+      dealii::Tensor<1, dim> slip_increment;
       /** c - B_N u [m]: the gap after deformation (0 where in contact). */
       double gap = 0;
       /**
@@ -86,7 +90,8 @@ namespace dualcontact
      *  - `area_weight_m2' w_i = int phi_i ds (2D: m^2 per metre, i.e. m),
      *  - `gap_m', `tangential_traction_Pa' (vector), `slip_m' (vector),
      *  - `status' (contact_status; -1 at a point that is no contact node),
-     *  - `normal' (unit vector, slave into master).
+     *  - `normal' (unit vector, slave into master),
+     *  - `slip_increment_m' (vector): the slip of the last load step.
      * Vectors have three components (z = 0 in 2D), as VTK expects.  The
      * pressure is a nodal field: integrated over the cells with its linear
      * (2D) / bilinear (3D) interpolant it gives sum_i p_i int phi_i ds =

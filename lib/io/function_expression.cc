@@ -26,7 +26,7 @@ namespace dualcontact
 
 
     template <int dim>
-    std::shared_ptr<const dealii::Function<dim>>
+    std::shared_ptr<dealii::Function<dim>>
     parse_function(const std::string &expressions,
                    const unsigned int n_components,
                    const std::string &parameter_location)
@@ -40,14 +40,16 @@ namespace dualcontact
                     std::to_string(parts.size()) + ": `" +
                     shorten_for_message(expressions) + "' " +
                     parameter_location + "."));
-      const std::string variables = (dim == 2 ? "x,y" : "x,y,z");
+      // t: the time of a load step (subsection `Load steps'); the function
+      // is evaluated at the step's time through Function::set_time()
+      const std::string variables = (dim == 2 ? "x,y,t" : "x,y,z,t");
       const std::map<std::string, double> constants{
         {"pi", dealii::numbers::PI}};
       auto function =
         std::make_shared<dealii::FunctionParser<dim>>(n_components);
       try
       {
-        function->initialize(variables, parts, constants);
+        function->initialize(variables, parts, constants, true);
         // muparser compiles lazily: evaluate once to find errors now
         dealii::Vector<double> values(n_components);
         function->vector_value(dealii::Point<dim>(), values);
@@ -71,11 +73,11 @@ namespace dualcontact
     }
 
 
-    template std::shared_ptr<const dealii::Function<2>>
+    template std::shared_ptr<dealii::Function<2>>
     parse_function<2>(const std::string &,
                       const unsigned int,
                       const std::string &);
-    template std::shared_ptr<const dealii::Function<3>>
+    template std::shared_ptr<dealii::Function<3>>
     parse_function<3>(const std::string &,
                       const unsigned int,
                       const std::string &);

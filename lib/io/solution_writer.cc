@@ -20,7 +20,10 @@ namespace dualcontact
       OutputFolder                                              &folder,
       const std::vector<std::unique_ptr<fem::ElasticBody<dim>>> &bodies,
       const std::vector<dealii::Vector<double>>                 &displacements,
-      const std::vector<std::string> &additional_parts)
+      const std::vector<std::string>              &additional_parts,
+      const std::string                           &suffix,
+      const double                                 time,
+      std::vector<std::pair<double, std::string>> *series)
     {
       // DataOut writes the locally owned cells: on a parallel
       // triangulation one piece per process and body
@@ -36,9 +39,9 @@ namespace dualcontact
             parallel->get_communicator());
         }
       const auto piece_name =
-        [n_ranks](const unsigned int b, const unsigned int r)
+        [n_ranks, &suffix](const unsigned int b, const unsigned int r)
       {
-        return "body_" + std::to_string(b + 1) +
+        return "body_" + std::to_string(b + 1) + suffix +
                (n_ranks > 1 ? "_rank_" + std::to_string(r) : "") + ".vtu";
       };
       std::vector<std::string> pieces;
@@ -91,13 +94,18 @@ namespace dualcontact
       for (unsigned int b = 0; b < bodies.size(); ++b)
         for (unsigned int r = 1; r < n_ranks; ++r)
           folder.list_file_of_other_process(piece_name(b, r));
-      folder.write("solution.pvtu",
+      const std::string record = "solution" + suffix + ".pvtu";
+      folder.write(record,
                    [&](std::ostream &out)
                    { first_data_out->write_pvtu_record(out, pieces); });
-      std::vector<std::pair<double, std::string>> parts{
-        {0., std::string("solution.pvtu")}};
+      std::vector<std::pair<double, std::string>> parts{{time, record}};
       for (const auto &part : additional_parts)
-        parts.emplace_back(0., part);
+        parts.emplace_back(time, part);
+      if (series != nullptr)
+      {
+        series->insert(series->end(), parts.begin(), parts.end());
+        return;
+      }
       folder.write("solution.pvd",
                    [&parts](std::ostream &out) { write_pvd(out, parts); });
     }
@@ -107,11 +115,17 @@ namespace dualcontact
     write_solution<2>(OutputFolder &,
                       const std::vector<std::unique_ptr<fem::ElasticBody<2>>> &,
                       const std::vector<dealii::Vector<double>> &,
-                      const std::vector<std::string> &);
+                      const std::vector<std::string> &,
+                      const std::string &,
+                      const double,
+                      std::vector<std::pair<double, std::string>> *);
     template void
     write_solution<3>(OutputFolder &,
                       const std::vector<std::unique_ptr<fem::ElasticBody<3>>> &,
                       const std::vector<dealii::Vector<double>> &,
-                      const std::vector<std::string> &);
+                      const std::vector<std::string> &,
+                      const std::string &,
+                      const double,
+                      std::vector<std::pair<double, std::string>> *);
   } // namespace io
 } // namespace dualcontact

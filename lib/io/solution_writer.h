@@ -28,6 +28,11 @@ namespace dualcontact
      * one process) every process calls this and writes the cells it owns,
      * `body_N_rank_R.vtu' (R = 0, 1, ...); process 0 writes solution.pvtu,
      * whose pieces are all of them, and solution.pvd.
+     *
+     * A load step of a history: @p suffix goes into the names
+     * (`body_N_step_K.vtu', `solution_step_K.pvtu'), and with @p series
+     * the records of this step at @p time are appended to it instead of
+     * writing solution.pvd (the caller writes the series with write_pvd()).
      */
     template <int dim>
     void
@@ -35,6 +40,9 @@ namespace dualcontact
       OutputFolder                                              &folder,
       const std::vector<std::unique_ptr<fem::ElasticBody<dim>>> &bodies,
       const std::vector<dealii::Vector<double>>                 &displacements,
-      const std::vector<std::string> &additional_parts = {});
+      const std::vector<std::string> &additional_parts = {},
+      const std::string              &suffix           = "",
+      const double                    time             = 0.,
+      std::vector<std::pair<double, std::string>> *series = nullptr);
   } // namespace io
 } // namespace dualcontact

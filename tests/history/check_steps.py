@@ -1,0 +1,140 @@
+#!/usr/bin/env python3
+"""Runs a load history of dualcontact and compares its steps with static
+runs of the same loads.
+
+Usage: check_steps.py DUALCONTACT INPUT.prm WORKDIR --times T1,T2,...
+                      [--rows all|first] [--set KEY=VALUE ...]
+                      [--tolerance T]
+
+The history (`Load steps/Step times = T1, T2, ...') writes history.csv, one
+row per step.  For each compared step k (--rows all: every step, the
+frictionless case; first: step 1 only, the frictional case: later steps
+depend on the path) the one-step run at t_k writes results.txt; every
+column of the row that results.txt has (forces, counts, areas; a vector's
+components KEY.x, KEY.y, KEY.z) agrees to T (default 1e-8) relative to the
+size of its quantity (a vector's norm).  Also asserted: the history's
+results.txt is its last step's (the same forces as the last row), and
+history.csv has one row per step with step and time.
+
+Every run must exit 0, and every step's forces balance (every body's
+force_imbalance in history.csv <= 1e-8).
+"""
+import argparse
+import csv
+import math
+import os
+import shutil
+import subprocess
+import sys
+
+failures = 0
+
+
+def check(ok, what, value):
+    global failures
+    print(("ok   " if ok else "FAIL ") + what + ": " + str(value))
+    if not ok:
+        failures += 1
+
+
+def read_results(path):
+    """key -> list of numbers; vectors also as KEY.x, KEY.y, KEY.z."""
+    values = {}
+    with open(path) as f:
+        for line in f:
+            if line.startswith("#") or "=" not in line:
+                continue
+            key, value = (s.strip() for s in line.split("=", 1))
+            try:
+                numbers = [float(v) for v in value.split(",")]
+            except ValueError:
+                continue
+            values[key] = numbers
+    return values
+
+
+def run(args, name, times):
+    out = os.path.join(args.workdir, name)
+    command = [args.app, args.input, "--set", "Output/Output folder=" + out,
+               "--set", "Output/Write VTU=false",
+               "--set", "Load steps/Step times=" + times]
+    for s in args.set:
+        command += ["--set", s]
+    result = subprocess.run(command, cwd=args.workdir, capture_output=True,
+                            text=True)
+    check(result.returncode == 0, name + ": exit status", result.returncode)
+    if result.returncode != 0:
+        print(" ".join(command))
+        print(result.stdout[-3000:], result.stderr[-3000:])
+        return None
+    return out
+
+
+def compare(row, static, label, tolerance):
+    worst, worst_key, n = 0.0, "-", 0
+    for key, numbers in static.items():
+        if "imbalance" in key:
+            continue  # round-off sized: asserted below instead
+        components = ([(key, numbers[0])] if len(numbers) == 1 else
+                      [(key + "." + "xyz"[c], numbers[c])
+                       for c in range(len(numbers))])
+        if not all(k in row for k, _ in components):
+            continue
+        scale = math.sqrt(sum(x * x for x in numbers))
+        difference = math.sqrt(sum((float(row[k]) - x) ** 2
+                                   for k, x in components))
+        relative = difference / scale if scale > 0 else difference
+        n += 1
+        if relative > worst:
+            worst, worst_key = relative, key
+    check(n > 5, label + ": quantities compared", n)
+    check(worst <= tolerance, label + ": largest relative difference",
+          "%.3e (%s)" % (worst, worst_key))
+
+
+def main():
+    parser = argparse.ArgumentParser()
+    parser.add_argument("app")
+    parser.add_argument("input")
+    parser.add_argument("workdir")
+    parser.add_argument("--times", required=True)
+    parser.add_argument("--rows", choices=("all", "first"), default="all")
+    parser.add_argument("--set", action="append", default=[])
+    parser.add_argument("--tolerance", type=float, default=1e-8)
+    args = parser.parse_args()
+    args.app, args.input = (os.path.abspath(p) for p in (args.app, args.input))
+    shutil.rmtree(args.workdir, ignore_errors=True)
+    os.makedirs(args.workdir)
+
+    times = [t.strip() for t in args.times.split(",")]
+    out = run(args, "history", ", ".join(times))
+    if out is None:
+        return 1
+    with open(os.path.join(out, "history.csv")) as f:
+        rows = list(csv.DictReader(f))
+    check(len(rows) == len(times), "history.csv: one row per step",
+          len(rows))
+    check(all(int(r["step"]) == k + 1 and
+              abs(float(r["time"]) - float(times[k])) <= 1e-12
+              for k, r in enumerate(rows)), "history.csv: step and time",
+          [(r["step"], r["time"]) for r in rows])
+    compare(rows[-1], read_results(os.path.join(out, "results.txt")),
+            "results.txt against the last row", 1e-9)
+    for k in range(len(rows) if args.rows == "all" else 1):
+        static = run(args, "static_%d" % (k + 1), times[k])
+        if static is None:
+            continue
+        compare(rows[k], read_results(os.path.join(static, "results.txt")),
+                "step %d (t = %s) against one step at t = %s"
+                % (k + 1, times[k], times[k]), args.tolerance)
+    # every step balances: applied + reactions + contact = 0 per body
+    imbalance = max(float(v) for r in rows for k, v in r.items()
+                    if k.endswith(".force_imbalance"))
+    check(imbalance <= 1e-8, "every step: body_N.force_imbalance <= 1e-8",
+          "%.3e" % imbalance)
+    print("%d failure(s)" % failures)
+    return 1 if failures else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
