@@ -13,14 +13,23 @@ namespace dualcontact
   {
     template <int dim>
     CheckedFunction<dim>::CheckedFunction(
-      std::shared_ptr<const dealii::Function<dim>> function,
-      const std::string                           &expression,
-      const std::string                           &parameter_location)
+      std::shared_ptr<dealii::Function<dim>> function,
+      const std::string                     &expression,
+      const std::string                     &parameter_location)
         : dealii::Function<dim>(function->n_components)
         , function_(std::move(function))
         , expression_(expression)
         , parameter_location_(parameter_location)
     {
+    }
+
+
+    template <int dim>
+    void
+    CheckedFunction<dim>::set_time(const double new_time)
+    {
+      dealii::Function<dim>::set_time(new_time);
+      function_->set_time(new_time);
     }
 
 

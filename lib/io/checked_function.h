@@ -38,7 +38,7 @@ namespace dualcontact
        * at @p parameter_location ("(`set Traction' in `subsection Body
        * 1/Traction 1')").
        */
-      CheckedFunction(std::shared_ptr<const dealii::Function<dim>> function,
+      CheckedFunction(std::shared_ptr<dealii::Function<dim>> function,
                       const std::string                           &expression,
                       const std::string &parameter_location);
 
@@ -50,12 +50,20 @@ namespace dualcontact
       vector_value(const dealii::Point<dim> &point,
                    dealii::Vector<double>   &values) const override;
 
+      /**
+       * Set the time of this function and of the wrapped one: an expression
+       * in the time t of a load step is evaluated by the wrapped function,
+       * which must see the step's time (without this it stayed at t = 0).
+       */
+      void
+      set_time(const double new_time) override;
+
     private:
       [[noreturn]] void
       throw_non_finite(const dealii::Point<dim>     &point,
                        const dealii::Vector<double> &values) const;
 
-      std::shared_ptr<const dealii::Function<dim>> function_;
+      std::shared_ptr<dealii::Function<dim>> function_;
       std::string                                  expression_;
       std::string                                  parameter_location_;
     };

@@ -16,7 +16,8 @@ size of its quantity (a vector's norm).  Also asserted: the history's
 results.txt is its last step's (the same forces as the last row), and
 history.csv has one row per step with step and time.
 
-Every run must exit 0, and every step's forces balance (every body's
+The steps' normal forces must differ (the loads follow t).  Every run must
+exit 0, and every step's forces balance (every body's
 force_imbalance in history.csv <= 1e-8).
 """
 import argparse
@@ -118,6 +119,18 @@ def main():
               abs(float(r["time"]) - float(times[k])) <= 1e-12
               for k, r in enumerate(rows)), "history.csv: step and time",
           [(r["step"], r["time"]) for r in rows])
+    # the loads depend on t: the steps must differ (an expression that did
+    # not see the step's time would give equal, even zero, steps that
+    # trivially equal their one-step runs)
+    if len(rows) > 1:
+        spread = max(abs(float(r[key]) - float(rows[0][key]))
+                     for r in rows for key in rows[0]
+                     if key.endswith("normal_force"))
+        check(spread > 1e-6 * max(abs(float(r[key])) for r in rows
+                                  for key in rows[0]
+                                  if key.endswith("normal_force")),
+              "the steps' normal forces differ (the loads follow t)",
+              "%.3e" % spread)
     compare(rows[-1], read_results(os.path.join(out, "results.txt")),
             "results.txt against the last row", 1e-9)
     for k in range(len(rows) if args.rows == "all" else 1):
