@@ -7,6 +7,7 @@ xvfb):
       [--warp auto|S] [--view iso|+x|-x|+y|-y|+z|-z] [--title TEXT]
       [--size 1600 800] [--field NAME] [--contact-field NAME]
       [--panels both|bodies|contact] [--status] [--contact-view VIEW]
+      [--time T]
 
 RESULT: an output folder or its solution.pvd.  Two panels:
   left:  the bodies (solution.pvtu), displaced by S times displacement_m
@@ -26,7 +27,10 @@ contact nodes as dots in discrete colours by their `status' (0
 separated, 1 stick, 2 slip, 3 in contact without friction; -1 no contact
 node), with a legend and the number of nodes in each state: on the
 deformed bodies (each dot moved with the bodies' displacement at its
-place) and on the contact surfaces.
+place) and on the contact surfaces.  --time: the record of a load
+history's solution.pvd to draw, the one whose time is nearest T (default:
+the last step; one record per step, drawing all of them would overlay the
+steps).
 
 Reads through VTK's Python module (Debian's python3-vtk9, under
 /usr/bin/python3; postprocess/contact_vtu.py), not ParaView: Debian 12's
@@ -98,18 +102,27 @@ def parse():
                    default="both")
     p.add_argument("--contact-view")
     p.add_argument("--status", action="store_true")
+    p.add_argument("--time", type=float)
     return p.parse_args()
 
 
-def record_files(result):
-    """(folder, body files, contact files) listed by solution.pvd; for a
-    folder without one (`Write VTU = false'), its contact_N.vtu / .pvtu."""
+def record_files(result, time=None):
+    """(folder, body files, contact files) listed by solution.pvd at the
+    record nearest @p time (None: the last one; a load history writes one
+    record per step); for a folder without one (`Write VTU = false'), its
+    contact_N.vtu / .pvtu."""
     pvd = result if result.endswith(".pvd") else os.path.join(result,
                                                               "solution.pvd")
     folder = os.path.dirname(pvd)
     if os.path.isfile(pvd):
-        files = [d.get("file") for d in
-                 ET.parse(pvd).getroot().findall("Collection/DataSet")]
+        records = ET.parse(pvd).getroot().findall("Collection/DataSet")
+        times = sorted({float(d.get("timestep", "0")) for d in records})
+        if not times:
+            sys.exit(f"render_vtu: {pvd}: no record")
+        chosen = (times[-1] if time is None
+                  else min(times, key=lambda t: abs(t - time)))
+        files = [d.get("file") for d in records
+                 if float(d.get("timestep", "0")) == chosen]
     elif os.path.isdir(folder):
         files = sorted(f for f in os.listdir(folder)
                        if re.fullmatch(r"contact_\d+\.p?vtu", f))
@@ -465,7 +478,7 @@ def contact_panel(a, contacts, dim, x0):
 
 def main():
     a = parse()
-    folder, body_files, contact_files = record_files(a.result)
+    folder, body_files, contact_files = record_files(a.result, a.time)
     contacts = [contact_vtu.read_grid(os.path.join(folder, f))
                 for f in contact_files]
     window = vtkRenderWindow()
