@@ -11,6 +11,8 @@
 #include <algorithm>
 #include <cmath>
 #include <iomanip>
+#include <map>
+#include <regex>
 #include <sstream>
 
 namespace dualcontact
@@ -47,6 +49,46 @@ namespace dualcontact
             break;
         }
         return text.str();
+      }
+    } // namespace
+
+
+    namespace
+    {
+      /**
+       * The written files as the console lists them: a load history's
+       * per-step files (`body_1_step_K.vtu', K = 1 .. n) as one item
+       * `body_1_step_*.vtu (n steps)' at the place of the first, so that a
+       * history of many steps keeps the line readable.
+       */
+      std::string
+      list_file_names(const std::vector<std::string> &names)
+      {
+        static const std::regex step_file("(.*_step_)[0-9]+(\\..*)");
+        std::vector<std::string>                 items;
+        std::map<std::string, unsigned int>      steps_of_pattern;
+        for (const auto &name : names)
+        {
+          std::smatch match;
+          if (!std::regex_match(name, match, step_file))
+          {
+            items.push_back(name);
+            continue;
+          }
+          const std::string pattern =
+            match[1].str() + "*" + match[2].str();
+          if (steps_of_pattern[pattern]++ == 0)
+            items.push_back(pattern);
+        }
+        std::string list;
+        for (const auto &item : items)
+        {
+          list += (list.empty() ? "" : ", ") + item;
+          const auto pattern = steps_of_pattern.find(item);
+          if (pattern != steps_of_pattern.end())
+            list += " (" + std::to_string(pattern->second) + " steps)";
+        }
+        return list;
       }
     } // namespace
 
@@ -764,9 +806,7 @@ namespace dualcontact
       const std::string failure = has_contact && !contact_->result().converged ?
                                     failure_message() :
                                     std::string();
-      std::string       files;
-      for (const auto &name : output_folder_->file_names())
-        files += (files.empty() ? "" : ", ") + name;
+      std::string files = list_file_names(output_folder_->file_names());
       if (is_output_rank_)
         files += ", log.txt";
       console_ << "Output written to `" << output_folder_->path()
