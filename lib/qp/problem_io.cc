@@ -1,5 +1,6 @@
 #include <qp/problem_io.h>
 #include <util/available_memory.h>
+#include <util/file_text.h>
 
 #include <deal.II/base/exceptions.h>
 
@@ -7,11 +8,9 @@
 
 #include <algorithm>
 #include <charconv>
-#include <cerrno>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
-#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
@@ -24,69 +23,6 @@ namespace dualcontact
   {
     namespace
     {
-      /// Whole file in memory: one read, then parsing without streams.
-      std::string
-      slurp(const std::string &filename, const std::string &what)
-      {
-        const std::string kind =
-          (what.empty() ? std::string("file") : what + " file");
-        // fopen() opens a directory, whose "size" from fseek/ftell is
-        // anything up to LONG_MAX: refuse what is not a regular file
-        std::error_code                   error;
-        const std::filesystem::file_status status =
-          std::filesystem::status(filename, error);
-        AssertThrow(!std::filesystem::is_directory(status),
-                    dealii::ExcMessage("Cannot read " + kind + " '" +
-                                       filename + "': it is a directory."));
-        AssertThrow(error || std::filesystem::is_regular_file(status),
-                    dealii::ExcMessage("Cannot read " + kind + " '" +
-                                       filename +
-                                       "': it is not a regular file."));
-        std::FILE *file = std::fopen(filename.c_str(), "rb");
-        AssertThrow(file != nullptr,
-                    dealii::ExcMessage("Cannot open " + kind + " '" +
-                                       filename + "': " +
-                                       std::strerror(errno) + "."));
-        std::string content;
-        std::fseek(file, 0, SEEK_END);
-        const long size = std::ftell(file);
-        std::fseek(file, 0, SEEK_SET);
-        const std::uint64_t available = util::available_memory();
-        if (size > 0 && available > 0 &&
-            static_cast<std::uint64_t>(size) > available)
-        {
-          std::fclose(file);
-          AssertThrow(false,
-                      dealii::ExcMessage(
-                        "Cannot read " + kind + " '" + filename + "': it has " +
-                        std::to_string(size) + " bytes, more than the " +
-                        std::to_string(available) +
-                        " bytes of memory available (MemAvailable in "
-                        "/proc/meminfo)."));
-        }
-        if (size > 0)
-        {
-          content.resize(static_cast<std::size_t>(size));
-          const std::size_t n_read =
-            std::fread(content.data(), 1, content.size(), file);
-          const bool failed = std::ferror(file) != 0;
-          const int  number = errno;
-          content.resize(n_read);
-          if (failed)
-          {
-            std::fclose(file);
-            AssertThrow(false,
-                        dealii::ExcMessage("Cannot read " + kind + " '" +
-                                           filename +
-                                           "': " + std::strerror(number) +
-                                           "."));
-          }
-        }
-        std::fclose(file);
-        return content;
-      }
-
-
       /**
        * Throws, through @p cursor (file and line), unless the memory a
        * matrix of @p n_rows rows and @p n_entries stored entries needs is
@@ -400,7 +336,7 @@ namespace dualcontact
                        dealii::SparsityPattern      &pattern,
                        dealii::SparseMatrix<double> &matrix)
     {
-      const std::string text = slurp(filename, "Matrix Market");
+      const std::string text = util::read_file_text(filename, "Matrix Market");
       TextCursor        cursor(text, filename);
 
       // header: %%MatrixMarket matrix coordinate real general|symmetric
@@ -577,7 +513,7 @@ namespace dualcontact
                      const long         expected_size,
                      const std::string &what)
     {
-      const std::string   text = slurp(filename, what);
+      const std::string   text = util::read_file_text(filename, what);
       TextCursor          cursor(text, filename);
       std::vector<double> values;
       if (expected_size >= 0)
