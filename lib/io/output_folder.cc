@@ -111,13 +111,11 @@ namespace dualcontact
         std::error_code error;
         const bool      found = fs::exists(part, error);
         AssertThrow(!error,
-                    dealii::ExcMessage("Cannot write the output folder `" +
-                                       path + "'" +
-                                       (parameter_location.empty() ?
-                                          std::string() :
-                                          " " + parameter_location) +
-                                       ": `" + part.string() +
-                                       "': " + error.message() + "."));
+                    dealii::ExcMessage(
+                      "Cannot write the output folder `" + path + "'" +
+                      (parameter_location.empty() ? std::string() :
+                                                    " " + parameter_location) +
+                      ": `" + part.string() + "': " + error.message() + "."));
         return found;
       }
 
@@ -402,15 +400,21 @@ namespace dualcontact
         const int number = errno;
         if (out)
           throw; // the writer's own error, which says what it is
-        AssertThrow(false,
-                    dealii::ExcMessage("Writing the file `" +
-                                       temporary.string() +
-                                       "' failed: " + cause(number) + "."));
+        AssertThrow(false, dealii::ExcMessage(write_failure(name, number)));
       }
       out.close();
-      AssertThrow(out,
-                  dealii::ExcMessage("Writing the file `" + temporary.string() +
-                                     "' failed: " + cause(errno) + "."));
+      AssertThrow(out, dealii::ExcMessage(write_failure(name, errno)));
+    }
+
+
+    std::string
+    OutputFolder::write_failure(const std::string &name,
+                                const int          error_number) const
+    {
+      // the file the user asked for, not the temporary it is written to
+      // first (which the cleanup removes, with everything of this run)
+      return "Writing the file `" + (fs::path(path_) / name).string() +
+             "' failed: " + cause(error_number) + ".";
     }
 
 

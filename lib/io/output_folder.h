@@ -106,6 +106,9 @@ namespace dualcontact
       remove_stale_files() const;
       void
       unlock();
+      /** "Writing the file `FOLDER/NAME' failed: CAUSE." */
+      std::string
+      write_failure(const std::string &name, const int error_number) const;
 
       std::string              path_;
       std::vector<std::string> created_folders_;
