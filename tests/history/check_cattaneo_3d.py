@@ -115,6 +115,10 @@ def main():
         imbalance = max(row[k] for k in row if k.endswith("force_imbalance"))
         check(imbalance <= 1e-6 * P, "t = %g: forces balance" % row["time"],
               imbalance)
+    # Hertz, two bodies of one material: E* = E / (2 (1 - nu^2)), R = 1
+    E, nu, R = 1000.0, 0.3, 1.0
+    print("info P = %.5g N, Hertz a = %.5f m" % (
+        P, (3 * P * R * 2 * (1 - nu * nu) / (4 * E)) ** (1 / 3)))
     Qs, Q = (abs(rows[i]["pair_1.tangential_force.x"]) for i in (2, 4))
     cases = [("loaded to Q*/(mu P) = %.4f" % (Qs / (mu * P)), 3,
               (1 - Qs / (mu * P)) ** (1 / 3)),
