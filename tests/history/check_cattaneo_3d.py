@@ -4,6 +4,7 @@ the lower half of a ball on a block of its own material, Dundurs beta = 0).
 
 Usage: check_cattaneo_3d.py DUALCONTACT INPUT.prm WORKDIR
                             [--peak S] [--final S'] [--mu MU] [--tolerance N]
+                            [--plot PICTURE.png]
 
 One history: the top pressed at t = 1 and held, moved along x by S at
 t = 2 (two steps) and back to S' at t = 3 (two steps), set here through
@@ -21,6 +22,8 @@ distance of a node from the axis x = y = 0:
   - after unloading to Q: the nodes that slip again lie outside
     c'/a = (1 - (Q* - Q)/(2 mu P))^(1/3), those inside stick: c_in and
     c_out within N spacings of c';
+  - --plot draws both steps' contact nodes by status with the circles
+    a and c (c') of the closed form (matplotlib; not part of the check);
   - every step's forces balance and P stays constant (1e-3 relative:
     beta = 0, the normal and tangential problems uncouple).
 """
@@ -98,6 +101,7 @@ def main():
     parser.add_argument("--final", type=float, default=0.002)
     parser.add_argument("--mu", type=float, default=0.3)
     parser.add_argument("--tolerance", type=float, default=1.0)
+    parser.add_argument("--plot", help="draw the stick zones into this .png")
     args = parser.parse_args()
     args.app, args.input = (os.path.abspath(p) for p in (args.app, args.input))
     shutil.rmtree(args.workdir, ignore_errors=True)
@@ -124,6 +128,8 @@ def main():
               (1 - Qs / (mu * P)) ** (1 / 3)),
              ("unloaded to Q/(mu P) = %.4f" % (Q / (mu * P)), 5,
               (1 - (Qs - Q) / (2 * mu * P)) ** (1 / 3))]
+    if args.plot:
+        plot(args.plot, out, rows, cases)
     for name, step, expected in cases:
         a = math.sqrt(rows[step - 1]["pair_1.contact_area"] / math.pi)
         c_in, c_out, h = zone(out, step)
@@ -135,6 +141,40 @@ def main():
                   % (c, a, c / a, h, abs(c - expected * a) / h))
     print("%d failure(s)" % failures)
     return 1 if failures else 0
+
+
+def plot(path, out, rows, cases):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    figure, axes = plt.subplots(1, 2, figsize=(10, 5))
+    for ax, (name, step, expected) in zip(axes, cases):
+        points, fields = contact_vtu.read_contact_nodes(
+            os.path.join(out, "contact_1_step_%d.vtu" % step))
+        a = math.sqrt(rows[step - 1]["pair_1.contact_area"] / math.pi)
+        for status, colour, label in ((0, "lightgrey", "separated"),
+                                      (1, "tab:blue", "stick"),
+                                      (2, "tab:red", "slip")):
+            chosen = fields["status"] == status
+            ax.plot(points[chosen, 0], points[chosen, 1], "o", ms=4,
+                    color=colour, label=label)
+        angle = numpy.linspace(0, 2 * math.pi, 200)
+        for radius, style, label in ((a, "k-", "a"),
+                                     (expected * a, "k--", "closed form")):
+            ax.plot(radius * numpy.cos(angle), radius * numpy.sin(angle),
+                    style, lw=1, label=label)
+        ax.set_xlim(-1.4 * a, 1.4 * a)
+        ax.set_ylim(-1.4 * a, 1.4 * a)
+        ax.set_aspect("equal")
+        ax.set_xlabel("x [m] (load direction)")
+        ax.set_ylabel("y [m]")
+        ax.set_title("t = %g: %s" % (rows[step - 1]["time"], name), fontsize=9)
+    axes[0].legend(loc="upper right", fontsize=8)
+    figure.suptitle("Cattaneo-Mindlin in 3D: %s"
+                    % os.path.join(out, "contact_1_step_{3,5}.vtu"),
+                    fontsize=9)
+    figure.tight_layout()
+    figure.savefig(path, dpi=120)
 
 
 if __name__ == "__main__":
