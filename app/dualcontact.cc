@@ -174,8 +174,9 @@ main(int argc, char *argv[])
         std::cout << "dualcontact " << DUALCONTACT_VERSION << std::endl;
       return 0;
     }
-    if (arguments.size() == 1 && (argument == "--print-parameters" ||
-                                  argument.rfind("--print-parameters=", 0) == 0))
+    if (arguments.size() == 1 &&
+        (argument == "--print-parameters" ||
+         argument.rfind("--print-parameters=", 0) == 0))
     {
       const auto format =
         argument == "--print-parameters" ?

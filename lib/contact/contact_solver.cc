@@ -102,7 +102,8 @@ namespace dualcontact
 
     template <int dim>
     void
-    ContactSolver<dim>::set_initial_multipliers(const dealii::Vector<double> &lambda)
+    ContactSolver<dim>::set_initial_multipliers(
+      const dealii::Vector<double> &lambda)
     {
       initial_multipliers_ = lambda;
     }

@@ -78,7 +78,7 @@ namespace dualcontact
       std::map<dealii::types::material_id, fem::IsotropicMaterial> materials;
       std::vector<fem::DirichletCondition<dim>>                    dirichlet;
       std::vector<fem::TractionCondition<dim>>                     tractions;
-      std::shared_ptr<dealii::Function<dim>>                 body_force;
+      std::shared_ptr<dealii::Function<dim>>                       body_force;
       /** Whether `Body force' is not identically "0; 0(; 0)". */
       bool has_body_force = false;
 

@@ -69,8 +69,7 @@ namespace dualcontact
           AssertThrow(!text.empty() && *end_of_number == '\0' &&
                         std::isfinite(t),
                       dealii::ExcMessage(
-                        "The step time `" + text +
-                        "' is not a finite number " +
+                        "The step time `" + text + "' is not a finite number " +
                         io::parameter_location("Load steps", "Step times") +
                         "."));
           times.push_back(t);
@@ -92,9 +91,9 @@ namespace dualcontact
       for (unsigned int k = 1; k < times.size(); ++k)
       {
         std::ostringstream message;
-        message << "The step times must increase: step " << k + 1 << " at t = "
-                << times[k] << " does not follow step " << k << " at t = "
-                << times[k - 1] << " "
+        message << "The step times must increase: step " << k + 1
+                << " at t = " << times[k] << " does not follow step " << k
+                << " at t = " << times[k - 1] << " "
                 << io::parameter_location("Load steps", "Step times") << ".";
         AssertThrow(times[k] > times[k - 1], dealii::ExcMessage(message.str()));
       }

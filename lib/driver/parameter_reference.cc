@@ -34,10 +34,10 @@ namespace dualcontact
         for (const auto &[name, item] : level.items())
           if (!item.contains("value"))
           {
-            nlohmann::ordered_json subsection = {{"name", name}};
-            const nlohmann::ordered_json inner = reference_of_level(item);
-            subsection["entries"]     = inner["entries"];
-            subsection["subsections"] = inner["subsections"];
+            nlohmann::ordered_json       subsection = {{"name", name}};
+            const nlohmann::ordered_json inner      = reference_of_level(item);
+            subsection["entries"]                   = inner["entries"];
+            subsection["subsections"]               = inner["subsections"];
             subsections.push_back(subsection);
           }
         return {{"entries", entries}, {"subsections", subsections}};

@@ -48,12 +48,12 @@ namespace dualcontact
        * instead of solution.pvd (io::write_solution).
        */
       void
-      write_output(io::OutputFolder                            &folder,
-                   const bool                                   write_vtu,
-                   const std::string                           &suffix = "",
-                   const double                                 time   = 0.,
-                   std::vector<std::pair<double, std::string>> *series =
-                     nullptr) const;
+      write_output(
+        io::OutputFolder                            &folder,
+        const bool                                   write_vtu,
+        const std::string                           &suffix = "",
+        const double                                 time   = 0.,
+        std::vector<std::pair<double, std::string>> *series = nullptr) const;
 
       /**
        * The scene's contact problem as FCLIB file(s) (`Output/FCLIB

@@ -6,9 +6,9 @@
 #include <driver/body_parameters.h>
 #include <driver/contact_pair_parameters.h>
 #include <driver/contact_refinement.h>
+#include <driver/load_steps.h>
 #include <driver/obstacle_parameters.h>
 #include <driver/output_parameters.h>
-#include <driver/load_steps.h>
 #include <driver/scene_parameters.h>
 #include <fem/stiffness_solver.h>
 #include <io/parameter_file.h>

@@ -64,9 +64,9 @@ namespace dualcontact
       std::string
       list_file_names(const std::vector<std::string> &names)
       {
-        static const std::regex step_file("(.*_step_)[0-9]+(\\..*)");
-        std::vector<std::string>                 items;
-        std::map<std::string, unsigned int>      steps_of_pattern;
+        static const std::regex  step_file("(.*_step_)[0-9]+(\\..*)");
+        std::vector<std::string> items;
+        std::map<std::string, unsigned int> steps_of_pattern;
         for (const auto &name : names)
         {
           std::smatch match;
@@ -75,8 +75,7 @@ namespace dualcontact
             items.push_back(name);
             continue;
           }
-          const std::string pattern =
-            match[1].str() + "*" + match[2].str();
+          const std::string pattern = match[1].str() + "*" + match[2].str();
           if (steps_of_pattern[pattern]++ == 0)
             items.push_back(pattern);
         }
@@ -118,8 +117,8 @@ namespace dualcontact
       {
         return "The FCLIB export " +
                io::parameter_location("Output", "FCLIB problem") +
-               " needs bodies held by Dirichlet conditions, but " + body +
-               " " + why +
+               " needs bodies held by Dirichlet conditions, but " + body + " " +
+               why +
                ": its stiffness matrix is singular, and the contact problem "
                "(with rigid-body modes) is not an FCLIB problem. Hold the "
                "body, or set `FCLIB problem = none'.";
@@ -202,7 +201,7 @@ namespace dualcontact
                       dealii::ExcMessage(fclib_floating_body_message(
                         body.name, "has no Dirichlet condition")));
       }
-      refinement_   = std::make_unique<ContactRefinement<dim>>(
+      refinement_ = std::make_unique<ContactRefinement<dim>>(
         prm, scene_->pair_parameters().size());
       AssertThrow(!scene_->has_distributed_meshes() ||
                     refinement_->n_cycles() == 0,
@@ -770,9 +769,8 @@ namespace dualcontact
                   else if (is_output_rank_)
                     // the steps' files are written: their series
                     output_folder_->write("solution.pvd",
-                                          [&](std::ostream &out) {
-                                            io::write_pvd(out, pvd_series_);
-                                          });
+                                          [&](std::ostream &out)
+                                          { io::write_pvd(out, pvd_series_); });
                   if (has_contact && output_.fclib_problem != "none")
                     report.write_fclib_problem(*output_folder_,
                                                output_.fclib_problem);
@@ -784,29 +782,26 @@ namespace dualcontact
       {
         report.write_records(*output_folder_, prm_, timer_);
         if (load_steps_.is_history())
-          output_folder_->write("history.csv",
-                                [&](std::ostream &out)
-                                {
-                                  for (unsigned int c = 0;
-                                       c < history_header_.size();
-                                       ++c)
-                                    out << (c == 0 ? "" : ",")
-                                        << history_header_[c];
-                                  out << "\n";
-                                  for (const auto &row : history_rows_)
-                                  {
-                                    for (unsigned int c = 0; c < row.size();
-                                         ++c)
-                                      out << (c == 0 ? "" : ",") << row[c];
-                                    out << "\n";
-                                  }
-                                });
+          output_folder_->write(
+            "history.csv",
+            [&](std::ostream &out)
+            {
+              for (unsigned int c = 0; c < history_header_.size(); ++c)
+                out << (c == 0 ? "" : ",") << history_header_[c];
+              out << "\n";
+              for (const auto &row : history_rows_)
+              {
+                for (unsigned int c = 0; c < row.size(); ++c)
+                  out << (c == 0 ? "" : ",") << row[c];
+                out << "\n";
+              }
+            });
       }
 
       const std::string failure = has_contact && !contact_->result().converged ?
                                     failure_message() :
                                     std::string();
-      std::string files = list_file_names(output_folder_->file_names());
+      std::string       files   = list_file_names(output_folder_->file_names());
       if (is_output_rank_)
         files += ", log.txt";
       console_ << "Output written to `" << output_folder_->path()

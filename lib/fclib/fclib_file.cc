@@ -185,8 +185,8 @@ namespace dualcontact
         const int error_number = errno;
         AssertThrow(status == 1,
                     dealii::ExcMessage(
-                      "Cannot write the FCLIB file `" + path + "': " +
-                      write_failure_cause(path, error_number)));
+                      "Cannot write the FCLIB file `" + path +
+                      "': " + write_failure_cause(path, error_number)));
       }
 
 
@@ -208,8 +208,7 @@ namespace dualcontact
         solution.v = v ? vv.data() : nullptr;
         solution.r = rr.data();
         solution.u = uu.data();
-        check_written(fclib_write_solution(&solution, temporary.c_str()),
-                      path);
+        check_written(fclib_write_solution(&solution, temporary.c_str()), path);
       }
 
 

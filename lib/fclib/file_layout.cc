@@ -145,8 +145,7 @@ namespace dualcontact
          * end the process without naming the file.
          */
         void
-        require_readable(const std::string &name,
-                         const hid_t        memory_type) const
+        require_readable(const std::string &name, const hid_t memory_type) const
         {
           const std::int64_t n = extent(name);
           const Handle set(H5Dopen2(file_.get(), name.c_str(), H5P_DEFAULT),
@@ -164,8 +163,7 @@ namespace dualcontact
                            H5Dclose);
           AssertThrow(set.valid(), error(name, "cannot be opened"));
           const Handle type(H5Dget_type(set.get()), H5Tclose);
-          AssertThrow(type.valid() &&
-                        H5Tget_class(type.get()) == H5T_STRING,
+          AssertThrow(type.valid() && H5Tget_class(type.get()) == H5T_STRING,
                       error(name, "is not a string"));
           // libfclib reads fixed-length strings only (H5LT)
           AssertThrow(H5Tis_variable_str(type.get()) == 0,
@@ -230,12 +228,11 @@ namespace dualcontact
             std::uint64_t(std::max<std::int64_t>(n, 1)) *
             H5Tget_size(memory_type);
           const std::uint64_t available = util::available_memory();
-          AssertThrow(available == 0 || bytes <= available,
-                      error(name,
-                            "needs " + std::to_string(bytes) +
-                              " bytes, more than the " +
-                              std::to_string(available) +
-                              " bytes of memory available"));
+          AssertThrow(
+            available == 0 || bytes <= available,
+            error(name,
+                  "needs " + std::to_string(bytes) + " bytes, more than the " +
+                    std::to_string(available) + " bytes of memory available"));
           std::vector<char> buffer(bytes);
           AssertThrow(H5Dread(set,
                               memory_type,
@@ -347,9 +344,9 @@ namespace dualcontact
         file.require_group(root);
         file.require_readable(root + "/spacedim", H5T_NATIVE_INT);
         file.require_group(root + "/vectors");
-        for (const char *name :
-             form == Form::local ? std::vector<const char *>{"/q", "/mu"} :
-                                   std::vector<const char *>{"/f", "/w", "/mu"})
+        for (const char *name : form == Form::local ?
+                                  std::vector<const char *>{"/q", "/mu"} :
+                                  std::vector<const char *>{"/f", "/w", "/mu"})
           file.require_readable(root + "/vectors" + name, H5T_NATIVE_DOUBLE);
         if (file.exists(root + "/info"))
         {

@@ -59,15 +59,14 @@ namespace dualcontact
         std::string message = "FCLIB file `" + call.file + "': ";
         if (call.action == "write")
         {
-          message += "cannot write it: " +
-                     write_failure_cause(call.file, error_number);
+          message +=
+            "cannot write it: " + write_failure_cause(call.file, error_number);
           if (!call.partial_file.empty())
           {
             std::error_code error;
             std::filesystem::remove(call.partial_file, error);
             message += " (the partial file `" + call.partial_file +
-                       "' is removed, an existing `" + call.file +
-                       "' is kept)";
+                       "' is removed, an existing `" + call.file + "' is kept)";
           }
         }
         else
@@ -89,7 +88,7 @@ namespace dualcontact
       std::error_code       error;
       std::filesystem::path folder =
         std::filesystem::absolute(path, error).parent_path();
-      struct statvfs        info;
+      struct statvfs info;
       // "full": less than 64 KiB left for an unprivileged writer
       if (error_number == ENOSPC ||
           (statvfs(folder.c_str(), &info) == 0 &&

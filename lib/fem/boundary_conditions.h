@@ -14,14 +14,14 @@ namespace dualcontact
      * Prescribed displacement [m] on the boundary faces with id
      * @p boundary_id, for the displacement components selected by
      * @p components.  @p values has dim components (the unselected ones are
-     * ignored), each a function of the reference position x (and of the time of a
-     * load step, Function::set_time()).
+     * ignored), each a function of the reference position x (and of the time of
+     * a load step, Function::set_time()).
      */
     template <int dim>
     struct DirichletCondition
     {
-      dealii::types::boundary_id                   boundary_id;
-      dealii::ComponentMask                        components;
+      dealii::types::boundary_id             boundary_id;
+      dealii::ComponentMask                  components;
       std::shared_ptr<dealii::Function<dim>> values;
     };
 
@@ -33,7 +33,7 @@ namespace dualcontact
     template <int dim>
     struct TractionCondition
     {
-      dealii::types::boundary_id                   boundary_id;
+      dealii::types::boundary_id             boundary_id;
       std::shared_ptr<dealii::Function<dim>> traction;
     };
   } // namespace fem

@@ -79,8 +79,7 @@ namespace dualcontact
 
     template <int dim>
     void
-    ElasticBody<dim>::set_body_force(
-      std::shared_ptr<Function<dim>> body_force)
+    ElasticBody<dim>::set_body_force(std::shared_ptr<Function<dim>> body_force)
     {
       body_force_ = std::move(body_force);
     }

@@ -376,7 +376,7 @@ namespace dualcontact
       std::map<dealii::types::material_id, IsotropicMaterial> materials_;
       std::vector<DirichletCondition<dim>>                    dirichlet_;
       std::vector<TractionCondition<dim>>                     tractions_;
-      std::shared_ptr<dealii::Function<dim>>            body_force_;
+      std::shared_ptr<dealii::Function<dim>>                  body_force_;
       dealii::AffineConstraints<double>                       constraints_;
       dealii::AffineConstraints<double> hanging_node_constraints_;
       dealii::SparsityPattern           sparsity_;

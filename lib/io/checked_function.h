@@ -39,7 +39,7 @@ namespace dualcontact
        * 1/Traction 1')").
        */
       CheckedFunction(std::shared_ptr<dealii::Function<dim>> function,
-                      const std::string                           &expression,
+                      const std::string                     &expression,
                       const std::string &parameter_location);
 
       double
@@ -64,8 +64,8 @@ namespace dualcontact
                        const dealii::Vector<double> &values) const;
 
       std::shared_ptr<dealii::Function<dim>> function_;
-      std::string                                  expression_;
-      std::string                                  parameter_location_;
+      std::string                            expression_;
+      std::string                            parameter_location_;
     };
   } // namespace io
 } // namespace dualcontact

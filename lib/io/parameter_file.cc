@@ -200,10 +200,10 @@ namespace dualcontact
             " at position " + std::to_string(bad - value_start + 1) +
             " of the value)" + advice);
         }
-        throw dealii::ExcMessage(where + ": the line is not valid UTF-8 (byte " +
-                                 hex_byte(text[bad]) + " at position " +
-                                 std::to_string(bad + 1) +
-                                 " of the line without its comment)" + advice);
+        throw dealii::ExcMessage(
+          where + ": the line is not valid UTF-8 (byte " + hex_byte(text[bad]) +
+          " at position " + std::to_string(bad + 1) +
+          " of the line without its comment)" + advice);
       }
 
       /** Where an entry was set: file and line, for the duplicate message. */
@@ -666,13 +666,14 @@ namespace dualcontact
         if (const std::size_t bad = first_non_utf8_byte(entry.text);
             bad != std::string::npos)
         {
-          const bool in_value = first_non_utf8_byte(entry.subsection_path() +
-                                                    entry.entry) ==
-                                std::string::npos;
+          const bool in_value =
+            first_non_utf8_byte(entry.subsection_path() + entry.entry) ==
+            std::string::npos;
           throw dealii::ExcMessage(
             "The option `--set' " +
             (in_value ?
-               "of " + parameter_location(entry.subsection_path(), entry.entry) +
+               "of " +
+                 parameter_location(entry.subsection_path(), entry.entry) +
                  " gives a value that" :
                std::string("names a parameter that")) +
             " is not valid UTF-8 (byte " + hex_byte(entry.text[bad]) +

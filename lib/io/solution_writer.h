@@ -40,9 +40,9 @@ namespace dualcontact
       OutputFolder                                              &folder,
       const std::vector<std::unique_ptr<fem::ElasticBody<dim>>> &bodies,
       const std::vector<dealii::Vector<double>>                 &displacements,
-      const std::vector<std::string> &additional_parts = {},
-      const std::string              &suffix           = "",
-      const double                    time             = 0.,
-      std::vector<std::pair<double, std::string>> *series = nullptr);
+      const std::vector<std::string>              &additional_parts = {},
+      const std::string                           &suffix           = "",
+      const double                                 time             = 0.,
+      std::vector<std::pair<double, std::string>> *series           = nullptr);
   } // namespace io
 } // namespace dualcontact

@@ -608,16 +608,12 @@ namespace dualcontact
       {
         const Settings settings = read_settings(options);
         nlohmann::json summary;
-        LocalProblem   problem = naming_file(options.file,
-                                           "",
-                                           [&]()
-                                           {
-                                             return read_problem(
-                                               options.file,
-                                               settings.storage,
-                                               out,
-                                               summary);
-                                           });
+        LocalProblem   problem = naming_file(
+          options.file,
+          "",
+          [&]() {
+            return read_problem(options.file, settings.storage, out, summary);
+          });
         if (options.info_only)
         {
           print_info(problem, out, summary);
@@ -630,14 +626,15 @@ namespace dualcontact
         bool                   converged = false;
         if (settings.loop.model == Model::newton)
         {
-          const auto result = naming_file(options.file,
-                                          " (solving its problem)",
-                                          [&]()
-                                          {
-                                            const NewtonSolver newton(
-                                              problem, settings.loop.newton);
-                                            return newton.solve(r);
-                                          });
+          const auto result =
+            naming_file(options.file,
+                        " (solving its problem)",
+                        [&]()
+                        {
+                          const NewtonSolver newton(problem,
+                                                    settings.loop.newton);
+                          return newton.solve(r);
+                        });
           print_newton_result(result, settings, out);
           compare_with_stored_solution(options.file, problem, r, out, summary);
           add_newton_result(result, settings, summary);
@@ -645,17 +642,17 @@ namespace dualcontact
         }
         else
         {
-          const auto result = naming_file(options.file,
-                                          " (solving its problem)",
-                                          [&]()
-                                          {
-                                            const LocalSolver local_solver(
-                                              problem,
-                                              settings.qp,
-                                              settings.coulomb,
-                                              settings.loop);
-                                            return local_solver.solve(r);
-                                          });
+          const auto result =
+            naming_file(options.file,
+                        " (solving its problem)",
+                        [&]()
+                        {
+                          const LocalSolver local_solver(problem,
+                                                         settings.qp,
+                                                         settings.coulomb,
+                                                         settings.loop);
+                          return local_solver.solve(r);
+                        });
           print_result(result, settings, out);
           compare_with_stored_solution(options.file, problem, r, out, summary);
           add_result(result, settings, summary);

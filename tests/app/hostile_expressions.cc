@@ -81,8 +81,7 @@ main()
     {
       const auto bad = io::parse_function<2>(expression, 2, location);
       check(contains(error_of([&] { bad->value(dealii::Point<2>(1, 1), 0); }) +
-                       error_of([&]
-                                { bad->value(dealii::Point<2>(1, 1), 1); }),
+                       error_of([&] { bad->value(dealii::Point<2>(1, 1), 1); }),
                      "The expression `" + expression + "' " + location +
                        " is not finite at the point (1, 1)"),
             "`" + expression + "' named through value()");
@@ -104,8 +103,7 @@ main()
           "1/x at x = 0 names `Height function' and the point");
     const auto steep = make_obstacle<2>(
       "set Type = graph\nset Height function = 1.7e308*tanh(1e9*x)");
-    check(contains(error_of([&]
-                            { normal_at(*steep, dealii::Point<2>(0, 2)); }),
+    check(contains(error_of([&] { normal_at(*steep, dealii::Point<2>(0, 2)); }),
                    "(`set Height function' in `subsection Obstacle 1') has no "
                    "finite slope where the contact search projects the point "
                    "(0, 2)"),
@@ -114,9 +112,8 @@ main()
 
   // plane normals: scaled before they are normalized
   {
-    const auto huge =
-      make_obstacle<2>("set Outward normal = 1e308, 1e308");
-    const auto n = normal_at(*huge, dealii::Point<2>(0, 1));
+    const auto huge = make_obstacle<2>("set Outward normal = 1e308, 1e308");
+    const auto n    = normal_at(*huge, dealii::Point<2>(0, 1));
     check(std::abs(n[0] - std::sqrt(0.5)) < 1e-15 &&
             std::abs(n[1] - std::sqrt(0.5)) < 1e-15,
           "(1e308, 1e308) is the diagonal",
@@ -131,8 +128,8 @@ main()
             std::abs(m[1] + 1 / std::sqrt(3.)) < 1e-15,
           "(1e308, -1e308, 1e308) is the scaled diagonal",
           m);
-    check(contains(error_of(
-                     [&] { make_obstacle<2>("set Outward normal = 0, 0"); }),
+    check(contains(error_of([&]
+                            { make_obstacle<2>("set Outward normal = 0, 0"); }),
                    "(`set Outward normal' in `subsection Obstacle 1')"),
           "a zero normal names `Outward normal'");
   }

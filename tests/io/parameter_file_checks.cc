@@ -14,9 +14,9 @@
 #include <iostream>
 #include <sstream>
 #include <string>
+#include <test_tools.h>
 #include <utility>
 #include <vector>
-#include <test_tools.h>
 
 namespace fs = std::filesystem;
 
@@ -122,8 +122,8 @@ main()
   // file, the line and the entry, any other line naming the line; comments
   // keep any bytes; UTF-8 of two, three and four bytes is taken as it is
   {
-    const auto error_of_file = [](const std::string &name,
-                                  const std::string &text)
+    const auto error_of_file =
+      [](const std::string &name, const std::string &text)
     {
       write(name, text);
       dealii::ParameterHandler prm;
@@ -153,8 +153,8 @@ main()
            {"\xF4\x90\x80\x80", "beyond U+10FFFF"},
            {"\xE2\x82", "cut short"},
            {"\x80", "lone continuation byte"}})
-      check(contains(error_of_file("bad_utf8.prm", "set Title = x" + bytes +
-                                                     "\n"),
+      check(contains(error_of_file("bad_utf8.prm",
+                                   "set Title = x" + bytes + "\n"),
                      "line 1, entry `Title' at the top level: the value is "
                      "not valid UTF-8 (byte 0x"),
             "refused: " + what);
