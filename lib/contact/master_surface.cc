@@ -1,3 +1,4 @@
+#include <contact/face_geometry.h>
 #include <contact/master_surface.h>
 
 #include <deal.II/base/geometry_info.h>
@@ -157,53 +158,11 @@ namespace dualcontact
                                         Point<dim>                    &closest,
                                         Tensor<1, dim>                &normal)
     {
-      if constexpr (dim == 2)
-      {
-        const Tensor<1, dim> e = v[1] - v[0];
-        const double         s = std::clamp(((x - v[0]) * e) / (e * e), 0., 1.);
-        closest                = v[0] + s * e;
-        normal[0]              = e[1];
-        normal[1]              = -e[0];
-        normal /= normal.norm();
-      }
-      else
-      {
-        // X(s, r) = v0 (1-s)(1-r) + v1 s (1-r) + v2 (1-s) r + v3 s r,
-        // Gauss-Newton with clamping to the unit square.
-        double     s = 0.5, r = 0.5;
-        const auto X = [&](const double s_, const double r_)
-        {
-          return Point<dim>(v[0] * ((1 - s_) * (1 - r_)) +
-                            v[1] * (s_ * (1 - r_)) + v[2] * ((1 - s_) * r_) +
-                            v[3] * (s_ * r_));
-        };
-        for (unsigned int it = 0; it < 20; ++it)
-        {
-          const Tensor<1, dim> Xs = (v[1] - v[0]) * (1 - r) + (v[3] - v[2]) * r;
-          const Tensor<1, dim> Xr = (v[2] - v[0]) * (1 - s) + (v[3] - v[1]) * s;
-          const Tensor<1, dim> d  = X(s, r) - x;
-          const double         a = Xs * Xs, b = Xs * Xr, c = Xr * Xr;
-          const double         gs = Xs * d, gr = Xr * d;
-          const double         det = a * c - b * b;
-          if (det <= 0)
-            break;
-          const double ds    = -(c * gs - b * gr) / det;
-          const double dr    = -(a * gr - b * gs) / det;
-          const double s_new = std::clamp(s + ds, 0., 1.);
-          const double r_new = std::clamp(r + dr, 0., 1.);
-          const bool   done = std::abs(s_new - s) + std::abs(r_new - r) < 1e-14;
-          s                 = s_new;
-          r                 = r_new;
-          if (done)
-            break;
-        }
-        closest                 = X(s, r);
-        const Tensor<1, dim> Xs = (v[1] - v[0]) * (1 - r) + (v[3] - v[2]) * r;
-        const Tensor<1, dim> Xr = (v[2] - v[0]) * (1 - s) + (v[3] - v[1]) * s;
-        normal                  = cross_product_3d(Xs, Xr);
-        normal /= normal.norm();
-      }
-      return (closest - x).norm_square();
+      const typename FaceGeometry<dim>::Projection projection =
+        FaceGeometry<dim>(v).project(x);
+      closest = projection.point;
+      normal  = projection.normal;
+      return projection.distance_square;
     }
 
 

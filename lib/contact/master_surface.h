@@ -82,7 +82,8 @@ namespace dualcontact
 
       /**
        * Closest point to @p x on a boundary face given by its vertices
-       * (a segment in 2D, a bilinear quadrilateral in 3D) and the unit
+       * (a segment in 2D, a triangle or a bilinear quadrilateral in 3D:
+       * FaceGeometry::project()) and the unit
        * normal there (orientation not fixed).  Returns the squared
        * distance.
        */
