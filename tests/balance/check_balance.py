@@ -28,29 +28,18 @@ import math
 import os
 import re
 import shutil
-import subprocess
 import sys
 
-failures = 0
-
-
-def check(ok, what, value):
-    global failures
-    print(("ok   " if ok else "FAIL ") + what + ": " + str(value))
-    if not ok:
-        failures += 1
+HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, os.path.join(HERE, ".."))
+import script_tools  # noqa: E402
+from script_tools import check, exit_status, run_app  # noqa: E402
 
 
 def read_results(path):
-    values = {}
-    with open(path) as f:
-        for line in f:
-            if line.startswith("#") or "=" not in line:
-                continue
-            key, value = (s.strip() for s in line.split("=", 1))
-            numbers = [float(v) for v in value.split(",")]
-            values[key] = numbers if len(numbers) > 1 else numbers[0]
-    return values
+    """results.txt: a key's number, or its list of numbers (vectors)."""
+    return {k: v[0] if len(v) == 1 else v
+            for k, v in script_tools.read_results(path).items()}
 
 
 def read_pairs(path):
@@ -100,20 +89,11 @@ def main():
 
     shutil.rmtree(args.workdir, ignore_errors=True)
     os.makedirs(args.workdir)
-    out = os.path.join(args.workdir, "output")
-    command = [args.app, args.input, "--set", "Output/Output folder=" + out,
-               "--set", "Output/Write VTU=false"]
-    for s in args.set:
-        command += ["--set", s]
-    if args.np > 1:
-        command = [args.mpirun, "--allow-run-as-root", "--oversubscribe", "-np",
-                   str(args.np)] + command
-    print(" ".join(command))
-    run = subprocess.run(command, cwd=args.workdir, capture_output=True,
-                         text=True)
-    check(run.returncode == 0, "exit status", run.returncode)
-    if run.returncode != 0:
-        print(run.stdout[-3000:], run.stderr[-3000:])
+    launcher = ([args.mpirun, "--allow-run-as-root", "--oversubscribe",
+                 "-np", str(args.np)] if args.np > 1 else [])
+    out = run_app(args.app, args.input, args.workdir, "output",
+                  ["Output/Write VTU=false"] + args.set, launcher=launcher)
+    if out is None:
         return 1
     results = read_results(os.path.join(out, "results.txt"))
     dim = int(results["dimension"])
@@ -177,8 +157,7 @@ def main():
         check(abs(component) <= args.tolerance * scale,
               "symmetry plane: body %s boundary %s reaction along %s"
               % (body, boundary, axis), "%.3e of %.6e" % (component, scale))
-    print("%d failure(s)" % failures)
-    return 1 if failures else 0
+    return exit_status()
 
 
 if __name__ == "__main__":

@@ -23,40 +23,23 @@ import argparse
 import math
 import os
 import shutil
-import subprocess
 import sys
 
 import numpy
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.join(HERE, "..", "..", "postprocess"))
+sys.path.insert(0, os.path.join(HERE, ".."))
 import contact_vtu  # noqa: E402
-
-failures = 0
-
-
-def check(ok, what, value):
-    global failures
-    print(("ok   " if ok else "FAIL ") + what + ": " + str(value))
-    if not ok:
-        failures += 1
+from script_tools import check, exit_status, run_app  # noqa: E402
 
 
 def run(args, name, times, traction):
-    out = os.path.join(args.workdir, name)
-    command = [args.app, args.input, "--set", "Output/Output folder=" + out,
-               "--set", "Output/Write VTU=false",
-               "--set", "Load steps/Step times=" + times,
-               "--set", "Body 1/Traction 1/Traction=" + traction,
-               "--set", "Body 1/Dirichlet 1/Displacement=0; -6e-3*min(t, 1)"]
-    result = subprocess.run(command, cwd=args.workdir, capture_output=True,
-                            text=True)
-    check(result.returncode == 0, name + ": exit status", result.returncode)
-    if result.returncode != 0:
-        print(" ".join(command))
-        print(result.stdout[-3000:], result.stderr[-3000:])
-        return None
-    return out
+    return run_app(args.app, args.input, args.workdir, name,
+                   ["Output/Write VTU=false",
+                    "Load steps/Step times=" + times,
+                    "Body 1/Traction 1/Traction=" + traction,
+                    "Body 1/Dirichlet 1/Displacement=0; -6e-3*min(t, 1)"])
 
 
 def zone(out):
@@ -113,8 +96,7 @@ def main():
         load = share * mu * P
         check(abs(abs(force) - load) <= 1e-8 * load,
               name + ": tangential force = the load %g" % load, force)
-    print("%d failure(s)" % failures)
-    return 1 if failures else 0
+    return exit_status()
 
 
 def contact_vtu_results(path):

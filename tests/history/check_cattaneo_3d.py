@@ -28,52 +28,32 @@ distance of a node from the axis x = y = 0:
     beta = 0, the normal and tangential problems uncouple).
 """
 import argparse
-import csv
 import math
 import os
 import shutil
-import subprocess
 import sys
 
 import numpy
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.join(HERE, "..", "..", "postprocess"))
+sys.path.insert(0, os.path.join(HERE, ".."))
 import contact_vtu  # noqa: E402
-
-failures = 0
-
-
-def check(ok, what, value):
-    global failures
-    print(("ok   " if ok else "FAIL ") + what + ": " + str(value))
-    if not ok:
-        failures += 1
+from script_tools import (  # noqa: E402
+    check,
+    exit_status,
+    run_app,
+    read_history)
 
 
 def run(args):
-    out = os.path.join(args.workdir, "history")
     s = ("(t <= 1 ? 0 : (t <= 2 ? %.12g*(t - 1) : %.12g + %.12g*(t - 2)))"
          % (args.peak, args.peak, args.final - args.peak))
-    command = [args.app, args.input, "--set", "Output/Output folder=" + out,
-               "--set", "Output/Write VTU=true",
-               "--set", "Load steps/Step times=1, 1.5, 2, 2.5, 3",
-               "--set", "Body 1/Dirichlet 1/Displacement=" + s
-               + "; 0; -0.03*min(t, 1)"]
-    result = subprocess.run(command, cwd=args.workdir, capture_output=True,
-                            text=True)
-    check(result.returncode == 0, "exit status", result.returncode)
-    if result.returncode != 0:
-        print(" ".join(command))
-        print(result.stdout[-3000:], result.stderr[-3000:])
-        return None
-    return out
-
-
-def read_history(out):
-    with open(os.path.join(out, "history.csv")) as f:
-        return [{k: float(v) for k, v in row.items()}
-                for row in csv.DictReader(f)]
+    return run_app(args.app, args.input, args.workdir, "history",
+                   ["Output/Write VTU=true",
+                    "Load steps/Step times=1, 1.5, 2, 2.5, 3",
+                    "Body 1/Dirichlet 1/Displacement=" + s
+                    + "; 0; -0.03*min(t, 1)"])
 
 
 def zone(out, step):
@@ -139,8 +119,7 @@ def main():
                   "%s: %s against c/a = %.4f" % (name, which, expected),
                   "c = %.5f, a = %.5f, c/a = %.4f, h = %.5f (%.2f spacings)"
                   % (c, a, c / a, h, abs(c - expected * a) / h))
-    print("%d failure(s)" % failures)
-    return 1 if failures else 0
+    return exit_status()
 
 
 def plot(path, out, rows, cases):

@@ -22,34 +22,19 @@ import argparse
 import csv
 import os
 import shutil
-import subprocess
 import sys
 
-failures = 0
-
-
-def check(ok, what, value):
-    global failures
-    print(("ok   " if ok else "FAIL ") + what + ": " + str(value))
-    if not ok:
-        failures += 1
+HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, os.path.join(HERE, ".."))
+from script_tools import check, exit_status, run_app  # noqa: E402
 
 
 def run(args, name, times, traction):
-    out = os.path.join(args.workdir, name)
-    command = [args.app, args.input, "--set", "Output/Output folder=" + out,
-               "--set", "Output/Write VTU=false",
-               "--set", "Load steps/Step times=" + times,
-               "--set", "Body 1/Traction 1/Traction=" + traction,
-               "--set", "Body 1/Dirichlet 1/Displacement=0; -6e-3*min(t, 1)"]
-    result = subprocess.run(command, cwd=args.workdir, capture_output=True,
-                            text=True)
-    check(result.returncode == 0, name + ": exit status", result.returncode)
-    if result.returncode != 0:
-        print(" ".join(command))
-        print(result.stdout[-3000:], result.stderr[-3000:])
-        return None
-    return out
+    return run_app(args.app, args.input, args.workdir, name,
+                   ["Output/Write VTU=false",
+                    "Load steps/Step times=" + times,
+                    "Body 1/Traction 1/Traction=" + traction,
+                    "Body 1/Dirichlet 1/Displacement=0; -6e-3*min(t, 1)"])
 
 
 def main():
@@ -118,8 +103,7 @@ def main():
           all(abs(w - cycles[1]) <= args.tolerance * cycles[1]
               for w in cycles[1:]),
           "energy dissipated per cycle (> 0, equal after the first)", cycles)
-    print("%d failure(s)" % failures)
-    return 1 if failures else 0
+    return exit_status()
 
 
 if __name__ == "__main__":

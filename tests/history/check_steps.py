@@ -25,50 +25,22 @@ import csv
 import math
 import os
 import shutil
-import subprocess
 import sys
 
-failures = 0
-
-
-def check(ok, what, value):
-    global failures
-    print(("ok   " if ok else "FAIL ") + what + ": " + str(value))
-    if not ok:
-        failures += 1
-
-
-def read_results(path):
-    """key -> list of numbers; vectors also as KEY.x, KEY.y, KEY.z."""
-    values = {}
-    with open(path) as f:
-        for line in f:
-            if line.startswith("#") or "=" not in line:
-                continue
-            key, value = (s.strip() for s in line.split("=", 1))
-            try:
-                numbers = [float(v) for v in value.split(",")]
-            except ValueError:
-                continue
-            values[key] = numbers
-    return values
+HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, os.path.join(HERE, ".."))
+from script_tools import (  # noqa: E402
+    check,
+    exit_status,
+    run_app,
+    read_results,
+    check_every_step_balances)
 
 
 def run(args, name, times):
-    out = os.path.join(args.workdir, name)
-    command = [args.app, args.input, "--set", "Output/Output folder=" + out,
-               "--set", "Output/Write VTU=false",
-               "--set", "Load steps/Step times=" + times]
-    for s in args.set:
-        command += ["--set", s]
-    result = subprocess.run(command, cwd=args.workdir, capture_output=True,
-                            text=True)
-    check(result.returncode == 0, name + ": exit status", result.returncode)
-    if result.returncode != 0:
-        print(" ".join(command))
-        print(result.stdout[-3000:], result.stderr[-3000:])
-        return None
-    return out
+    return run_app(args.app, args.input, args.workdir, name,
+                   ["Output/Write VTU=false",
+                    "Load steps/Step times=" + times] + args.set)
 
 
 def compare(row, static, label, tolerance):
@@ -140,13 +112,8 @@ def main():
         compare(rows[k], read_results(os.path.join(static, "results.txt")),
                 "step %d (t = %s) against one step at t = %s"
                 % (k + 1, times[k], times[k]), args.tolerance)
-    # every step balances: applied + reactions + contact = 0 per body
-    imbalance = max(float(v) for r in rows for k, v in r.items()
-                    if k.endswith(".force_imbalance"))
-    check(imbalance <= 1e-8, "every step: body_N.force_imbalance <= 1e-8",
-          "%.3e" % imbalance)
-    print("%d failure(s)" % failures)
-    return 1 if failures else 0
+    check_every_step_balances(rows)
+    return exit_status()
 
 
 if __name__ == "__main__":

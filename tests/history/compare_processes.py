@@ -16,17 +16,11 @@ import argparse
 import csv
 import os
 import shutil
-import subprocess
 import sys
 
-failures = 0
-
-
-def check(ok, what, value):
-    global failures
-    print(("ok   " if ok else "FAIL ") + what + ": " + str(value))
-    if not ok:
-        failures += 1
+HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, os.path.join(HERE, ".."))
+from script_tools import check, exit_status, run_app  # noqa: E402
 
 
 def main():
@@ -45,22 +39,13 @@ def main():
     os.makedirs(args.workdir)
     tables = []
     for np in (1, args.np):
-        out = os.path.join(args.workdir, "np%d" % np)
-        command = [args.app, args.input, "--set", "Output/Output folder=" + out,
-                   "--set", "Output/Write VTU=false",
-                   "--set", "Load steps/Step times=" + args.times]
-        for s in args.set:
-            command += ["--set", s]
-        if np > 1:
-            command = [args.mpirun, "--allow-run-as-root", "--oversubscribe",
-                       "-np", str(np)] + command
-        result = subprocess.run(command, cwd=args.workdir,
-                                capture_output=True, text=True)
-        check(result.returncode == 0, "%d process(es): exit status" % np,
-              result.returncode)
-        if result.returncode != 0:
-            print(" ".join(command))
-            print(result.stdout[-3000:], result.stderr[-3000:])
+        launcher = ([args.mpirun, "--allow-run-as-root", "--oversubscribe",
+                     "-np", str(np)] if np > 1 else [])
+        out = run_app(args.app, args.input, args.workdir, "np%d" % np,
+                      ["Output/Write VTU=false",
+                       "Load steps/Step times=" + args.times] + args.set,
+                      launcher=launcher, label="%d process(es)" % np)
+        if out is None:
             return 1
         with open(os.path.join(out, "history.csv")) as f:
             tables.append(list(csv.DictReader(f)))
@@ -78,8 +63,7 @@ def main():
                 worst, worst_key = d, "step %s %s" % (a["step"], key)
     check(worst <= args.tolerance, "1 against %d processes, every row"
           % args.np, "%.3e (%s)" % (worst, worst_key))
-    print("%d failure(s)" % failures)
-    return 1 if failures else 0
+    return exit_status()
 
 
 if __name__ == "__main__":
