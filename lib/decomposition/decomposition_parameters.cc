@@ -29,10 +29,12 @@ namespace dualcontact
         "in SMALSE-M); under MPI every process assembles and factorizes "
         "only the subdomains it owns (the mesh replicated or distributed: "
         "`Mesh distribution'). "
-        "automatic: tfeti when the estimated Cholesky factor of the "
-        "largest body exceeds `Memory limit' (on any number of processes: "
-        "without a dual preconditioner TFETI is slower than the "
-        "undecomposed dual where that fits); none otherwise. Hanging nodes "
+        "automatic: the method estimated to finish first, from CHOLMOD's "
+        "symbolic analyses of the whole bodies and of the subdomains TFETI "
+        "would cut, before either is built (the log gives both estimates; "
+        "doc/benchmarks/tfeti.md, \"Automatic choice\"), and tfeti "
+        "whenever the undecomposed factors exceed `Memory limit'. Hanging "
+        "nodes "
         "(local or contact refinement) are glued by multiplier rows.");
       prm.declare_entry(
         "Subdomains per body",

@@ -96,6 +96,8 @@ namespace dualcontact
     {
       const std::vector<const fem::ElasticBody<dim> *> bodies = scene_.bodies();
       dealii::ParameterHandler                        &prm    = prm_;
+      if (method_choice_ != nullptr)
+        details.push_back(method_choice_->description());
       if (decomposed())
       {
         decomposition::DecompositionParameters parameters =
@@ -182,14 +184,23 @@ namespace dualcontact
     bool
     ContactStage<dim>::decomposed() const
     {
-      using Method   = decomposition::DecompositionParameters::Method;
-      double largest = 0;
-      for (const auto *body : scene_.bodies())
-        largest = std::max<double>(largest, body->n_dofs());
-      return decomposition_parameters_.resolve(
-               decomposition::DecompositionParameters::
-                 factor_megabytes_on_machine(
-                   dim, largest, solver_spreads_factor_)) == Method::tfeti;
+      using Method = decomposition::DecompositionParameters::Method;
+      if (decomposition_parameters_.method != Method::automatic)
+        return decomposition_parameters_.method == Method::tfeti;
+      // decided once per mesh (reset() forgets it), from the bodies as set
+      // up: both estimates need their dofs
+      if (method_choice_ == nullptr)
+      {
+        const bool mpi = dealii::Utilities::MPI::job_supports_mpi();
+        method_choice_ = std::make_unique<decomposition::MethodChoice<dim>>(
+          scene_.bodies(),
+          decomposition_parameters_,
+          qp_parameters_.tolerance,
+          mpi ? dealii::Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD) : 1,
+          util::processes_on_this_machine(),
+          solver_spreads_factor_);
+      }
+      return method_choice_->method() == Method::tfeti;
     }
 
 
@@ -595,6 +606,7 @@ namespace dualcontact
     {
       dual_.reset();
       contact_.reset();
+      method_choice_.reset();
       result_       = typename contact::ContactSolver<dim>::Result();
       primal_json_  = "";
       qp_wall_time_ = 0;

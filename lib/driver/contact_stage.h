@@ -8,6 +8,7 @@
 #include <contact/contact_solver.h>
 #include <contact/dual_problem.h>
 #include <decomposition/decomposition_parameters.h>
+#include <decomposition/method_choice.h>
 #include <decomposition/subdomain_solver.h>
 #include <decomposition/tfeti_dual.h>
 #include <driver/output_parameters.h>
@@ -277,6 +278,9 @@ namespace dualcontact
       /** Whether the stiffness solver spreads its factor over the
        *  processes (mumps, amg); else every process here holds a copy. */
       bool solver_spreads_factor_ = false;
+      /** `Decomposition/Method = automatic': the choice on the current
+       * meshes, made on the first decomposed() (reset() forgets it). */
+      mutable std::unique_ptr<decomposition::MethodChoice<dim>> method_choice_;
       /** `Contact solver = primal': the report's Uzawa-CGC (lib/primal). */
       primal::PrimalParameters primal_parameters_;
       /** Its statistics (JSON object) when it ran. */
