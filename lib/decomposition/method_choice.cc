@@ -1,5 +1,4 @@
 #include <deal.II/base/mpi.h>
-#include <deal.II/dofs/dof_tools.h>
 #include <deal.II/lac/dynamic_sparsity_pattern.h>
 
 #include <decomposition/cell_partition.h>
@@ -55,7 +54,7 @@ namespace dualcontact
 
 
       /** The stiffness pattern of the cells @p cells of @p body on their
-       * own dofs (a subdomain's: no constraints, floating). */
+       * own dofs, in the order of the body's numbering (no constraints). */
       template <int dim>
       SparsityPattern
       cells_pattern(
@@ -144,13 +143,14 @@ namespace dualcontact
     {
       for (const auto *body : bodies)
       {
-        DynamicSparsityPattern dsp(body->n_dofs());
-        DoFTools::make_sparsity_pattern(body->dof_handler(),
-                                        dsp,
-                                        body->constraints(),
-                                        false);
-        SparsityPattern pattern;
-        pattern.copy_from(dsp);
+        // every cell, not DoFTools' locally owned ones (a shared mesh
+        // under MPI), and no constraints (not all known on every process):
+        // the prescribed dofs stay in, a little more fill than the
+        // condensed matrix has
+        std::vector<typename DoFHandler<dim>::active_cell_iterator> cells;
+        for (const auto &cell : body->dof_handler().active_cell_iterators())
+          cells.push_back(cell);
+        const SparsityPattern             pattern = cells_pattern(*body, cells);
         const fem::FactorEstimate::Result result =
           fem::FactorEstimate::analyze(pattern,
                                        fem::CholmodSolver::Ordering::automatic);
