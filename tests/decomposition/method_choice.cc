@@ -6,6 +6,9 @@
 // explicit method is taken as given without an analysis; the products
 // model grows with the digits asked for; the TFETI estimate's factors are
 // far smaller than the whole body's (nested dissection: flops ~ n^2 in 3D).
+// And the crossover measured on the thesis' brick at 30 x 60 x 30 (1e-6,
+// doc/benchmarks/tfeti.md, "Automatic choice"): undecomposed on one
+// process, TFETI on two.
 
 #include <deal.II/grid/grid_generator.h>
 
@@ -83,6 +86,35 @@ main()
       bodies, given, 1e-6, 1, 1, false);
     check(choice.method() == Method::none && !choice.undecomposed().computed,
           "an explicit method without analysis");
+  }
+  {
+    // the brick of inputs/brick.prm at level 30: 1 x 2 x 1, Q1, the face
+    // y = 0 clamped, 1,000 cells a subdomain (the defaults)
+    auto brick = std::make_shared<Triangulation<3>>();
+    GridGenerator::subdivided_hyper_rectangle(
+      *brick, {30, 60, 30}, Point<3>(), Point<3>(1, 2, 1), true);
+    for (const auto &cell : brick->active_cell_iterators())
+      cell->set_material_id(0);
+    fem::ElasticBody<3> level_30("brick", brick, 1, {{0, material}});
+    level_30.set_dirichlet_conditions(
+      {{2,
+        ComponentMask(3, true),
+        std::make_shared<Functions::ZeroFunction<3>>(3)}});
+    level_30.setup();
+    decomposition::DecompositionParameters defaults;
+    for (const unsigned int n_processes : {1u, 2u})
+    {
+      const decomposition::MethodChoice<3> choice(
+        {&level_30}, defaults, 1e-6, n_processes, n_processes, false);
+      std::cout << choice.description() << std::endl;
+      const Method expected = n_processes == 1 ? Method::none : Method::tfeti;
+      check(choice.method() == expected,
+            "brick 30 x 60 x 30 on " + std::to_string(n_processes) +
+              " process(es): " + (n_processes == 1 ? "undecomposed" : "TFETI") +
+              " (measured)",
+            std::to_string(choice.undecomposed().seconds()) + " s against " +
+              std::to_string(choice.tfeti().seconds()) + " s");
+    }
   }
   check(decomposition::MethodChoice<3>::tfeti_products(1e-6) >
           decomposition::MethodChoice<3>::tfeti_products(1e-4),
