@@ -49,6 +49,16 @@ def run_app(app, input_file, workdir, name, settings, launcher=(),
     return out
 
 
+def run_steps(args, name, times, settings=()):
+    """run_app() of a load history: args.app on args.input in args.workdir
+    with `Load steps/Step times = TIMES`, no VTU, then SETTINGS and the
+    script's own --set options (args.set, if it has them)."""
+    return run_app(args.app, args.input, args.workdir, name,
+                   ["Output/Write VTU=false",
+                    "Load steps/Step times=" + times] + list(settings)
+                   + list(getattr(args, "set", [])))
+
+
 def read_results(path):
     """results.txt as KEY -> list of numbers (lines that are no numbers
     left out)."""

@@ -31,15 +31,14 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.join(HERE, "..", "..", "postprocess"))
 sys.path.insert(0, os.path.join(HERE, ".."))
 import contact_vtu  # noqa: E402
-from script_tools import check, exit_status, run_app  # noqa: E402
+from script_tools import (  # noqa: E402
+    check, exit_status, read_results, run_steps)
 
 
 def run(args, name, times, traction):
-    return run_app(args.app, args.input, args.workdir, name,
-                   ["Output/Write VTU=false",
-                    "Load steps/Step times=" + times,
-                    "Body 1/Traction 1/Traction=" + traction,
-                    "Body 1/Dirichlet 1/Displacement=0; -6e-3*min(t, 1)"])
+    return run_steps(args, name, times,
+                     ["Body 1/Traction 1/Traction=" + traction,
+                      "Body 1/Dirichlet 1/Displacement=0; -6e-3*min(t, 1)"])
 
 
 def zone(out):
@@ -74,7 +73,7 @@ def main():
     press = run(args, "press", "1", "0; 0")
     if press is None:
         return 1
-    P = contact_vtu_results(os.path.join(press, "results.txt"))[
+    P = read_results(os.path.join(press, "results.txt"))[
         "pair_1.normal_force"][0]
     q = ("%.12g*(t <= 1 ? 0 : (t <= 2 ? %g*(t - 1) : %g - %g*(t - 2)))"
          % (mu * P / 2, x, x, x - y))
@@ -91,26 +90,12 @@ def main():
               name + ": stick half-width c/a against %.4f" % expected,
               "c = %.5f, a = %.5f, c/a = %.4f, spacing %.5f (%.2f spacings)"
               % (c, a, c / a, spacing, abs(c - expected * a) / spacing))
-        results = contact_vtu_results(os.path.join(out, "results.txt"))
+        results = read_results(os.path.join(out, "results.txt"))
         force = results["pair_1.tangential_force"][0]
         load = share * mu * P
         check(abs(abs(force) - load) <= 1e-8 * load,
               name + ": tangential force = the load %g" % load, force)
     return exit_status()
-
-
-def contact_vtu_results(path):
-    values = {}
-    with open(path) as f:
-        for line in f:
-            if line.startswith("#") or "=" not in line:
-                continue
-            key, value = (s.strip() for s in line.split("=", 1))
-            try:
-                values[key] = [float(v) for v in value.split(",")]
-            except ValueError:
-                pass
-    return values
 
 
 if __name__ == "__main__":

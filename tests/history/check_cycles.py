@@ -26,15 +26,13 @@ import sys
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.join(HERE, ".."))
-from script_tools import check, exit_status, run_app  # noqa: E402
+from script_tools import check, exit_status, run_steps  # noqa: E402
 
 
 def run(args, name, times, traction):
-    return run_app(args.app, args.input, args.workdir, name,
-                   ["Output/Write VTU=false",
-                    "Load steps/Step times=" + times,
-                    "Body 1/Traction 1/Traction=" + traction,
-                    "Body 1/Dirichlet 1/Displacement=0; -6e-3*min(t, 1)"])
+    return run_steps(args, name, times,
+                     ["Body 1/Traction 1/Traction=" + traction,
+                      "Body 1/Dirichlet 1/Displacement=0; -6e-3*min(t, 1)"])
 
 
 def main():

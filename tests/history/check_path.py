@@ -30,15 +30,9 @@ sys.path.insert(0, os.path.join(HERE, ".."))
 from script_tools import (  # noqa: E402
     check,
     exit_status,
-    run_app,
+    run_steps,
     read_results,
     check_every_step_balances)
-
-
-def run(args, name, times):
-    return run_app(args.app, args.input, args.workdir, name,
-                   ["Output/Write VTU=false",
-                    "Load steps/Step times=" + times] + args.set)
 
 
 def main():
@@ -55,8 +49,8 @@ def main():
     shutil.rmtree(args.workdir, ignore_errors=True)
     os.makedirs(args.workdir)
 
-    history = run(args, "history", args.times)
-    static = run(args, "static", "1")
+    history = run_steps(args, "history", args.times)
+    static = run_steps(args, "static", "1")
     if history is None or static is None:
         return 1
     with open(os.path.join(history, "history.csv")) as f:

@@ -32,15 +32,9 @@ sys.path.insert(0, os.path.join(HERE, ".."))
 from script_tools import (  # noqa: E402
     check,
     exit_status,
-    run_app,
+    run_steps,
     read_results,
     check_every_step_balances)
-
-
-def run(args, name, times):
-    return run_app(args.app, args.input, args.workdir, name,
-                   ["Output/Write VTU=false",
-                    "Load steps/Step times=" + times] + args.set)
 
 
 def compare(row, static, label, tolerance):
@@ -80,7 +74,7 @@ def main():
     os.makedirs(args.workdir)
 
     times = [t.strip() for t in args.times.split(",")]
-    out = run(args, "history", ", ".join(times))
+    out = run_steps(args, "history", ", ".join(times))
     if out is None:
         return 1
     with open(os.path.join(out, "history.csv")) as f:
@@ -106,7 +100,7 @@ def main():
     compare(rows[-1], read_results(os.path.join(out, "results.txt")),
             "results.txt against the last row", 1e-9)
     for k in range(len(rows) if args.rows == "all" else 1):
-        static = run(args, "static_%d" % (k + 1), times[k])
+        static = run_steps(args, "static_%d" % (k + 1), times[k])
         if static is None:
             continue
         compare(rows[k], read_results(os.path.join(static, "results.txt")),
