@@ -161,10 +161,10 @@ namespace dualcontact
           if (prescribed(b, i))
             for (const auto &[s, l] : copies[b][i])
             {
-              add_entry(s,
-                        add_row(bodies_[b]->constraints().get_inhomogeneity(i)),
-                        l,
-                        1.);
+              const unsigned int row =
+                add_row(bodies_[b]->constraints().get_inhomogeneity(i));
+              add_entry(s, row, l, 1.);
+              dirichlet_rows_.push_back({row, b, i});
               ++n_dirichlet_;
             }
     }
@@ -221,6 +221,25 @@ namespace dualcontact
     {
       AssertIndexRange(r, c_.size());
       return c_[r];
+    }
+
+
+    template <int dim>
+    void
+    ConstraintRows<dim>::update_rhs(
+      const contact::ContactDiscretization<dim> &contact,
+      const std::vector<unsigned int>           &frictional_nodes)
+    {
+      // the contact rows come first, in add_contact_rows()' order
+      const dealii::Vector<double> &gap = contact.normal_bound();
+      unsigned int                  row = 0;
+      for (unsigned int i = 0; i < contact.n_nodes(); ++i)
+        c_[row++] = gap(i);
+      for (const unsigned int node : frictional_nodes)
+        for (unsigned int k = 0; k + 1 < dim; ++k)
+          c_[row++] = -contact.tangential_offset()((dim - 1) * node + k);
+      for (const DirichletRow &r : dirichlet_rows_)
+        c_[r.row] = bodies_[r.body]->constraints().get_inhomogeneity(r.dof);
     }
 
 

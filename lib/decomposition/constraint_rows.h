@@ -78,6 +78,17 @@ namespace dualcontact
       /** The right-hand side c_r of row @p r [m]. */
       double
       rhs(const unsigned int r) const;
+      /**
+       * The right-hand sides of a new load step: the contact rows' from
+       * @p contact's gaps and offsets (ContactDiscretization::
+       * update_offsets()), the Dirichlet rows' from the bodies' prescribed
+       * values at the new time (fem::ElasticBody::set_load_time()); the
+       * entries of B and the gluing rows (c = 0) stay.  @p frictional_nodes
+       * as given to the constructor.
+       */
+      void
+      update_rhs(const contact::ContactDiscretization<dim> &contact,
+                 const std::vector<unsigned int>           &frictional_nodes);
       /** The entries of B_s (empty unless kept here). */
       const std::vector<Entry> &
       entries(const unsigned int s) const;
@@ -123,7 +134,13 @@ namespace dualcontact
       std::vector<bool>                          kept_here_;
       std::vector<std::vector<Entry>>            entries_;
       std::vector<double>                        c_;
-      unsigned int n_gluing_ = 0, n_dirichlet_ = 0;
+      /** Per Dirichlet row: its row and the prescribed dof (body, dof). */
+      struct DirichletRow
+      {
+        unsigned int row, body, dof;
+      };
+      std::vector<DirichletRow> dirichlet_rows_;
+      unsigned int              n_gluing_ = 0, n_dirichlet_ = 0;
     };
   } // namespace decomposition
 } // namespace dualcontact

@@ -19,7 +19,9 @@ namespace dualcontact
                               const std::vector<unsigned int> &components,
                               const std::string               &name)
         : name_(name)
+        , body_object_(&body)
         , body_(body_index)
+        , cells_(cells)
         , n_cells_(cells.size())
     {
       AssertThrow(!cells.empty(), ExcMessage(name + " has no cells."));
@@ -38,6 +40,18 @@ namespace dualcontact
                                                           dofs_,
                                                           name);
       AssertThrow(modes_->n_modes() == dim * (dim + 1) / 2, ExcInternalError());
+    }
+
+
+    template <int dim>
+    void
+    Subdomain<dim>::assemble_load()
+    {
+      // assemble_cells() integrates K_s too (into a matrix let go here):
+      // the body offers no load-only integral of a set of cells yet
+      dealii::SparsityPattern      sparsity;
+      dealii::SparseMatrix<double> matrix;
+      body_object_->assemble_cells(cells_, dofs_, sparsity, matrix, load_);
     }
 
 

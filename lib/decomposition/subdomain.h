@@ -48,6 +48,14 @@ namespace dualcontact
                 const std::string                     &name);
 
       /**
+       * f_s again from the body's loads at their current time
+       * (fem::ElasticBody::set_load_time()): a load step.  K_s and its
+       * factorization stay.
+       */
+      void
+      assemble_load();
+
+      /**
        * Factorizes K_s with @p solver inside a fem::GeneralizedInverse on
        * the fixing dofs of R_s.
        */
@@ -105,8 +113,11 @@ namespace dualcontact
       solver() const;
 
     private:
-      std::string                                  name_;
-      unsigned int                                 body_;
+      std::string                  name_;
+      const fem::ElasticBody<dim> *body_object_;
+      unsigned int                 body_;
+      /** The cells of the subdomain (on this process). */
+      std::vector<CellIterator>                    cells_;
       unsigned int                                 n_cells_;
       std::vector<dealii::types::global_dof_index> dofs_;
       dealii::SparsityPattern                      sparsity_;

@@ -27,8 +27,6 @@ namespace dualcontact
 
     namespace
     {
-      const unsigned int invalid = std::numeric_limits<unsigned int>::max();
-
       /**
        * The parts of TFETI's QP that do not depend on the vectors'
        * distribution (make_problem(), make_distributed_problem()): the
@@ -148,16 +146,9 @@ namespace dualcontact
           max_over_processes(preconditioner_timer.wall_time());
       }
 
-      // d = B K^# f - c
-      std::vector<VectorType> f(subdomains_.size()), u;
-      for (const unsigned int s : owned_)
-        f[s] = subdomains_[s]->load();
-      apply_K_inverse(f, u);
-      d_.reinit(n_multipliers());
-      add_B(u, d_.data());
-      sum_over_processes(d_);
-      for (unsigned int r = 0; r < n_multipliers(); ++r)
-        d_(r) -= rows_->rhs(r);
+      // d = B K^+ f - c (the static problem: no previous slip)
+      form_row_rhs();
+      form_linear_term();
 
       estimate_scale();
       AssertThrow(scale_ > 0 && std::isfinite(scale_),
@@ -261,229 +252,6 @@ namespace dualcontact
 
 
     template <int dim>
-    void
-    TFETIDual<dim>::decompose(const DecompositionParameters &parameters)
-    {
-      std::vector<std::vector<typename Subdomain<dim>::CellIterator>> cells;
-      std::vector<std::string>                                        names;
-      std::vector<unsigned int>                                       body_of;
-      first_copy_.resize(bodies_.size());
-      for (unsigned int b = 0; b < bodies_.size(); ++b)
-        cut_body(b, parameters, cells, names, body_of);
-      first_subdomain_.push_back(cells.size());
-
-      dofs_.resize(cells.size());
-      for (unsigned int s = 0; s < cells.size(); ++s)
-      {
-        const fem::ElasticBody<dim>         &body = *bodies_[body_of[s]];
-        std::vector<types::global_dof_index> cell_dofs(
-          body.fe().n_dofs_per_cell());
-        for (const auto &cell : cells[s])
-        {
-          cell->get_dof_indices(cell_dofs);
-          dofs_[s].insert(dofs_[s].end(), cell_dofs.begin(), cell_dofs.end());
-        }
-        std::sort(dofs_[s].begin(), dofs_[s].end());
-        dofs_[s].erase(std::unique(dofs_[s].begin(), dofs_[s].end()),
-                       dofs_[s].end());
-      }
-      if (distributed_mesh_)
-      {
-        owner_ = distributed_mesh_->owners();
-        AssertDimension(owner_.size(), cells.size());
-        owned_.clear();
-        for (unsigned int s = 0; s < owner_.size(); ++s)
-          if (owner_[s] == rank_)
-            owned_.push_back(s);
-        gather_subdomain_dofs();
-      }
-      else
-        assign_owners();
-
-      subdomains_.resize(cells.size());
-      for (unsigned int b = 0; b < bodies_.size(); ++b)
-      {
-        const fem::ElasticBody<dim> &body = *bodies_[b];
-        first_copy_[b].assign(body.n_dofs(), {invalid, invalid});
-        for (unsigned int s = first_subdomain_[b]; s < first_subdomain_[b + 1];
-             ++s)
-          for (unsigned int l = 0; l < dofs_[s].size(); ++l)
-            if (first_copy_[b][dofs_[s][l]].first == invalid)
-              first_copy_[b][dofs_[s][l]] = {s, l};
-        bool owns_some = false;
-        for (unsigned int s = first_subdomain_[b]; s < first_subdomain_[b + 1];
-             ++s)
-          owns_some = owns_some || owner_[s] == rank_;
-        if (!owns_some)
-          continue;
-
-        // the support points of the dofs of this process' cells (on a
-        // distributed mesh the others are not known here)
-        std::map<types::global_dof_index, Point<dim>> known_points;
-        DoFTools::map_dofs_to_support_points(body.mapping(),
-                                             body.dof_handler(),
-                                             known_points);
-        std::vector<Point<dim>> points(body.n_dofs());
-        for (const auto &[dof, point] : known_points)
-          points[dof] = point;
-        std::vector<unsigned int>            components(body.n_dofs());
-        std::vector<types::global_dof_index> dofs(body.fe().n_dofs_per_cell());
-        for (const auto &cell : body.dof_handler().active_cell_iterators())
-        {
-          if (cell->is_artificial())
-            continue;
-          cell->get_dof_indices(dofs);
-          for (unsigned int i = 0; i < dofs.size(); ++i)
-            components[dofs[i]] = body.fe().system_to_component_index(i).first;
-        }
-        for (unsigned int s = first_subdomain_[b]; s < first_subdomain_[b + 1];
-             ++s)
-          if (owner_[s] == rank_)
-          {
-            subdomains_[s] = std::make_unique<Subdomain<dim>>(
-              body, b, cells[s], points, components, names[s]);
-            Assert(subdomains_[s]->dofs() == dofs_[s], ExcInternalError());
-          }
-      }
-    }
-
-
-    template <int dim>
-    void
-    TFETIDual<dim>::assign_owners()
-    {
-      std::vector<unsigned long> sizes(dofs_.size());
-      for (unsigned int s = 0; s < dofs_.size(); ++s)
-        sizes[s] = dofs_[s].size();
-      owner_ = assign_subdomains_to_processes(sizes, n_processes_);
-      owned_.clear();
-      for (unsigned int s = 0; s < owner_.size(); ++s)
-        if (owner_[s] == rank_)
-          owned_.push_back(s);
-    }
-
-
-    template <int dim>
-    void
-    TFETIDual<dim>::cut_body(
-      const unsigned int             b,
-      const DecompositionParameters &parameters,
-      std::vector<std::vector<typename Subdomain<dim>::CellIterator>> &cells,
-      std::vector<std::string>                                        &names,
-      std::vector<unsigned int>                                       &body_of)
-    {
-      const fem::ElasticBody<dim> &body = *bodies_[b];
-      std::vector<unsigned int>    part;
-      unsigned int                 n_pieces = 0;
-      if (distributed_mesh_)
-        n_pieces = distributed_mesh_->n_subdomains(b);
-      else
-      {
-        // every process partitions (so that an error is thrown on every
-        // process alike) and takes the first one's partition, so that
-        // every process has the same one whatever METIS' seeding
-        const unsigned int n_parts =
-          parameters.n_subdomains(b, body.triangulation().n_active_cells());
-        part = partition_cells(body.triangulation(),
-                               n_parts,
-                               parameters.partitioner,
-                               body.name());
-        if (n_processes_ > 1)
-          part = Utilities::MPI::broadcast(communicator_, part, 0);
-        n_pieces = *std::max_element(part.begin(), part.end()) + 1;
-      }
-      first_subdomain_.push_back(cells.size());
-      cells.resize(cells.size() + n_pieces);
-      for (const auto &cell : body.dof_handler().active_cell_iterators())
-        if (!distributed_mesh_)
-          cells[first_subdomain_.back() + part[cell->active_cell_index()]]
-            .push_back(cell);
-        else if (cell->is_locally_owned())
-          cells[first_subdomain_.back() + distributed_mesh_->subdomain_of_cell(
-                                            b, cell->active_cell_index())]
-            .push_back(cell);
-      for (unsigned int p = 0; p < n_pieces; ++p)
-      {
-        names.push_back(body.name() + ", subdomain " + std::to_string(p + 1));
-        body_of.push_back(b);
-      }
-    }
-
-
-    template <int dim>
-    void
-    TFETIDual<dim>::gather_subdomain_dofs()
-    {
-      // (subdomain, size, dofs...) of the owned subdomains, concatenated
-      // over the processes: the gluing rows are numbered alike everywhere
-      std::vector<double> local;
-      for (const unsigned int s : owned_)
-      {
-        local.push_back(s);
-        local.push_back(dofs_[s].size());
-        local.insert(local.end(), dofs_[s].begin(), dofs_[s].end());
-      }
-      const std::vector<double> all =
-        util::concatenate_over_processes(local, communicator_);
-      for (std::size_t i = 0; i < all.size();)
-      {
-        const auto s    = static_cast<unsigned int>(all[i]);
-        const auto size = static_cast<std::size_t>(all[i + 1]);
-        std::vector<types::global_dof_index> &dofs = dofs_[s];
-        dofs.resize(size);
-        for (std::size_t k = 0; k < size; ++k)
-          dofs[k] = static_cast<types::global_dof_index>(all[i + 2 + k]);
-        i += 2 + size;
-      }
-    }
-
-
-    template <int dim>
-    bool
-    TFETIDual<dim>::floats_on_distributed_mesh(const unsigned int b) const
-    {
-      // the support points and components of the prescribed dofs this
-      // process owns, gathered: a surface's worth
-      const fem::ElasticBody<dim> &body = *bodies_[b];
-      const IndexSet     &owned_dofs = body.dof_handler().locally_owned_dofs();
-      std::vector<double> local;
-      std::vector<types::global_dof_index> dofs(body.fe().n_dofs_per_cell());
-      const std::vector<Point<dim>> &unit = body.fe().get_unit_support_points();
-      std::set<types::global_dof_index> listed;
-      for (const auto &cell : body.dof_handler().active_cell_iterators())
-        if (cell->is_locally_owned())
-        {
-          cell->get_dof_indices(dofs);
-          for (unsigned int i = 0; i < dofs.size(); ++i)
-            if (owned_dofs.is_element(dofs[i]) &&
-                listed.insert(dofs[i]).second &&
-                body.constraints().is_constrained(dofs[i]) &&
-                !body.hanging_node_constraints().is_constrained(dofs[i]))
-            {
-              const Point<dim> x =
-                body.mapping().transform_unit_to_real_cell(cell, unit[i]);
-              for (unsigned int d = 0; d < dim; ++d)
-                local.push_back(x[d]);
-              local.push_back(body.fe().system_to_component_index(i).first);
-            }
-        }
-      const std::vector<double> all =
-        util::concatenate_over_processes(local, communicator_);
-      std::vector<Point<dim>>   points;
-      std::vector<unsigned int> components;
-      for (std::size_t i = 0; i < all.size(); i += dim + 1)
-      {
-        Point<dim> x;
-        for (unsigned int d = 0; d < dim; ++d)
-          x[d] = all[i + d];
-        points.push_back(x);
-        components.push_back(static_cast<unsigned int>(all[i + dim]));
-      }
-      return fem::RigidBodyModes<dim>::n_free_motions(points, components) > 0;
-    }
-
-
-    template <int dim>
     double
     TFETIDual<dim>::max_over_processes(const double x) const
     {
@@ -510,16 +278,13 @@ namespace dualcontact
       const unsigned int     n_rigid = dim * (dim + 1) / 2;
       const unsigned int     n_modes = subdomains_.size() * n_rigid;
       CoarseProblem::Columns columns(n_multipliers());
-      e_.reinit(n_modes);
-      // R_s'f_s and the entries of R_s'B_s' of the owned subdomains, as
-      // (row, mode, value) triples, gathered on every process
+      // the entries of R_s'B_s' of the owned subdomains, as (row, mode,
+      // value) triples, gathered on every process
       std::vector<double> triples;
       for (const unsigned int s : owned_)
       {
         const auto &modes = subdomains_[s]->modes();
         AssertDimension(modes.size(), n_rigid);
-        for (unsigned int k = 0; k < n_rigid; ++k)
-          e_(s * n_rigid + k) = modes[k] * subdomains_[s]->load();
         for (const Entry &entry : rows_->entries(s))
           for (unsigned int k = 0; k < n_rigid; ++k)
             triples.insert(triples.end(),
@@ -527,7 +292,6 @@ namespace dualcontact
                             static_cast<double>(s * n_rigid + k),
                             entry.value * modes[k](entry.local)});
       }
-      sum_over_processes(e_);
       if (n_processes_ > 1)
         triples = util::concatenate_over_processes(triples, communicator_);
       for (unsigned int t = 0; t < triples.size(); t += 3)
@@ -552,8 +316,7 @@ namespace dualcontact
       }
 
       coarse_ = std::make_unique<CoarseProblem>(n_modes, std::move(columns));
-      e_orthonormal_ = e_;
-      coarse_->orthonormalize(e_orthonormal_);
+      form_coarse_rhs();
     }
 
 
@@ -759,7 +522,7 @@ namespace dualcontact
       for (unsigned int i = 0; i < this->n_contact_nodes(); ++i)
         scale = std::max(scale, std::abs(lambda(i)));
       for (unsigned int r = 0; r < n_multipliers(); ++r)
-        residual(r) = rows_->rhs(r) - residual(r);
+        residual(r) = c_(r) - residual(r);
       VectorType alpha;
       const bool determined = coarse_->least_squares(
         [&](const unsigned int r)
@@ -831,15 +594,13 @@ namespace dualcontact
       nodes_per_process_ = ownership_->nodes_per_process();
 
       d_distributed_ = std::make_unique<DistributedVector>();
-      ownership_->layout().extract(d_, *d_distributed_);
       // the coarse space's vectors (n_modes() numbers) live on process 0
       owned_modes_.set_size(coarse_->n_modes());
       if (rank_ == 0)
         owned_modes_.add_range(0, coarse_->n_modes());
       e_distributed_ =
         std::make_unique<DistributedVector>(owned_modes_, communicator_);
-      for (unsigned int k = 0; k < e_distributed_->locally_owned_size(); ++k)
-        e_distributed_->begin()[k] = e_orthonormal_(k);
+      distribute_linear_terms();
     }
 
 
@@ -1076,140 +837,6 @@ namespace dualcontact
     TFETIDual<dim>::d() const
     {
       return d_;
-    }
-
-
-    template <int dim>
-    unsigned int
-    TFETIDual<dim>::n_subdomains() const
-    {
-      return subdomains_.size();
-    }
-
-
-    template <int dim>
-    bool
-    TFETIDual<dim>::is_owned(const unsigned int s) const
-    {
-      AssertIndexRange(s, owner_.size());
-      return owner_[s] == rank_;
-    }
-
-
-    template <int dim>
-    const Subdomain<dim> &
-    TFETIDual<dim>::subdomain(const unsigned int s) const
-    {
-      Assert(is_owned(s),
-             ExcMessage("Subdomain " + std::to_string(s) +
-                        " belongs to another process."));
-      return *subdomains_[s];
-    }
-
-
-    template <int dim>
-    const std::vector<types::global_dof_index> &
-    TFETIDual<dim>::subdomain_dofs(const unsigned int s) const
-    {
-      AssertIndexRange(s, dofs_.size());
-      return dofs_[s];
-    }
-
-
-    template <int dim>
-    std::vector<unsigned int>
-    TFETIDual<dim>::subdomains_per_process() const
-    {
-      std::vector<unsigned int> count(n_processes_, 0);
-      for (const unsigned int p : owner_)
-        ++count[p];
-      return count;
-    }
-
-
-    template <int dim>
-    std::vector<unsigned int>
-    TFETIDual<dim>::subdomain_dofs_per_process() const
-    {
-      std::vector<unsigned int> count(n_processes_, 0);
-      for (unsigned int s = 0; s < owner_.size(); ++s)
-        count[owner_[s]] += dofs_[s].size();
-      return count;
-    }
-
-
-    template <int dim>
-    unsigned int
-    TFETIDual<dim>::n_subdomains_of_body(const unsigned int b) const
-    {
-      return first_subdomain_[b + 1] - first_subdomain_[b];
-    }
-
-
-    template <int dim>
-    unsigned int
-    TFETIDual<dim>::n_primal_dofs() const
-    {
-      unsigned int n = 0;
-      for (const auto &dofs : dofs_)
-        n += dofs.size();
-      return n;
-    }
-
-
-    template <int dim>
-    unsigned int
-    TFETIDual<dim>::n_gluing_multipliers() const
-    {
-      return rows_->n_gluing();
-    }
-
-
-    template <int dim>
-    unsigned int
-    TFETIDual<dim>::n_dirichlet_multipliers() const
-    {
-      return rows_->n_dirichlet();
-    }
-
-
-    template <int dim>
-    const CoarseProblem &
-    TFETIDual<dim>::coarse_problem() const
-    {
-      return *coarse_;
-    }
-
-
-    template <int dim>
-    const ConstraintRows<dim> &
-    TFETIDual<dim>::constraint_rows() const
-    {
-      return *rows_;
-    }
-
-
-    template <int dim>
-    double
-    TFETIDual<dim>::decomposition_time() const
-    {
-      return decomposition_time_;
-    }
-
-
-    template <int dim>
-    double
-    TFETIDual<dim>::max_interface_jump() const
-    {
-      return max_jump_;
-    }
-
-
-    template <int dim>
-    double
-    TFETIDual<dim>::relative_interface_jump() const
-    {
-      return relative_jump_;
     }
 
 

@@ -176,6 +176,21 @@ namespace dualcontact
               const bool require_determined = true) const override;
       const std::vector<unsigned int> &
       contact_nodes_per_process() const override;
+      /**
+       * The load of a new load step (driver::LoadSteps), once the bodies'
+       * loads are at its time and the contact's offsets updated
+       * (contact::ContactDiscretization::update_offsets()): every owned
+       * subdomain's f_s re-assembled (Subdomain::assemble_load()), the rows'
+       * c from the new gaps, offsets and prescribed values
+       * (ConstraintRows::update_rhs()), and with the previous step's slip
+       * s = B_T u^(k-1) + o_T(k-1) (all nodes, dim - 1 per node; empty:
+       * zero) on the tangential rows, so that friction acts on the slip
+       * increment: d = B K^+ f - [c_N; c_T + s; c_rest], e = R'f and
+       * e~ = L^{-1} P e again.  F, the subdomains' factorizations, the
+       * coarse factor, the preconditioner and the scale stay.  Collective.
+       */
+      void
+      update_load(const VectorType &previous_slip) override;
 
       /** @name Distributed multipliers (see "Processes") */
       /** @{ */
@@ -334,6 +349,21 @@ namespace dualcontact
       /** G = R'B', e, and the coarse problem (sparse factor of G G'). */
       void
       build_coarse_problem();
+      /** e = R'f from the owned subdomains' loads (summed over the
+       *  processes) and e~ = L^{-1} P e. */
+      void
+      form_coarse_rhs();
+      /** c_: the rows' right-hand sides, the previous slip added on the
+       *  tangential rows. */
+      void
+      form_row_rhs();
+      /** d = B K^+ f - c_ (one solve with every owned factor;
+       *  collective). */
+      void
+      form_linear_term();
+      /** The owned parts of d and e~ (distributed multipliers). */
+      void
+      distribute_linear_terms();
       /**
        * rho / lambda_max(P F P) of SMALSE-M's coarse projector when its
        * `Projector penalty factor' is automatic: 1 in 3D with a floating
@@ -404,6 +434,11 @@ namespace dualcontact
       VectorType                     e_orthonormal_;
 
       VectorType d_;
+      /** The right-hand side of every row of B u = c, with the previous
+       *  step's slip on the tangential rows (form_row_rhs()). */
+      VectorType c_;
+      /** The slip B_T u + o_T of the previous load step (empty: none). */
+      VectorType previous_slip_;
       double     scale_ = 1;
       /** lambda_max(F) (the scale s = scale_ is lambda_max(P F P)). */
       double lambda_max_F_ = 1;

@@ -341,8 +341,11 @@ namespace dualcontact
     void
     Scene<dim>::assemble_loads()
     {
+      // TFETI assembles no body's K and f: its dual re-assembles the
+      // subdomains' loads (decomposition::TFETIDual::update_load())
       for (auto &body : bodies_)
-        body->assemble_load();
+        if (body->is_assembled())
+          body->assemble_load();
     }
 
 

@@ -93,7 +93,9 @@ namespace dualcontact
       }
       /**
        * f of every body again at the load time (after assemble(); K and
-       * the factorizations stay).
+       * the factorizations stay).  Bodies without an assembled system
+       * (TFETI, assemble(details, false)) are left out: the TFETI dual
+       * re-assembles its subdomains' loads.
        */
       void
       assemble_loads();

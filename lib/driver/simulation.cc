@@ -218,13 +218,6 @@ namespace dualcontact
       const bool tfeti = prm.get("Method") == "tfeti";
       prm.leave_subsection();
       AssertThrow(!load_steps_.is_history() ||
-                    (!tfeti && !scene_->has_distributed_meshes()),
-                  dealii::ExcMessage(
-                    "A load history (more than one step in `subsection Load "
-                    "steps') runs on the undecomposed dual only, not yet on "
-                    "TFETI: `set Method = none' in `subsection "
-                    "Decomposition'."));
-      AssertThrow(!load_steps_.is_history() ||
                     prm.get("Contact solver") != "primal",
                   dealii::ExcMessage(
                     "A load history (more than one step in `subsection Load "
