@@ -41,18 +41,21 @@ namespace dualcontact
       {
         std::vector<Point<2>> result;
         const double          length = a.distance(b);
-        // signed distance of p from the line, positive inside
+        // signed distance of p from the line, positive inside; within the
+        // tolerance a point counts as inside, but the crossings are those of
+        // the line itself, so that the tolerance never inflates the area
         const auto side = [&](const Point<2> &p)
-        { return cross(a, b, p) / length + tolerance; };
+        { return cross(a, b, p) / length; };
         for (unsigned int i = 0; i < subject.size(); ++i)
         {
           const Point<2> &p  = subject[i];
           const Point<2> &q  = subject[(i + 1) % subject.size()];
           const double    sp = side(p), sq = side(q);
-          if (sp >= 0)
+          const bool      p_in = sp >= -tolerance, q_in = sq >= -tolerance;
+          if (p_in)
             result.push_back(p);
-          if ((sp >= 0) != (sq >= 0))
-            result.push_back(p + (sp / (sp - sq)) * (q - p));
+          if (p_in != q_in)
+            result.push_back(p + std::clamp(sp / (sp - sq), 0., 1.) * (q - p));
         }
         return result;
       }
