@@ -7,6 +7,7 @@
 
 #include <contact/contact_discretization.h>
 #include <contact/master_surface.h>
+#include <contact/mortar_coupling.h>
 #include <util/machine.h>
 
 #include <algorithm>
@@ -450,6 +451,58 @@ namespace dualcontact
       }
 
 
+      /**
+       * Places @p node by its mortar integrals @p row (MortarCoupling):
+       * an obstacle's normal at the node's closest point (exact), a master
+       * body's the slave's averaged normal int phi n ds; the master entries
+       * M_jl / S_j (they sum to one: a rigid translation leaves the row at
+       * zero).  False for a node without enough master under its faces
+       * (`Mortar coverage') or, on an obstacle, beyond the search distance.
+       */
+      template <int dim>
+      bool
+      place_by_mortar(const ContactPair<dim>                  &pair,
+                      const SlaveNode<dim>                    &slave,
+                      const typename MortarCoupling<dim>::Row *row,
+                      ContactNode<dim>                        &node,
+                      MasterEntries                           &master)
+      {
+        if (row == nullptr ||
+            !(row->covered >= pair.mortar_coverage * row->support))
+          return false;
+        if (pair.obstacle)
+        {
+          Tensor<1, dim> outward;
+          pair.obstacle->project(node.position, node.master_point, outward);
+          node.normal = -outward;
+          return (node.position - node.master_point).norm() <=
+                 pair.search_distance;
+        }
+        node.normal = slave.normal / slave.normal.norm();
+        for (const auto &[key, m] : row->master)
+          for (unsigned int c = 0; c < dim; ++c)
+          {
+            master.entries.push_back(
+              {pair.master_body, m.dofs[c], m.value / row->covered});
+            master.components.push_back(c);
+          }
+        return true;
+      }
+
+
+      /** The weighted gap of a mortar node along its (final) normal,
+       * divided by S_j as its row [m]. */
+      template <int dim>
+      double
+      mortar_gap(const ContactPair<dim>                  &pair,
+                 const typename MortarCoupling<dim>::Row &row,
+                 const Tensor<1, dim>                    &normal)
+      {
+        return (pair.obstacle ? row.weighted_gap : normal * row.gap_vector) /
+               row.covered;
+      }
+
+
       /** The row of B for the relative displacement of @p node along
        * @p direction: slave minus master. */
       template <int dim>
@@ -641,6 +694,17 @@ namespace dualcontact
                                                    *master_surface,
                                                    positions);
         }
+        const bool mortar =
+          pair.discretization == ContactPair<dim>::Discretization::mortar;
+        const std::unique_ptr<MortarCoupling<dim>> coupling =
+          mortar ?
+            std::make_unique<MortarCoupling<dim>>(pair,
+                                                  slave,
+                                                  pair.obstacle ?
+                                                    nullptr :
+                                                    bodies[pair.master_body],
+                                                  master_surface.get()) :
+            nullptr;
         unsigned int index = 0;
         for (const auto &[key, a] : side.nodes)
         {
@@ -651,8 +715,16 @@ namespace dualcontact
           node.dofs     = a.dofs;
           node.position = support_points[key];
           node.weight   = a.weight;
-          MasterEntries master;
-          if (pair.obstacle)
+          MasterEntries                            master;
+          const typename MortarCoupling<dim>::Row *row = nullptr;
+          if (mortar)
+          {
+            const auto found = coupling->rows().find(key);
+            row = found == coupling->rows().end() ? nullptr : &found->second;
+            if (!place_by_mortar(pair, a, row, node, master))
+              continue;
+          }
+          else if (pair.obstacle)
           {
             Tensor<1, dim> outward;
             pair.obstacle->project(node.position, node.master_point, outward);
@@ -682,7 +754,13 @@ namespace dualcontact
                                                 slave.constraints());
           node.tangents =
             make_tangents<dim>(node.normal, pair.first_tangent_direction);
-          node.gap = (node.master_point - node.position) * node.normal;
+          if (row != nullptr)
+          {
+            node.gap          = mortar_gap(pair, *row, node.normal);
+            node.master_point = node.position + node.gap * node.normal;
+          }
+          else
+            node.gap = (node.master_point - node.position) * node.normal;
           rows_n.push_back(make_row(node, master, node.normal));
           for (unsigned int k = 0; k + 1 < dim; ++k)
             rows_t.push_back(make_row(node, master, node.tangents[k]));

@@ -48,6 +48,25 @@ namespace dualcontact
       dealii::Tensor<1, dim> first_tangent_direction;
 
       FrictionLaw friction;
+
+      /** How the slave surface is coupled to the master. */
+      enum class Discretization
+      {
+        /** One slave node, its lumped weight, the master's shape values at
+         * its closest point. */
+        node_to_segment,
+        /** Dual mortar (MortarCoupling): integrals of the slave's dual
+         * basis against the master over the projected faces. */
+        mortar
+      };
+      Discretization discretization = Discretization::node_to_segment;
+
+      /**
+       * Mortar: slave nodes whose covered integral S_j = int_covered psi_j
+       * ds is below this fraction of D_j = int phi_j ds are not contact
+       * nodes (no master, or too little of it, under their faces) [-].
+       */
+      double mortar_coverage = 0.2;
     };
   } // namespace contact
 } // namespace dualcontact

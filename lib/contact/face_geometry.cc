@@ -402,6 +402,52 @@ namespace dualcontact
     }
 
 
+    template <int dim>
+    typename FaceGeometry<dim>::LineIntersection
+    FaceGeometry<dim>::intersect_line(const Point<dim>     &x,
+                                      const Tensor<1, dim> &direction) const
+    {
+      LineIntersection result;
+      for (unsigned int d = 0; d + 1 < dim; ++d)
+        result.unit[d] = shape_ == Shape::triangle ? 1. / 3 : 0.5;
+      // bilinear faces: quadratic convergence from the centre; 50 steps
+      // only guard against a line that grazes a warped face
+      for (unsigned int it = 0; it < 50; ++it)
+      {
+        const std::array<Tensor<1, dim>, dim - 1> t = tangents(result.unit);
+        Tensor<2, dim>                            jacobian;
+        double                                    scale = direction.norm();
+        for (unsigned int r = 0; r < dim; ++r)
+        {
+          for (unsigned int k = 0; k + 1 < dim; ++k)
+            jacobian[r][k] = t[k][r];
+          jacobian[r][dim - 1] = -direction[r];
+        }
+        for (unsigned int k = 0; k + 1 < dim; ++k)
+          scale *= t[k].norm();
+        // parallel to the face (relative to the columns' lengths)
+        if (!(std::abs(determinant(jacobian)) > 1e-12 * scale))
+          return result;
+        const Tensor<1, dim> residual =
+          point(result.unit) - x - result.t * direction;
+        const Tensor<1, dim> step   = invert(jacobian) * residual;
+        double               change = 0;
+        for (unsigned int k = 0; k + 1 < dim; ++k)
+        {
+          result.unit[k] -= step[k];
+          change += std::abs(step[k]);
+        }
+        result.t -= step[dim - 1];
+        if (change < 1e-14)
+        {
+          result.found = true;
+          return result;
+        }
+      }
+      return result;
+    }
+
+
     template class FaceGeometry<2>;
     template class FaceGeometry<3>;
   } // namespace contact

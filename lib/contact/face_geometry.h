@@ -57,6 +57,19 @@ namespace dualcontact
         double                 distance_square = 0;
       };
 
+      /** Where a straight line meets the face's surface. */
+      struct LineIntersection
+      {
+        /** Reference coordinates of the point met (not clamped: it may lie
+         * beyond the face's edges). */
+        dealii::Point<dim - 1> unit;
+        /** The line parameter t of that point, x + t direction. */
+        double t = 0;
+        /** False when the line is (nearly) parallel to the face or Newton
+         * did not converge. */
+        bool found = false;
+      };
+
       /** The face with these vertices (2 in 2D; 3 or 4 in 3D). */
       explicit FaceGeometry(const std::vector<dealii::Point<dim>> &vertices);
 
@@ -128,6 +141,17 @@ namespace dualcontact
        * jacobian_determinant() for ds). */
       dealii::Quadrature<dim - 1>
       reference_quadrature(const unsigned int n_points_1d) const;
+
+      /**
+       * The point X(unit) of the face's surface (extended beyond its
+       * edges) on the line x + t @p direction: Newton on X(unit) - x - t d
+       * = 0, exact in one step for segments and triangles.  This carries a
+       * point of the mortar's auxiliary plane back to a slave or master
+       * face along the slave face's normal.
+       */
+      LineIntersection
+      intersect_line(const dealii::Point<dim>     &x,
+                     const dealii::Tensor<1, dim> &direction) const;
 
     private:
       Projection

@@ -152,6 +152,22 @@ namespace dualcontact
 
 
     template <int dim>
+    std::vector<unsigned int>
+    MasterSurface<dim>::faces_in_box(const BoundingBox<dim> &box) const
+    {
+      namespace bgi = boost::geometry::index;
+      std::vector<Leaf> leaves;
+      if (!faces_.empty())
+        tree_.query(bgi::intersects(box), std::back_inserter(leaves));
+      std::vector<unsigned int> faces;
+      for (const Leaf &leaf : leaves)
+        faces.push_back(leaf.second);
+      std::sort(faces.begin(), faces.end());
+      return faces;
+    }
+
+
+    template <int dim>
     double
     MasterSurface<dim>::project_on_face(const std::vector<Point<dim>> &v,
                                         const Point<dim>              &x,

@@ -80,6 +80,11 @@ namespace dualcontact
       Projection
       closest_face(const dealii::Point<dim> &x) const;
 
+      /** The faces whose bounding boxes meet @p box (the mortar's faces
+       * near a slave face), in increasing order. */
+      std::vector<unsigned int>
+      faces_in_box(const dealii::BoundingBox<dim> &box) const;
+
       /**
        * Closest point to @p x on a boundary face given by its vertices
        * (a segment in 2D, a triangle or a bilinear quadrilateral in 3D:

@@ -110,6 +110,29 @@ namespace dualcontact
                         "Slave nodes farther than this from the master [m] "
                         "are not contact nodes (in small displacements they "
                         "cannot touch); 0 means no limit. Must be >= 0.");
+      prm.declare_entry(
+        "Discretization",
+        "node to segment",
+        dealii::Patterns::Selection("node to segment|mortar"),
+        "How the slave surface is coupled to the master. node to segment: "
+        "each slave node with its lumped weight int phi ds against the "
+        "master's shape functions at its closest point (fails the contact "
+        "patch test on non-matching meshes). mortar: dual mortar, the "
+        "slave's biorthogonal basis integrated against the master over the "
+        "slave faces cut by the projected master faces, weighted gaps and "
+        "averaged slave normals (passes the patch test to round-off; "
+        "degree-1 faces, replicated meshes and slave surfaces without "
+        "hanging nodes only).");
+      prm.declare_entry("Mortar coverage",
+                        "0.2",
+                        dealii::Patterns::Double(0, 1),
+                        "Discretization = mortar: slave nodes whose dual "
+                        "basis function is covered by the master for less "
+                        "than this fraction of its integral [-] (at and "
+                        "beyond the master's edge) are not contact nodes: "
+                        "their rows would divide by a small or negative "
+                        "integral. A node on the master's edge has about "
+                        "1/2 (2D) or 1/4 (3D corner).");
       prm.declare_entry("Penetration tolerance",
                         "0.25",
                         dealii::Patterns::Double(0),
@@ -265,6 +288,11 @@ namespace dualcontact
       pair.search_distance =
         search > 0 ? search : std::numeric_limits<double>::max();
       penetration_tolerance = prm.get_double("Penetration tolerance");
+      pair.discretization =
+        prm.get("Discretization") == "mortar" ?
+          contact::ContactPair<dim>::Discretization::mortar :
+          contact::ContactPair<dim>::Discretization::node_to_segment;
+      pair.mortar_coverage = prm.get_double("Mortar coverage");
     }
 
 
