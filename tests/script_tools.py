@@ -27,6 +27,13 @@ def exit_status():
     return 1 if failures else 0
 
 
+def mpi_launcher(mpirun, np):
+    """The command prefix that runs a program on NP processes (none for
+    one)."""
+    return ([mpirun, "--allow-run-as-root", "--oversubscribe", "-np",
+             str(np)] if np > 1 else [])
+
+
 def run_app(app, input_file, workdir, name, settings, launcher=(),
             label=None):
     """Run `launcher app input_file --set Output/Output folder=workdir/name

@@ -259,6 +259,48 @@ namespace dualcontact
 
 
     template <int dim>
+    Point<dim - 1>
+    FaceGeometry<dim>::unit_vertex(const unsigned int v) const
+    {
+      AssertIndexRange(v, vertices_.size());
+      Point<dim - 1> unit;
+      if (shape_ == Shape::segment)
+        unit[0] = v;
+      else if (shape_ == Shape::triangle)
+      {
+        if (v == 1)
+          unit[0] = 1;
+        else if (v == 2)
+          unit[dim - 2] = 1;
+      }
+      else
+      {
+        unit[0]       = v % 2;
+        unit[dim - 2] = v / 2;
+      }
+      return unit;
+    }
+
+
+    template <int dim>
+    void
+    FaceGeometry<dim>::closer_on_edge(const unsigned int a,
+                                      const unsigned int b,
+                                      const Point<dim>  &x,
+                                      Projection        &best) const
+    {
+      const Tensor<1, dim> edge = vertices_[b] - vertices_[a];
+      const double         t =
+        std::clamp(((x - vertices_[a]) * edge) / (edge * edge), 0., 1.);
+      const Point<dim - 1> ua = unit_vertex(a);
+      const Projection     candidate =
+        projection_at(ua + t * (unit_vertex(b) - ua), x);
+      if (candidate.distance_square < best.distance_square)
+        best = candidate;
+    }
+
+
+    template <int dim>
     typename FaceGeometry<dim>::Projection
     FaceGeometry<dim>::projection_at(const Point<dim - 1> &unit,
                                      const Point<dim>     &x) const
@@ -309,28 +351,10 @@ namespace dualcontact
       // three edges (each a clamped segment projection)
       Projection best;
       best.distance_square = std::numeric_limits<double>::max();
-      const std::array<std::pair<unsigned int, unsigned int>, 3> edges{
-        {{0, 1}, {1, 2}, {2, 0}}};
-      for (const auto &[i, j] : edges)
-      {
-        const Tensor<1, dim> e = vertices_[j] - vertices_[i];
-        const double t = std::clamp(((x - vertices_[i]) * e) / (e * e), 0., 1.);
-        // the reference point of v_i + t (v_j - v_i)
-        Point<dim - 1> u;
-        const auto     corner = [](const unsigned int v)
-        {
-          Point<dim - 1> c;
-          if (v == 1)
-            c[0] = 1;
-          else if (v == 2)
-            c[dim - 2] = 1;
-          return c;
-        };
-        u                          = corner(i) + t * (corner(j) - corner(i));
-        const Projection candidate = projection_at(u, x);
-        if (candidate.distance_square < best.distance_square)
-          best = candidate;
-      }
+      for (const auto &[a, b] :
+           std::array<std::pair<unsigned int, unsigned int>, 3>{
+             {{0, 1}, {1, 2}, {2, 0}}})
+        closer_on_edge(a, b, x, best);
       return best;
     }
 
@@ -382,22 +406,11 @@ namespace dualcontact
       // of four segment projections
       const bool on_boundary = s == 0. || s == 1. || r == 0. || r == 1.;
       if (clamp && on_boundary)
-        for (unsigned int e = 0; e < 4; ++e)
-        {
-          // edges s = 0, s = 1 (vertices 0-2, 1-3), r = 0, r = 1 (0-1,
-          // 2-3)
-          const unsigned int   a    = e < 2 ? e : 2 * (e - 2);
-          const unsigned int   b    = e < 2 ? e + 2 : 2 * (e - 2) + 1;
-          const Tensor<1, dim> edge = v[b] - v[a];
-          const double         t =
-            std::clamp(((x - v[a]) * edge) / (edge * edge), 0., 1.);
-          Point<dim - 1> u;
-          u[0]                       = e < 2 ? double(e) : t;
-          u[dim - 2]                 = e < 2 ? t : double(e - 2);
-          const Projection candidate = projection_at(u, x);
-          if (candidate.distance_square < best.distance_square)
-            best = candidate;
-        }
+        // the edges s = 0, s = 1, r = 0, r = 1
+        for (const auto &[a, b] :
+             std::array<std::pair<unsigned int, unsigned int>, 4>{
+               {{0, 2}, {1, 3}, {0, 1}, {2, 3}}})
+          closer_on_edge(a, b, x, best);
       return best;
     }
 

@@ -161,6 +161,16 @@ namespace dualcontact
       Projection
       project_on_quadrilateral(const dealii::Point<dim> &x,
                                const bool                clamp) const;
+      /** The reference point of vertex @p v. */
+      dealii::Point<dim - 1>
+      unit_vertex(const unsigned int v) const;
+      /** @p best, or the clamped projection of @p x on the straight edge
+       * from vertex @p a to vertex @p b if that is closer. */
+      void
+      closer_on_edge(const unsigned int        a,
+                     const unsigned int        b,
+                     const dealii::Point<dim> &x,
+                     Projection               &best) const;
       /** The projection record of the reference point @p unit for @p x. */
       Projection
       projection_at(const dealii::Point<dim - 1> &unit,

@@ -33,7 +33,8 @@ import sys
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.join(HERE, ".."))
 import script_tools  # noqa: E402
-from script_tools import check, exit_status, run_app  # noqa: E402
+from script_tools import (  # noqa: E402
+    check, exit_status, mpi_launcher, run_app)
 
 
 def read_results(path):
@@ -89,8 +90,7 @@ def main():
 
     shutil.rmtree(args.workdir, ignore_errors=True)
     os.makedirs(args.workdir)
-    launcher = ([args.mpirun, "--allow-run-as-root", "--oversubscribe",
-                 "-np", str(args.np)] if args.np > 1 else [])
+    launcher = mpi_launcher(args.mpirun, args.np)
     out = run_app(args.app, args.input, args.workdir, "output",
                   ["Output/Write VTU=false"] + args.set, launcher=launcher)
     if out is None:

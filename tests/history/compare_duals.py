@@ -30,12 +30,12 @@ import sys
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.join(HERE, ".."))
-from script_tools import check, exit_status, read_results, run_app  # noqa: E402,E501
+from script_tools import (  # noqa: E402
+    check, exit_status, mpi_launcher, read_results, run_app)
 
 
 def history(args, name, settings, np):
-    launcher = ([args.mpirun, "--allow-run-as-root", "--oversubscribe",
-                 "-np", str(np)] if np > 1 else [])
+    launcher = mpi_launcher(args.mpirun, np)
     out = run_app(args.app, args.input, args.workdir, name,
                   ["Output/Write VTU=false",
                    "Load steps/Step times=" + args.times] + args.set +

@@ -20,7 +20,8 @@ import sys
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.join(HERE, ".."))
-from script_tools import check, exit_status, run_app  # noqa: E402
+from script_tools import (  # noqa: E402
+    check, exit_status, mpi_launcher, run_app)
 
 
 def main():
@@ -39,8 +40,7 @@ def main():
     os.makedirs(args.workdir)
     tables = []
     for np in (1, args.np):
-        launcher = ([args.mpirun, "--allow-run-as-root", "--oversubscribe",
-                     "-np", str(np)] if np > 1 else [])
+        launcher = mpi_launcher(args.mpirun, np)
         out = run_app(args.app, args.input, args.workdir, "np%d" % np,
                       ["Output/Write VTU=false",
                        "Load steps/Step times=" + args.times] + args.set,
