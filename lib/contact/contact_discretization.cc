@@ -118,7 +118,8 @@ namespace dualcontact
       {
         const FiniteElement<dim>            &fe = slave.fe();
         SlaveSide<dim>                       side;
-        const QGauss<dim - 1>                quadrature(fe.degree + 1);
+        const Quadrature<dim - 1>            quadrature =
+          slave.cell_family().face_quadrature(fe.degree + 1);
         FEFaceValues<dim>                    fe_face(slave.mapping(),
                                   fe,
                                   quadrature,
@@ -136,7 +137,7 @@ namespace dualcontact
               side.face_weights.emplace_back();
               for (unsigned int k = 0; k < fe.n_dofs_per_cell(); ++k)
                 if (fe.system_to_component_index(k).first == 0 &&
-                    fe.has_support_on_face(k, f))
+                    fem::CellFamily<dim>::is_face_dof(fe, k, f))
                 {
                   const unsigned int node =
                     fe.system_to_component_index(k).second;
@@ -146,7 +147,9 @@ namespace dualcontact
                       cell_dofs[fe.component_to_system_index(c, node)];
                   for (unsigned int q = 0; q < quadrature.size(); ++q)
                   {
-                    const double w = fe_face.shape_value(k, q) * fe_face.JxW(q);
+                    const double w =
+                      fem::CellFamily<dim>::lumping_function(fe_face, k, q) *
+                      fe_face.JxW(q);
                     a.weight += w;
                     side.face_weights.back()[cell_dofs[k]] += w;
                     a.normal += w * fe_face.normal_vector(q);

@@ -26,7 +26,7 @@ namespace dualcontact
         std::vector<unsigned int> local;
         for (unsigned int i = 0; i < fe.n_dofs_per_cell(); ++i)
           if (fe.system_to_component_index(i).first == 0 &&
-              fe.has_support_on_face(i, f))
+              fem::CellFamily<dim>::is_face_dof(fe, i, f))
             local.push_back(i);
         return local;
       }
@@ -247,8 +247,11 @@ namespace dualcontact
       };
 
       const FiniteElement<dim> &fe = slave.fe();
-      const QIterated<dim - 1>  cut_rule(QMidpoint<1>(), cut_face_subdivisions);
-      const QGauss<dim - 1>     whole_rule(fe.degree + 1);
+      const fem::CellFamily<dim> &family = slave.cell_family();
+      const Quadrature<dim - 1>   cut_rule =
+        family.face_midpoint_rule(cut_face_subdivisions);
+      const Quadrature<dim - 1> whole_rule =
+        family.face_quadrature(fe.degree + 1);
       FEFaceValues<dim>         cut(slave.mapping(),
                             fe,
                             cut_rule,

@@ -6,6 +6,7 @@
 
 #include <decomposition/cell_partition.h>
 #include <decomposition/distributed_mesh.h>
+#include <fem/cell_family.h>
 
 #include <algorithm>
 #include <numeric>
@@ -29,7 +30,9 @@ namespace dualcontact
       {
         // the scalar element's dofs times dim: the vector element's
         DoFHandler<dim> dof_handler(triangulation);
-        const FE_Q<dim> fe(degree);
+        const std::unique_ptr<FiniteElement<dim>> element =
+          fem::CellFamily<dim>(triangulation, "a body").scalar_element(degree);
+        const FiniteElement<dim> &fe = *element;
         dof_handler.distribute_dofs(fe);
         std::vector<std::pair<unsigned int, types::global_dof_index>> pairs;
         std::vector<types::global_dof_index> dofs(fe.n_dofs_per_cell());

@@ -181,6 +181,47 @@ namespace dualcontact
 
 
     template <int dim>
+    void
+    ContactRefinement<dim>::check_meshes(const Scene<dim> &scene) const
+    {
+      if (n_cycles_ == 0)
+        return;
+      for (const auto p : pairs_)
+      {
+        const auto &pair = scene.pair_parameters()[p].pair;
+        std::vector<unsigned int> bodies = {pair.slave_body};
+        if (!pair.obstacle)
+          bodies.push_back(pair.master_body);
+        for (const unsigned int b : bodies)
+        {
+          const fem::CellFamily<dim> &family = scene.body(b).cell_family();
+          if (!family.is_simplex())
+            continue;
+          const std::string name = scene.body(b).name();
+          AssertThrow(dim == 2,
+                      dealii::ExcMessage(
+                        "Contact refinement of pair `" + pair.name +
+                        "' would refine " + name +
+                        " locally, but its mesh has tetrahedra, and deal.II "
+                        "9.4 has no hanging nodes on tetrahedra: set the "
+                        "cycles to 0 " +
+                        io::parameter_location(subsection, "Cycles") +
+                        " and refine globally, or mesh " + name +
+                        " with hexahedra."));
+          AssertThrow(!(indicator_fraction_ > 0),
+                      dealii::ExcMessage(
+                        "The error indicator of contact refinement (Kelly's) "
+                        "has no simplex faces in deal.II 9.4, and " + name +
+                        " has triangles: set it to 0 " +
+                        io::parameter_location(subsection,
+                                               "Indicator fraction") +
+                        " (the contact zone is refined all the same)."));
+        }
+      }
+    }
+
+
+    template <int dim>
     std::string
     ContactRefinement<dim>::description() const
     {

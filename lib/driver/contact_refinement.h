@@ -136,6 +136,16 @@ namespace dualcontact
            const ContactStage<dim> &contact,
            CycleRecord             &record) const;
 
+      /**
+       * Throw, before any solve, where a selected body's mesh cannot be
+       * refined as asked: tetrahedra (no hanging nodes in deal.II 9.4) and,
+       * with `Indicator fraction' > 0, any simplex mesh (deal.II 9.4's
+       * KellyErrorEstimator has no simplex faces).  Nothing to check
+       * without cycles.
+       */
+      void
+      check_meshes(const Scene<dim> &scene) const;
+
       /** The pairs' numbers as written (`all' or a list), for the log. */
       std::string
       description() const;

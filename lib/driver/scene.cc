@@ -253,6 +253,10 @@ namespace dualcontact
         body->setup();
         std::string line =
           parameters.name + ": " + std::to_string(body->n_dofs()) + " dofs";
+        // FE_Q is the scene line's; say so where it is not
+        if (body->cell_family().is_simplex())
+          line += " (" + body->fe().base_element(0).get_name() + " on " +
+                  body->cell_family().cells_in_words() + ")";
         if (dealii::Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD) > 1)
         {
           const auto owned = dealii::Utilities::MPI::min_max_avg(

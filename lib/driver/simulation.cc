@@ -386,6 +386,7 @@ namespace dualcontact
       print_scene_line();
       run_phase("Mesh", [&]() { scene.create_meshes(details_); });
       run_phase("Setup", [&]() { scene.setup(details_); });
+      refinement_->check_meshes(scene);
       if (scene.has_contact() && output_.fclib_problem != "none")
         check_fclib_bodies_held(scene);
 
@@ -672,6 +673,8 @@ namespace dualcontact
         // every cycle computes the whole history on its meshes
         scene.set_load_time(load_steps_.times.front());
         run_phase("Setup", [&]() { scene.setup(details_); });
+        if (cycle == 0)
+          refinement_->check_meshes(scene);
         if (cycle == 0 && has_contact && output_.fclib_problem != "none")
           check_fclib_bodies_held(scene);
         // TFETI needs no global K (FCLIB's export does: it writes the

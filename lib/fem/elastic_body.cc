@@ -2,7 +2,7 @@
 #include <deal.II/base/quadrature_lib.h>
 #include <deal.II/distributed/tria_base.h>
 #include <deal.II/dofs/dof_tools.h>
-#include <deal.II/fe/fe_q.h>
+#include <deal.II/fe/mapping_q.h>
 #include <deal.II/fe/fe_values.h>
 #include <deal.II/grid/grid_tools.h>
 #include <deal.II/lac/dynamic_sparsity_pattern.h>
@@ -33,9 +33,17 @@ namespace dualcontact
       const unsigned int curved_mapping_degree)
         : name_(name)
         , triangulation_(std::move(triangulation))
-        , fe_(FE_Q<dim>(fe_degree), dim)
-        , mapping_(fe_degree)
-        , curved_mapping_(std::max(curved_mapping_degree, 1u))
+        , cell_family_(*triangulation_, name)
+        , fe_(*cell_family_.scalar_element(fe_degree), dim)
+        , mapping_degree_(cell_family_.mapping_degree(fe_degree))
+        // simplices: affine everywhere (see CellFamily), no curved mapping
+        , curved_mapping_degree_(cell_family_.is_simplex() ?
+                                   mapping_degree_ :
+                                   std::max(curved_mapping_degree, 1u))
+        , mapping_(cell_family_.mapping(fe_degree))
+        , curved_mapping_(curved_mapping_degree_ > mapping_degree_ ?
+                            cell_family_.mapping(curved_mapping_degree_) :
+                            nullptr)
         , dof_handler_(*triangulation_)
         , materials_(materials)
     {
@@ -151,7 +159,7 @@ namespace dualcontact
     {
       Assert(is_assembled(), ExcMessage(name_ + ": assemble() first."));
       load_ = 0.;
-      CellScratch        scratch(mapping_, curved_mapping_, fe_);
+      CellScratch        scratch(*this);
       FullMatrix<double> cell_matrix;
       Vector<double>     cell_rhs;
       std::vector<types::global_dof_index> dof_indices(fe_.n_dofs_per_cell());
@@ -171,14 +179,26 @@ namespace dualcontact
     template <int dim>
     struct ElasticBody<dim>::CellScratch
     {
-      CellScratch(const Mapping<dim>       &mapping,
-                  const MappingQ<dim>      &curved_mapping,
+      explicit CellScratch(const ElasticBody<dim> &body)
+          : CellScratch(body.cell_family_,
+                        *body.mapping_,
+                        body.curved_mapping_ ? *body.curved_mapping_ :
+                                               *body.mapping_,
+                        body.curved_mapping_degree_,
+                        body.fe_)
+      {}
+
+      CellScratch(const CellFamily<dim>    &family,
+                  const Mapping<dim>       &mapping,
+                  const Mapping<dim>       &curved_mapping,
+                  const unsigned int        curved_mapping_degree,
                   const FiniteElement<dim> &fe)
-          : quadrature(fe.degree + 1)
-          , face_quadrature(fe.degree + 1)
+          : quadrature(family.cell_quadrature(fe.degree + 1))
+          , face_quadrature(family.face_quadrature(fe.degree + 1))
           // the integrand on a curved face is phi_i t |J| with |J| of the
           // degree of the curved mapping: Gauss exact for phi_i |J| in 2D
-          , curved_face_quadrature(fe.degree + curved_mapping.get_degree())
+          , curved_face_quadrature(
+              family.face_quadrature(fe.degree + curved_mapping_degree))
           , fe_values(mapping,
                       fe,
                       quadrature,
@@ -202,9 +222,9 @@ namespace dualcontact
           component[i] = fe.system_to_component_index(i).first;
       }
 
-      const QGauss<dim>           quadrature;
-      const QGauss<dim - 1>       face_quadrature;
-      const QGauss<dim - 1>       curved_face_quadrature;
+      const Quadrature<dim>       quadrature;
+      const Quadrature<dim - 1>   face_quadrature;
+      const Quadrature<dim - 1>   curved_face_quadrature;
       FEValues<dim>               fe_values;
       FEFaceValues<dim>           fe_face_values;
       FEFaceValues<dim>           curved_fe_face_values;
@@ -274,8 +294,7 @@ namespace dualcontact
       CellScratch                                          &scratch) const
     {
       FEFaceValues<dim> &values =
-        curved_mapping_.get_degree() > mapping_.get_degree() &&
-            touches_curved_manifold(cell->face(f)) ?
+        curved_mapping_ && touches_curved_manifold(cell->face(f)) ?
           scratch.curved_fe_face_values :
           scratch.fe_face_values;
       values.reinit(cell, f);
@@ -389,7 +408,7 @@ namespace dualcontact
       sparsity_.copy_from(dsp);
       stiffness_.reinit(sparsity_);
       load_.reinit(dof_handler_.n_dofs());
-      CellScratch        scratch(mapping_, curved_mapping_, fe_);
+      CellScratch        scratch(*this);
       FullMatrix<double> cell_matrix;
       Vector<double>     cell_rhs;
       std::vector<types::global_dof_index> dof_indices(fe_.n_dofs_per_cell());
@@ -437,7 +456,7 @@ namespace dualcontact
       matrix.reinit(sparsity);
       load.reinit(dofs.size());
 
-      CellScratch        scratch(mapping_, curved_mapping_, fe_);
+      CellScratch        scratch(*this);
       FullMatrix<double> cell_matrix;
       Vector<double>     cell_rhs;
       for (unsigned int c = 0; c < cells.size(); ++c)
@@ -487,7 +506,7 @@ namespace dualcontact
       // f was assembled with the constraints condensed, so the load and the
       // residual K_full u - f_full are rebuilt from the unconstrained cell
       // systems.
-      CellScratch        scratch(mapping_, curved_mapping_, fe_);
+      CellScratch        scratch(*this);
       FullMatrix<double> cell_matrix;
       Vector<double>     cell_rhs;
       const unsigned int dofs_per_cell = fe_.n_dofs_per_cell();
@@ -686,7 +705,7 @@ namespace dualcontact
     {
       if (tractions_.empty())
         return {};
-      CellScratch scratch(mapping_, curved_mapping_, fe_);
+      CellScratch scratch(*this);
       return traction_resultants(scratch);
     }
 
@@ -698,10 +717,11 @@ namespace dualcontact
       std::vector<TractionResultant> resultants(tractions_.size());
       if (tractions_.empty())
         return resultants;
-      const QGauss<dim - 1> nominal_quadrature(nominal_mapping_degree + 2);
+      const Quadrature<dim - 1> nominal_quadrature =
+        cell_family_.face_quadrature(nominal_mapping_degree + 2);
       // faces without a curved manifold are exact with the isoparametric
       // mapping (and much cheaper with it)
-      FEFaceValues<dim> nominal_flat_values(mapping_,
+      FEFaceValues<dim> nominal_flat_values(*mapping_,
                                             fe_,
                                             nominal_quadrature,
                                             update_quadrature_points |
@@ -756,9 +776,12 @@ namespace dualcontact
                 integrate(condition,
                           traction_face_values(cell, f, scratch),
                           resultant.applied);
+                // a simplex mesh is its polygon (affine, see CellFamily)
                 FEFaceValues<dim> &nominal =
-                  touches_curved_manifold(cell->face(f)) ? curved_values() :
-                                                           nominal_flat_values;
+                  !cell_family_.is_simplex() &&
+                      touches_curved_manifold(cell->face(f)) ?
+                    curved_values() :
+                    nominal_flat_values;
                 nominal.reinit(cell, f);
                 integrate(condition, nominal, resultant.nominal);
               }
@@ -898,7 +921,15 @@ namespace dualcontact
     const Mapping<dim> &
     ElasticBody<dim>::mapping() const
     {
-      return mapping_;
+      return *mapping_;
+    }
+
+
+    template <int dim>
+    const CellFamily<dim> &
+    ElasticBody<dim>::cell_family() const
+    {
+      return cell_family_;
     }
 
     template <int dim>

@@ -6,7 +6,7 @@
 #include <deal.II/dofs/dof_handler.h>
 #include <deal.II/fe/fe_system.h>
 #include <deal.II/fe/fe_values.h>
-#include <deal.II/fe/mapping_q.h>
+#include <deal.II/fe/mapping.h>
 #include <deal.II/grid/tria.h>
 #include <deal.II/lac/affine_constraints.h>
 #include <deal.II/lac/sparse_matrix.h>
@@ -14,6 +14,7 @@
 #include <deal.II/lac/vector.h>
 
 #include <fem/boundary_conditions.h>
+#include <fem/cell_family.h>
 #include <fem/isotropic_material.h>
 
 #include <map>
@@ -29,7 +30,9 @@ namespace dualcontact
 
     /**
      * One linear elastic body: its mesh, finite element space (FE_Q of degree
-     * 1 or 2 in each displacement component, isoparametric mapping), material
+     * 1 or 2 in each displacement component with the isoparametric mapping
+     * on quadrilaterals and hexahedra, FE_SimplexP with the affine one on
+     * triangles and tetrahedra: fem::CellFamily), material
      * regions, boundary conditions and loads, and the assembled stiffness
      * matrix K and load vector f.
      *
@@ -274,6 +277,9 @@ namespace dualcontact
       fe() const;
       const dealii::Mapping<dim> &
       mapping() const;
+      /** The kind of cells of the mesh, and what goes with it. */
+      const CellFamily<dim> &
+      cell_family() const;
       const dealii::AffineConstraints<double> &
       constraints() const;
       /**
@@ -369,9 +375,14 @@ namespace dualcontact
 
       std::string                                             name_;
       std::shared_ptr<dealii::Triangulation<dim>>             triangulation_;
+      CellFamily<dim>                                         cell_family_;
       dealii::FESystem<dim>                                   fe_;
-      dealii::MappingQ<dim>                                   mapping_;
-      dealii::MappingQ<dim>                                   curved_mapping_;
+      unsigned int                                            mapping_degree_;
+      // of the curved loaded faces; equal to mapping_degree_ on simplices
+      unsigned int                                curved_mapping_degree_;
+      std::unique_ptr<const dealii::Mapping<dim>> mapping_;
+      // null unless curved_mapping_degree_ > mapping_degree_
+      std::unique_ptr<const dealii::Mapping<dim>> curved_mapping_;
       dealii::DoFHandler<dim>                                 dof_handler_;
       std::map<dealii::types::material_id, IsotropicMaterial> materials_;
       std::vector<DirichletCondition<dim>>                    dirichlet_;

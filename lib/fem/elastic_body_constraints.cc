@@ -31,7 +31,7 @@ namespace dualcontact
       // Conditions are applied in the order given: where two boundaries meet,
       // the first condition on a dof wins (AffineConstraints keeps the first).
       for (const auto &condition : dirichlet_)
-        VectorTools::interpolate_boundary_values(mapping_,
+        VectorTools::interpolate_boundary_values(*mapping_,
                                                  dof_handler_,
                                                  condition.boundary_id,
                                                  *condition.values,

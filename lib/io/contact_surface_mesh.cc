@@ -67,6 +67,11 @@ namespace dualcontact
         return combination;
       };
 
+      if (slave.cell_family().is_simplex())
+      {
+        add_simplex_faces(slave, boundary_id, combination_of);
+        return;
+      }
       const dealii::FESystem<dim>          &fe     = slave.fe();
       const dealii::FiniteElement<dim>     &base   = fe.base_element(0);
       const unsigned int                    degree = base.degree;
@@ -92,7 +97,7 @@ namespace dualcontact
           std::vector<dealii::Point<dim>>              grid_unit(n_per_face);
           for (unsigned int k = 0; k < fe.n_dofs_per_cell(); ++k)
             if (fe.system_to_component_index(k).first == 0 &&
-                fe.has_support_on_face(k, f))
+                fem::CellFamily<dim>::is_face_dof(fe, k, f))
             {
               const dealii::Point<dim> &xi =
                 unit_points[fe.system_to_component_index(k).second];
@@ -143,6 +148,103 @@ namespace dualcontact
                 add_cell(counter_clockwise ? Cell{{a, b, c, d}} :
                                              Cell{{a, d, c, b}});
               }
+        }
+    }
+
+
+    template <int dim>
+    template <typename CombinationOf>
+    void
+    ContactSurfaceMesh<dim>::add_simplex_faces(
+      const fem::ElasticBody<dim>     &slave,
+      const dealii::types::boundary_id boundary_id,
+      const CombinationOf             &combination_of)
+    {
+      const dealii::FESystem<dim>       &fe        = slave.fe();
+      const dealii::ReferenceCell        reference = fe.reference_cell();
+      const dealii::FiniteElement<dim>  &base      = fe.base_element(0);
+      const std::vector<dealii::Point<dim>> unit_points =
+        base.get_unit_support_points();
+      std::map<dealii::types::global_dof_index, unsigned int> point_of_dof;
+      std::vector<dealii::types::global_dof_index>            cell_dofs(
+        fe.n_dofs_per_cell());
+
+      for (const auto &cell : slave.dof_handler().active_cell_iterators())
+        for (const unsigned int f : cell->face_indices())
+        {
+          if (cell->is_artificial() || !cell->face(f)->at_boundary() ||
+              cell->face(f)->boundary_id() != boundary_id)
+            continue;
+          cell->get_dof_indices(cell_dofs);
+          // the face's vertices (FE_SimplexP: scalar dof v at vertex v)
+          // and, for P2, the dof at the midpoint of the edge of two of them
+          std::vector<unsigned int> corner(dim);
+          for (unsigned int v = 0; v < dim; ++v)
+            corner[v] = reference.face_to_cell_vertices(f, v, 1);
+          const auto dof_at = [&](const dealii::Point<dim> &xi)
+          {
+            for (unsigned int node = 0; node < base.n_dofs_per_cell(); ++node)
+              if (unit_points[node].distance(xi) < 1e-12)
+                return cell_dofs[fe.component_to_system_index(0, node)];
+            Assert(false, dealii::ExcMessage("no node at a face point"));
+            return dealii::types::global_dof_index(0);
+          };
+          const auto point_of = [&](const dealii::Point<dim> &xi)
+          {
+            const dealii::types::global_dof_index dof = dof_at(xi);
+            const auto [it, inserted] =
+              point_of_dof.emplace(dof, positions_.size());
+            if (inserted)
+            {
+              positions_.push_back(
+                slave.mapping().transform_unit_to_real_cell(cell, xi));
+              combinations_.push_back(combination_of(dof));
+            }
+            return it->second;
+          };
+          // outward: from the cell's centre to the face's
+          const dealii::Tensor<1, dim> outward =
+            cell->face(f)->center() - cell->center();
+          const auto add_cell = [&](std::vector<dealii::Point<dim>> xi)
+          {
+            bool carries_contact = false;
+            for (const auto &x : xi)
+              carries_contact = carries_contact || !combination_of(dof_at(x)).empty();
+            if (!carries_contact)
+              return;
+            Cell points;
+            for (const auto &x : xi)
+              points.push_back(point_of(x));
+            if constexpr (dim == 3)
+            {
+              const auto &a = positions_[points[0]], &b = positions_[points[1]],
+                         &c = positions_[points[2]];
+              if (dealii::cross_product_3d(b - a, c - a) * outward < 0)
+                std::swap(points[1], points[2]);
+            }
+            cells_.push_back(points);
+            owners_.push_back(cell->subdomain_id());
+          };
+          std::vector<dealii::Point<dim>> v(dim);
+          for (unsigned int i = 0; i < dim; ++i)
+            v[i] = reference.template vertex<dim>(corner[i]);
+          const auto mid = [&](const unsigned int i, const unsigned int j)
+          { return dealii::Point<dim>((v[i] + v[j]) / 2); };
+          if (base.degree == 1)
+            add_cell(v);
+          else if constexpr (dim == 2)
+          {
+            add_cell({v[0], mid(0, 1)});
+            add_cell({mid(0, 1), v[1]});
+          }
+          else
+          {
+            // the quadratic triangle as four linear ones
+            add_cell({v[0], mid(0, 1), mid(2, 0)});
+            add_cell({mid(0, 1), v[1], mid(1, 2)});
+            add_cell({mid(2, 0), mid(1, 2), v[2]});
+            add_cell({mid(0, 1), mid(1, 2), mid(2, 0)});
+          }
         }
     }
 

@@ -36,8 +36,9 @@ namespace dualcontact
     class ContactSurfaceMesh
     {
     public:
-      /** The points of a line (2D) or quadrilateral (3D), VTK's order. */
-      using Cell = std::array<unsigned int, 2 * (dim - 1)>;
+      /** The points of a line (2D), a triangle or a quadrilateral (3D),
+       *  VTK's order (counter-clockwise seen from outside the body). */
+      using Cell = std::vector<unsigned int>;
       /** (contact node of the pair, coefficient): a point's value is the
        *  sum of coefficient times the nodes' values. */
       using Combination = std::vector<std::pair<unsigned int, double>>;
@@ -109,6 +110,16 @@ namespace dualcontact
                          std::vector<unsigned int>       owners);
 
     private:
+      /**
+       * The faces of a simplex mesh: one line or triangle per face (P1),
+       * two lines or four triangles (P2, split at the edge midpoints).
+       */
+      template <typename CombinationOf>
+      void
+      add_simplex_faces(const fem::ElasticBody<dim>     &slave,
+                        const dealii::types::boundary_id boundary_id,
+                        const CombinationOf             &combination_of);
+
       std::vector<dealii::Point<dim>> positions_;
       std::vector<Combination>        combinations_;
       std::vector<Cell>               cells_;

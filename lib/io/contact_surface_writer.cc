@@ -125,13 +125,14 @@ namespace dualcontact
       // the cells of the piece and the points they use, numbered anew
       std::map<unsigned int, vtkIdType> local_point;
       std::vector<unsigned int>         used_points;
-      auto cells = vtkSmartPointer<vtkCellArray>::New();
+      auto             cells = vtkSmartPointer<vtkCellArray>::New();
+      std::vector<int> cell_types;
       for (unsigned int c = 0; c < mesh.n_cells(); ++c)
       {
         if (piece != dealii::numbers::invalid_unsigned_int &&
             mesh.owner(c) != piece)
           continue;
-        std::array<vtkIdType, 2 * (dim - 1)> ids;
+        std::vector<vtkIdType> ids(mesh.cell(c).size());
         for (unsigned int v = 0; v < ids.size(); ++v)
         {
           const unsigned int point = mesh.cell(c)[v];
@@ -142,6 +143,9 @@ namespace dualcontact
           ids[v] = it->second;
         }
         cells->InsertNextCell(ids.size(), ids.data());
+        cell_types.push_back(ids.size() == 2 ? VTK_LINE :
+                             ids.size() == 3 ? VTK_TRIANGLE :
+                                               VTK_QUAD);
       }
 
       auto points = vtkSmartPointer<vtkPoints>::New();
@@ -171,7 +175,7 @@ namespace dualcontact
 
       auto grid = vtkSmartPointer<vtkUnstructuredGrid>::New();
       grid->SetPoints(points);
-      grid->SetCells(dim == 2 ? VTK_LINE : VTK_QUAD, cells);
+      grid->SetCells(cell_types.data(), cells);
       for (const auto &array : arrays)
         grid->GetPointData()->AddArray(array);
       grid->GetPointData()->SetActiveScalars("pressure_Pa");

@@ -3,12 +3,10 @@
 #include <deal.II/base/quadrature_lib.h>
 #include <deal.II/base/tensor.h>
 
+#include <fem/cell_family.h>
 #include <io/mesh_check.h>
 
-#include <deal.II/grid/reference_cell.h>
-
 #include <cmath>
-#include <map>
 #include <sstream>
 #include <vector>
 
@@ -18,55 +16,33 @@ namespace dualcontact
   {
     namespace
     {
-      /** "triangle", "tetrahedron", ...: a reference cell in words. */
-      std::string
-      cell_type_name(const dealii::ReferenceCell &type)
+      /**
+       * The Jacobian of the vertex geometry of @p cell at the unit point
+       * @p xi: (bi/tri)linear on a hypercube; on a simplex the affine map
+       * of its vertices (xi unused).
+       */
+      template <int dim>
+      dealii::Tensor<2, dim>
+      vertex_jacobian(
+        const typename dealii::Triangulation<dim>::active_cell_iterator &cell,
+        const dealii::Point<dim>                                        &xi,
+        const bool simplex)
       {
-        switch (type.n_vertices() + 10 * type.get_dimension())
+        dealii::Tensor<2, dim> jacobian;
+        if (simplex)
         {
-          case 23:
-            return "triangle";
-          case 24:
-            return "quadrilateral";
-          case 34:
-            return "tetrahedron";
-          case 35:
-            return "pyramid";
-          case 36:
-            return "wedge (prism)";
-          case 38:
-            return "hexahedron";
-          default:
-            return type.to_string();
+          for (unsigned int d = 0; d < dim; ++d)
+            for (unsigned int e = 0; e < dim; ++e)
+              jacobian[e][d] = cell->vertex(d + 1)[e] - cell->vertex(0)[e];
+          return jacobian;
         }
+        using Info = dealii::GeometryInfo<dim>;
+        for (unsigned int v = 0; v < Info::vertices_per_cell; ++v)
+          jacobian += dealii::outer_product(
+            cell->vertex(v), Info::d_linear_shape_function_gradient(xi, v));
+        return jacobian;
       }
     } // namespace
-
-
-    template <int dim>
-    void
-    check_cell_types(const dealii::Triangulation<dim> &triangulation,
-                     const std::string                &mesh_name)
-    {
-      const auto hypercube = dealii::ReferenceCells::get_hypercube<dim>();
-      std::map<std::string, unsigned int> others;
-      for (const auto &cell : triangulation.active_cell_iterators())
-        if (cell->reference_cell() != hypercube)
-          ++others[cell_type_name(cell->reference_cell())];
-      if (others.empty())
-        return;
-      std::string counts;
-      for (const auto &[type, count] : others)
-        counts += (counts.empty() ? "" : ", ") + std::to_string(count) + " " +
-                  type + " cell(s)";
-      AssertThrow(false,
-                  dealii::ExcMessage(
-                    "The mesh of " + mesh_name + " has " + counts +
-                    ": dualcontact needs " + cell_type_name(hypercube) +
-                    " cells only (in Gmsh: `Recombine Surface' or "
-                    "`Mesh.RecombineAll = 1', and in 3D "
-                    "`Mesh.SubdivisionAlgorithm = 2' for hexahedra)."));
-    }
 
 
     template <int dim>
@@ -74,34 +50,32 @@ namespace dualcontact
     check_cells(const dealii::Triangulation<dim> &triangulation,
                 const std::string                &mesh_name)
     {
-      check_cell_types(triangulation, mesh_name);
-      using Info = dealii::GeometryInfo<dim>;
-      // reference points: the vertices and the 2^dim Gauss points
+      const fem::CellFamily<dim>      family(triangulation, mesh_name);
+      const dealii::ReferenceCell     reference = family.cell_type();
+      // reference points: the vertices and the Gauss points of degree 3
       std::vector<dealii::Point<dim>> points;
-      for (unsigned int v = 0; v < Info::vertices_per_cell; ++v)
-        points.push_back(Info::unit_cell_vertex(v));
-      const dealii::QGauss<dim> gauss(2);
+      for (const unsigned int v : reference.vertex_indices())
+        points.push_back(reference.template vertex<dim>(v));
+      const dealii::Quadrature<dim> gauss = family.cell_quadrature(2);
       for (const auto &point : gauss.get_points())
         points.push_back(point);
 
       for (const auto &cell : triangulation.active_cell_iterators())
       {
+        if (cell->is_artificial())
+          continue;
         const double scale = std::pow(cell->diameter(), dim);
         for (const auto &point : points)
         {
-          dealii::Tensor<2, dim> jacobian;
-          for (unsigned int v = 0; v < Info::vertices_per_cell; ++v)
-            jacobian += dealii::outer_product(
-              cell->vertex(v),
-              Info::d_linear_shape_function_gradient(point, v));
-          const double det = dealii::determinant(jacobian);
+          const double det = dealii::determinant(
+            vertex_jacobian<dim>(cell, point, family.is_simplex()));
           if (!(det > 1e-10 * scale))
           {
             std::ostringstream message;
             message << "The mesh of " << mesh_name
                     << " has an inverted or degenerate cell (cell "
                     << cell->id() << ", vertices";
-            for (unsigned int v = 0; v < Info::vertices_per_cell; ++v)
+            for (const unsigned int v : cell->vertex_indices())
               message << (v == 0 ? " (" : ", (") << cell->vertex(v) << ")";
             message << "): the Jacobian determinant is " << det
                     << " at the reference point (" << point
@@ -114,10 +88,6 @@ namespace dualcontact
     }
 
 
-    template void
-    check_cell_types<2>(const dealii::Triangulation<2> &, const std::string &);
-    template void
-    check_cell_types<3>(const dealii::Triangulation<3> &, const std::string &);
     template void
     check_cells<2>(const dealii::Triangulation<2> &, const std::string &);
     template void

@@ -6,6 +6,7 @@
 #include <deal.II/grid/grid_tools.h>
 #include <deal.II/grid/manifold_lib.h>
 
+#include <fem/cell_family.h>
 #include <io/file_locator.h>
 #include <io/mesh_check.h>
 #include <io/mesh_generator.h>
@@ -13,6 +14,7 @@
 
 #include <cmath>
 #include <fstream>
+#include <map>
 #include <memory>
 #include <sstream>
 #include <typeinfo>
@@ -65,6 +67,19 @@ namespace dualcontact
         "`Gmsh file'; boundary ids are the physical tags of boundary "
         "lines/faces, material ids the physical tags of the cells. Generated "
         "meshes have material id 0. Ids refer to the mesh before placement.");
+      prm.declare_entry(
+        "Cell type",
+        "hypercube",
+        dealii::Patterns::Selection("hypercube|simplex"),
+        "The cells of a generated mesh: `hypercube' (quadrilaterals in 2D, "
+        "hexahedra in 3D) or `simplex' (triangles, tetrahedra): a box is "
+        "split into 2 triangles / 5 tetrahedra per subdivision, the other "
+        "generators' cells into 8 triangles / 24 tetrahedra, curved "
+        "boundaries kept for refinement. The boundary ids are the same. "
+        "`gmsh': the cells are those of the file, and `simplex' is refused "
+        "for a file of quadrilaterals or hexahedra. Tetrahedral meshes "
+        "cannot be refined locally (deal.II 9.4 has no hanging nodes on "
+        "tetrahedra).");
       prm.declare_entry("Lower corner",
                         dim == 2 ? "0, 0" : "0, 0, 0",
                         dealii::Patterns::List(dealii::Patterns::Double(),
@@ -99,8 +114,8 @@ namespace dualcontact
         "",
         dealii::Patterns::Anything(),
         "gmsh: the mesh file (ASCII Gmsh format as read by deal.II; tested: "
-        "2.2, "
-        "quadrilaterals/hexahedra). A relative name is looked up relative to "
+        "2.2 and 4.1; quadrilaterals/hexahedra or triangles/tetrahedra, "
+        "linear cells). A relative name is looked up relative to "
         "the working directory, then to the folder of this parameter file, "
         "then to the dualcontact source folder.");
       prm.declare_entry("Local refinements",
@@ -154,6 +169,7 @@ namespace dualcontact
       else
         kind_ = Kind::gmsh;
 
+      simplex_      = prm.get("Cell type") == "simplex";
       lower_corner_ = parse_point<dim>(prm.get("Lower corner"));
       upper_corner_ = parse_point<dim>(prm.get("Upper corner"));
       subdivisions_ = {};
@@ -186,6 +202,13 @@ namespace dualcontact
                     dealii::ExcMessage(
                       "The half length must be positive " +
                       parameter_location(path_, "Half length") + "."));
+      AssertThrow(!(dim == 3 && simplex_ && n_local_refinements_ > 0),
+                  dealii::ExcMessage(
+                    "Tetrahedral meshes cannot be refined locally (deal.II "
+                    "9.4 has no hanging nodes on tetrahedra) " +
+                    parameter_location(path_, "Local refinements") +
+                    " with `set Cell type = simplex'; refine globally (`set "
+                    "Global refinements') or use hexahedra."));
       if (kind_ == Kind::gmsh)
         gmsh_file_ = locate_file(prm.get("Gmsh file"),
                                  parameter_file_folder,
@@ -198,6 +221,86 @@ namespace dualcontact
     void
     MeshGenerator<dim>::generate(dealii::Triangulation<dim> &triangulation,
                                  const std::string          &mesh_name) const
+    {
+      if (kind_ == Kind::gmsh || !simplex_)
+      {
+        generate_cells(triangulation, mesh_name);
+        if (kind_ == Kind::gmsh && simplex_)
+          AssertThrow(fem::CellFamily<dim>(triangulation,
+                                           described_name(mesh_name))
+                        .is_simplex(),
+                      dealii::ExcMessage(
+                        "The mesh file `" + gmsh_file_ + "' of " + mesh_name +
+                        " has " +
+                        fem::CellFamily<dim>(triangulation, mesh_name)
+                          .cells_in_words() +
+                        ", not the simplices asked for " +
+                        parameter_location(path_, "Cell type") +
+                        " (a Gmsh file's cells are those it holds: `set "
+                        "Cell type = hypercube' or mesh it with triangles / "
+                        "tetrahedra)."));
+        return;
+      }
+      if (kind_ == Kind::box)
+      {
+        generate_simplex_box(triangulation);
+        return;
+      }
+      // the hypercube mesh, its cells split; the curved boundaries keep
+      // their manifolds: the id of each boundary id's faces is set again
+      // on the split faces (and, in 3D, their edges)
+      dealii::Triangulation<dim> hypercubes;
+      generate_cells(hypercubes, mesh_name);
+      std::map<dealii::types::boundary_id, dealii::types::manifold_id>
+        manifold_of_boundary;
+      for (const auto &face : hypercubes.active_face_iterators())
+        if (face->at_boundary() &&
+            face->manifold_id() != dealii::numbers::flat_manifold_id)
+          manifold_of_boundary[face->boundary_id()] = face->manifold_id();
+      dealii::GridGenerator::convert_hypercube_to_simplex_mesh(hypercubes,
+                                                               triangulation);
+      triangulation.set_all_manifold_ids(dealii::numbers::flat_manifold_id);
+      for (const auto &face : triangulation.active_face_iterators())
+        if (face->at_boundary())
+          if (const auto it = manifold_of_boundary.find(face->boundary_id());
+              it != manifold_of_boundary.end())
+            face->set_all_manifold_ids(it->second);
+      for (const auto &[boundary, manifold] : manifold_of_boundary)
+        triangulation.set_manifold(manifold, hypercubes.get_manifold(manifold));
+    }
+
+
+    template <int dim>
+    void
+    MeshGenerator<dim>::generate_simplex_box(
+      dealii::Triangulation<dim> &triangulation) const
+    {
+      dealii::GridGenerator::subdivided_hyper_rectangle_with_simplices(
+        triangulation, subdivisions_, lower_corner_, upper_corner_);
+      // the ids of subdivided_hyper_rectangle(colorize = true), from the
+      // face centres: 2 d at x_d = min, 2 d + 1 at x_d = max
+      for (const auto &face : triangulation.active_face_iterators())
+        if (face->at_boundary())
+        {
+          const dealii::Point<dim> c = face->center();
+          for (unsigned int d = 0; d < dim; ++d)
+          {
+            const double tolerance =
+              1e-10 * (upper_corner_[d] - lower_corner_[d]);
+            if (std::abs(c[d] - lower_corner_[d]) < tolerance)
+              face->set_boundary_id(2 * d);
+            else if (std::abs(c[d] - upper_corner_[d]) < tolerance)
+              face->set_boundary_id(2 * d + 1);
+          }
+        }
+    }
+
+
+    template <int dim>
+    void
+    MeshGenerator<dim>::generate_cells(
+      dealii::Triangulation<dim> &triangulation,
+      const std::string          &mesh_name) const
     {
       switch (kind_)
       {
@@ -317,11 +420,15 @@ namespace dualcontact
     {
       double coarse_cells = 1, volume = 1;
       if (kind_ == Kind::box)
+      {
         for (unsigned int d = 0; d < dim; ++d)
         {
           coarse_cells *= subdivisions_[d];
           volume *= upper_corner_[d] - lower_corner_[d];
         }
+        if (simplex_)
+          coarse_cells *= dim == 2 ? 2 : 5;
+      }
       else
       {
         dealii::Triangulation<dim> coarse;
@@ -329,7 +436,10 @@ namespace dualcontact
         coarse_cells = coarse.n_active_cells();
         // the volume needs cells deal.II can map (create() checks the same)
         check_cells(coarse, described_name(mesh_name));
-        volume = dealii::GridTools::volume(coarse);
+        // GridTools::volume has no rule for simplices in deal.II 9.4
+        volume = 0;
+        for (const auto &cell : coarse.active_cell_iterators())
+          volume += cell->measure();
       }
       const double global_cells =
         coarse_cells * std::pow(2., dim * double(n_refinements_));
@@ -439,6 +549,15 @@ namespace dualcontact
           cell->set_material_id(0);
       check_cells(triangulation, described_name(mesh_name));
       place(triangulation, placement);
+      AssertThrow(
+        !(dim == 3 && n_local_refinements_ > 0 &&
+          fem::CellFamily<dim>(triangulation, mesh_name).is_simplex()),
+        dealii::ExcMessage(
+          "The mesh of " + described_name(mesh_name) +
+          " has tetrahedra, which cannot be refined locally (deal.II 9.4 has "
+          "no hanging nodes on tetrahedra) " +
+          parameter_location(path_, "Local refinements") +
+          "; refine globally (`set Global refinements') or use hexahedra."));
       triangulation.refine_global(n_refinements_);
       for (unsigned int step = 0; step < n_local_refinements_; ++step)
       {
@@ -482,6 +601,8 @@ namespace dualcontact
           text << "Gmsh file " << gmsh_file_;
           break;
       }
+      if (simplex_ && kind_ != Kind::gmsh)
+        text << (dim == 2 ? " of triangles" : " of tetrahedra");
       text << ", " << n_refinements_ << " global refinement"
            << (n_refinements_ == 1 ? "" : "s");
       if (n_local_refinements_ > 0)

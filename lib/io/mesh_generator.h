@@ -43,7 +43,16 @@ namespace dualcontact
      * GridIn::read_msh; format 2.2 is tested; see io::locate_file for where it
      * is looked for): boundary ids are the physical tags of the boundary lines
      * (2D) or faces (3D), material ids the physical tags of the cells
-     * (quadrilaterals/hexahedra only). Generated meshes have material id 0.
+     * (either family: fem::CellFamily). Generated meshes have material id 0.
+     *
+     * `Cell type = simplex' makes the generated meshes of triangles or
+     * tetrahedra: a box by GridGenerator::subdivided_hyper_rectangle_with_
+     * simplices (2 triangles / 5 tetrahedra per subdivision, the box's
+     * boundary ids set from the face centres), the other generators by
+     * converting their cells (convert_hypercube_to_simplex_mesh: 8
+     * triangles / 24 tetrahedra per cell) with their curved boundaries
+     * kept on the manifold for refinement.  A Gmsh file's cells are what
+     * the file holds.
      *
      * After the global refinements, `Local refinements' times the cells
      * near `Local refinement center' (within `Local refinement radius' plus
@@ -126,7 +135,15 @@ namespace dualcontact
       place(dealii::Triangulation<dim> &triangulation,
             const Placement<dim>       &placement) const;
 
+      /** generate() with hypercubes, converted to simplices if asked. */
+      void
+      generate_cells(dealii::Triangulation<dim> &triangulation,
+                     const std::string          &mesh_name) const;
+      void
+      generate_simplex_box(dealii::Triangulation<dim> &triangulation) const;
+
       Kind                      kind_ = Kind::box;
+      bool                      simplex_ = false;
       dealii::Point<dim>        lower_corner_;
       dealii::Point<dim>        upper_corner_;
       std::vector<unsigned int> subdivisions_;

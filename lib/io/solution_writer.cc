@@ -69,7 +69,8 @@ namespace dualcontact
             dealii::DataComponentInterpretation::component_is_part_of_vector));
         data_out->add_data_vector(displacements[b], *postprocessor);
         data_out->build_patches(body.mapping(),
-                                body.fe().degree,
+                                body.cell_family().output_subdivisions(
+                                  body.fe().degree),
                                 dealii::DataOut<dim>::curved_inner_cells);
         // zlib's fastest level: with deal.II's default (best compression)
         // the Output phase of the 128,000-cell brick took 36 s, with this

@@ -72,24 +72,51 @@ namespace
       ++failures;
   }
 
+  /**
+   * The box [0, 1] x [0, 1.5] (x [0, 2]) of 3^dim cells refined once, of
+   * hypercubes or of simplices (2 triangles / 5 tetrahedra per cell), with
+   * boundary id 2 d at x_d = min and 2 d + 1 at x_d = max.
+   */
   template <int dim>
   void
-  run(const unsigned int degree, const bool with_tractions)
+  make_box(Triangulation<dim> &tria, const bool simplex)
   {
-    std::cout << dim << "D, Q" << degree
-              << (with_tractions ? ", tractions on all faces but one" :
-                                   ", Dirichlet on the whole boundary")
-              << std::endl;
-    auto       tria = std::make_shared<Triangulation<dim>>();
     Point<dim> p1, p2;
     for (unsigned int d = 0; d < dim; ++d)
       p2[d] = 1. + 0.5 * d;
     std::vector<unsigned int> subdivisions(dim, 3);
-    GridGenerator::subdivided_hyper_rectangle(
-      *tria, subdivisions, p1, p2, /*colorize=*/true);
-    for (const auto &cell : tria->active_cell_iterators())
+    if (simplex)
+      GridGenerator::subdivided_hyper_rectangle_with_simplices(tria,
+                                                               subdivisions,
+                                                               p1,
+                                                               p2);
+    else
+      GridGenerator::subdivided_hyper_rectangle(
+        tria, subdivisions, p1, p2, /*colorize=*/true);
+    for (const auto &face : tria.active_face_iterators())
+      if (face->at_boundary())
+        for (unsigned int d = 0; d < dim; ++d)
+        {
+          if (std::abs(face->center()[d] - p1[d]) < 1e-12)
+            face->set_boundary_id(2 * d);
+          if (std::abs(face->center()[d] - p2[d]) < 1e-12)
+            face->set_boundary_id(2 * d + 1);
+        }
+    for (const auto &cell : tria.active_cell_iterators())
       cell->set_material_id(0);
-    tria->refine_global(1);
+    tria.refine_global(1);
+  }
+
+  template <int dim>
+  void
+  run(const unsigned int degree, const bool with_tractions, const bool simplex)
+  {
+    std::cout << dim << "D, " << (simplex ? "P" : "Q") << degree
+              << (with_tractions ? ", tractions on all faces but one" :
+                                   ", Dirichlet on the whole boundary")
+              << std::endl;
+    auto tria = std::make_shared<Triangulation<dim>>();
+    make_box(*tria, simplex);
     GridTools::distort_random(0.3, *tria, /*keep_boundary=*/true, 42);
 
     const fem::IsotropicMaterial material(2.1e11, 0.29);
@@ -132,7 +159,10 @@ namespace
           "nodal error " + sci(relative) + " relative < 1e-10");
 
     // Stress at every quadrature point.
-    QGauss<dim>                          quadrature(degree + 1);
+    const Quadrature<dim>                quadrature =
+      body.cell_family().cell_quadrature(degree + 1);
+    check(body.cell_family().is_simplex() == simplex,
+          "the body's cells are " + body.cell_family().cells_in_words());
     FEValues<dim>                        fe_values(body.mapping(),
                             body.fe(),
                             quadrature,
@@ -178,12 +208,13 @@ main()
 {
   try
   {
-    for (const unsigned int degree : {1u, 2u})
-      for (const bool tractions : {false, true})
-      {
-        run<2>(degree, tractions);
-        run<3>(degree, tractions);
-      }
+    for (const bool simplex : {false, true})
+      for (const unsigned int degree : {1u, 2u})
+        for (const bool tractions : {false, true})
+        {
+          run<2>(degree, tractions, simplex);
+          run<3>(degree, tractions, simplex);
+        }
   }
   catch (const std::exception &e)
   {
