@@ -2,7 +2,8 @@
 """Runs a Hertz input of dualcontact and compares it with the closed form.
 
 Usage: check_hertz.py DUALCONTACT INPUT.prm WORKDIR [--l2 LIMIT]
-                      [--radius LIMIT] [--peak LIMIT]
+                      [--radius LIMIT] [--peak LIMIT] [--load LIMIT]
+                      [--set PATH=VALUE ...]
 
 INPUT.prm starts with `# Hertz: dim = D, R = .., P = .., E = .., nu = ..'
 (and `R2 = .., E2 = .., nu2 = ..' for two elastic bodies): see
@@ -23,7 +24,9 @@ the peak nodal pressure within --peak (default 0.5 %) of p0; and, with
 --l2, the relative L2 error of the nodal pressures (nodal quadrature with
 the area weights w_i) below that limit.  The limits
 of each input are justified by the convergence tables of doc/hertz.md
-(scripts/bench_hertz).  Prints the measured errors.
+(scripts/bench_hertz).  --set passes a parameter change to dualcontact
+(e.g. `Body 1/Mesh/Cell type=simplex`; repeatable).  Prints the measured
+errors.
 """
 import os
 import shutil
@@ -42,15 +45,19 @@ def main(argv):
     limits = {"--radius": 0.005, "--peak": 0.005, "--load": 1e-6,
               "--l2": None}
     options = argv[3:]
+    settings = []
     while options:
         key = options.pop(0)
+        if key == "--set" and options:
+            settings += ["--set", options.pop(0)]
+            continue
         if key not in limits or not options:
             sys.exit(f"unknown option or missing value: {key}\n{__doc__}")
         limits[key] = float(options.pop(0))
 
     shutil.rmtree(workdir, ignore_errors=True)
     os.makedirs(workdir)
-    run = subprocess.run([app, os.path.abspath(prm)], cwd=workdir,
+    run = subprocess.run([app, os.path.abspath(prm)] + settings, cwd=workdir,
                          capture_output=True, text=True)
     print(run.stdout)
     if run.returncode != 0:
