@@ -335,8 +335,9 @@ namespace dualcontact
         const typename MasterSurface<dim>::Face &face =
           master_surface.face(projection.face);
         const Point<dim> unit =
-          master.mapping().transform_real_to_unit_cell(face.cell,
-                                                       node.master_point);
+          master.cell_family().unit_point(master.mapping(),
+                                          face.cell,
+                                          node.master_point);
         std::vector<types::global_dof_index> master_dofs(
           master.fe().n_dofs_per_cell());
         face.cell->get_dof_indices(master_dofs);

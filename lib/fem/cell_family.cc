@@ -185,6 +185,25 @@ namespace dualcontact
 
 
     template <int dim>
+    Point<dim>
+    CellFamily<dim>::unit_point(
+      const Mapping<dim>                                &mapping,
+      const typename Triangulation<dim>::cell_iterator &cell,
+      const Point<dim>                                  &x) const
+    {
+      if (!is_simplex())
+        return mapping.transform_real_to_unit_cell(cell, x);
+      // x = v_0 + J xi with the columns of J the edges v_k - v_0 (the
+      // reference simplex has its vertex k > 0 at e_k)
+      Tensor<2, dim> jacobian;
+      for (unsigned int k = 0; k < dim; ++k)
+        for (unsigned int d = 0; d < dim; ++d)
+          jacobian[d][k] = cell->vertex(k + 1)[d] - cell->vertex(0)[d];
+      return Point<dim>(invert(jacobian) * (x - cell->vertex(0)));
+    }
+
+
+    template <int dim>
     Quadrature<dim - 1>
     CellFamily<dim>::face_midpoint_rule(const unsigned int n) const
     {

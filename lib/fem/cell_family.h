@@ -85,6 +85,17 @@ namespace dualcontact
       face_quadrature(const unsigned int n_points_1d) const;
 
       /**
+       * The unit-cell point of @p cell that @p mapping (mapping() of this
+       * family) maps to @p x: the inverse of the affine map of the
+       * vertices on simplices (deal.II 9.4's MappingFE does not invert),
+       * Mapping::transform_real_to_unit_cell() on hypercubes.
+       */
+      dealii::Point<dim>
+      unit_point(const dealii::Mapping<dim> &mapping,
+                 const typename dealii::Triangulation<dim>::cell_iterator &cell,
+                 const dealii::Point<dim> &x) const;
+
+      /**
        * The midpoint rule on a face cut into n^(dim - 1) equal pieces
        * (squares, or triangles of the face split at n + 1 points per
        * edge): where a face is integrated with a discontinuous integrand
