@@ -129,7 +129,7 @@ namespace dualcontact
                 carries_contact || !combination_of(grid[index]).empty();
             if (!carries_contact)
               return;
-            Cell points;
+            Cell points(grid_indices.size());
             for (unsigned int v = 0; v < points.size(); ++v)
               points[v] = point_of(grid_indices[v]);
             cells_.push_back(points);
