@@ -85,11 +85,15 @@ namespace dualcontact
 
 
       /** The master body's shape functions at a master point: the row
-       * entries (body, dof, phi) and each one's vector component. */
+       * entries (body, dof, phi) and each one's vector component, entering
+       * the row with a minus sign.  Mortar at the parent of hanging slave
+       * nodes: also the hanging nodes' slave terms (slave body, negative
+       * values), and the node's own coefficient S_j / S~_j instead of 1. */
       struct MasterEntries
       {
         std::vector<RowEntry>     entries;
         std::vector<unsigned int> components;
+        double                    own = 1;
       };
 
 
@@ -451,6 +455,29 @@ namespace dualcontact
       }
 
 
+      /** The slave side of a mortar row divided by S~_j: the node's own
+       * coefficient S_j / S~_j, the hanging nodes condensed into it with
+       * c_hj S_h / S~_j (all 1 and none without hanging nodes). */
+      template <int dim>
+      void
+      add_slave_terms(const ContactPair<dim>                  &pair,
+                      const typename MortarCoupling<dim>::Row &row,
+                      const ContactNode<dim>                  &node,
+                      MasterEntries                           &entries)
+      {
+        for (const auto &[key, term] : row.slave)
+          if (term.dofs == node.dofs)
+            entries.own = term.value / row.covered;
+          else
+            for (unsigned int c = 0; c < dim; ++c)
+            {
+              entries.entries.push_back(
+                {pair.slave_body, term.dofs[c], -term.value / row.covered});
+              entries.components.push_back(c);
+            }
+      }
+
+
       /**
        * Places @p node by its mortar integrals @p row (MortarCoupling):
        * an obstacle's normal at the node's closest point (exact), a master
@@ -475,6 +502,7 @@ namespace dualcontact
           Tensor<1, dim> outward;
           pair.obstacle->project(node.position, node.master_point, outward);
           node.normal = -outward;
+          add_slave_terms(pair, *row, node, master);
           return (node.position - node.master_point).norm() <=
                  pair.search_distance;
         }
@@ -486,6 +514,7 @@ namespace dualcontact
               {pair.master_body, m.dofs[c], m.value / row->covered});
             master.components.push_back(c);
           }
+        add_slave_terms(pair, *row, node, master);
         return true;
       }
 
@@ -514,7 +543,7 @@ namespace dualcontact
         std::vector<RowEntry> row;
         for (unsigned int c = 0; c < dim; ++c)
           if (direction[c] != 0.)
-            row.push_back({node.body, node.dofs[c], direction[c]});
+            row.push_back({node.body, node.dofs[c], master.own * direction[c]});
         for (unsigned int e = 0; e < master.entries.size(); ++e)
           if (direction[master.components[e]] != 0.)
             row.push_back(
