@@ -111,21 +111,6 @@ namespace
                          refine_slave ?
                            bottom_half_layer<dim>(n_upper) :
                            std::function<bool(const Point<dim> &)>());
-    if (refine_slave && dim == 3)
-    {
-      // the slave surface has hanging nodes (the midpoints of the coarse
-      // faces' edges on x = 1/2)
-      unsigned int n_hanging = 0;
-      for (const auto &cell : upper->dof_handler().active_cell_iterators())
-        for (const unsigned int f : cell->face_indices())
-          if (cell->face(f)->at_boundary() &&
-              cell->face(f)->boundary_id() == 2 * (dim - 1))
-            for (const unsigned int v : cell->face(f)->vertex_indices())
-              if (upper->hanging_node_constraints().is_constrained(
-                    cell->face(f)->vertex_dof_index(v, 0)))
-                ++n_hanging;
-      check(n_hanging > 0, "hanging vertices of slave faces", n_hanging);
-    }
     const auto zero = std::make_shared<Functions::ZeroFunction<dim>>(dim);
     const auto roller =
       [&](const types::boundary_id id, const unsigned int component)
@@ -150,6 +135,21 @@ namespace
     {
       body->setup();
       body->assemble();
+    }
+    if (refine_slave && dim == 3)
+    {
+      // the slave surface has hanging nodes (the midpoints of the coarse
+      // faces' edges on x = 1/2)
+      unsigned int n_hanging = 0;
+      for (const auto &cell : upper->dof_handler().active_cell_iterators())
+        for (const unsigned int f : cell->face_indices())
+          if (cell->face(f)->at_boundary() &&
+              cell->face(f)->boundary_id() == 2 * (dim - 1))
+            for (const unsigned int v : cell->face(f)->vertex_indices())
+              if (upper->hanging_node_constraints().is_constrained(
+                    cell->face(f)->vertex_dof_index(v, 0)))
+                ++n_hanging;
+      check(n_hanging > 0, "hanging vertices of slave faces", n_hanging);
     }
     contact::ContactPair<dim> pair;
     pair.name            = "patch";
