@@ -374,6 +374,62 @@ namespace dualcontact
 
 
     template <int dim>
+    bool
+    MortarCoupling<dim>::place(const types::global_dof_index key,
+                               const Tensor<1, dim>         &weighted_normal,
+                               ContactNode<dim>             &node,
+                               MasterEntries                &master) const
+    {
+      const auto found = rows_.find(key);
+      if (found == rows_.end())
+        return false;
+      const Row &row = found->second;
+      if (!(row.covered >= pair_.mortar_coverage * row.support))
+        return false;
+      // the slave side divided by S~_j: the node's own coefficient, the
+      // hanging nodes condensed into it (1 and none without them)
+      for (const auto &[k, term] : row.slave)
+        if (k == key)
+          master.own = term.value / row.covered;
+        else
+          for (unsigned int c = 0; c < dim; ++c)
+          {
+            master.entries.push_back(
+              {pair_.slave_body, term.dofs[c], -term.value / row.covered});
+            master.components.push_back(c);
+          }
+      if (pair_.obstacle)
+      {
+        Tensor<1, dim> outward;
+        pair_.obstacle->project(node.position, node.master_point, outward);
+        node.normal = -outward;
+        return (node.position - node.master_point).norm() <=
+               pair_.search_distance;
+      }
+      node.normal = weighted_normal / weighted_normal.norm();
+      for (const auto &[l, m] : row.master)
+        for (unsigned int c = 0; c < dim; ++c)
+        {
+          master.entries.push_back(
+            {pair_.master_body, m.dofs[c], m.value / row.covered});
+          master.components.push_back(c);
+        }
+      return true;
+    }
+
+
+    template <int dim>
+    double
+    MortarCoupling<dim>::gap(const types::global_dof_index key,
+                             const Tensor<1, dim>         &normal) const
+    {
+      const Row &row = rows_.at(key);
+      return (pair_.obstacle ? row.weighted_gap : normal * row.gap_vector) /
+             row.covered;
+    }
+
+
+    template <int dim>
     const std::map<types::global_dof_index, typename MortarCoupling<dim>::Row> &
     MortarCoupling<dim>::rows() const
     {

@@ -5,9 +5,11 @@
 #include <deal.II/base/types.h>
 #include <deal.II/lac/affine_constraints.h>
 
+#include <contact/contact_discretization.h>
 #include <contact/contact_pair.h>
 #include <contact/face_geometry.h>
 #include <contact/master_surface.h>
+#include <contact/row_entries.h>
 #include <fem/elastic_body.h>
 
 #include <array>
@@ -129,6 +131,29 @@ namespace dualcontact
        * for a hanging node (condensed into its parents'). */
       const std::map<dealii::types::global_dof_index, Row> &
       rows() const;
+
+      /**
+       * Places the contact node @p node (slave node @p key, its position
+       * set; @p weighted_normal int phi n ds) by its row: an obstacle's
+       * normal at the node's closest point (exact), a master body's the
+       * averaged normal; @p master's entries M_jl / S~_j (they sum to one:
+       * a rigid translation leaves the row at zero) and the slave terms of
+       * the hanging nodes condensed into it, c_hj S_h / S~_j, the node's
+       * own coefficient S_j / S~_j.  False for a node without a row or
+       * without enough master under its faces (`Mortar coverage') or, on
+       * an obstacle, beyond the search distance.
+       */
+      bool
+      place(const dealii::types::global_dof_index key,
+            const dealii::Tensor<1, dim>         &weighted_normal,
+            ContactNode<dim>                     &node,
+            MasterEntries                        &master) const;
+
+      /** The weighted gap of slave node @p key along its (final) normal
+       * @p normal, divided by S~_j as its row [m]. */
+      double
+      gap(const dealii::types::global_dof_index key,
+          const dealii::Tensor<1, dim>         &normal) const;
 
     private:
       /** Adds the integrals of one slave face against the master body. */
