@@ -8,6 +8,8 @@
 #include <contact/contact_discretization.h>
 #include <contact/master_surface.h>
 #include <contact/mortar_coupling.h>
+#include <contact/node_to_segment.h>
+#include <contact/row_entries.h>
 #include <util/machine.h>
 
 #include <algorithm>
@@ -23,14 +25,6 @@ namespace dualcontact
 
     namespace
     {
-      /** A row of B before condensation: (body, body dof, coefficient). */
-      struct RowEntry
-      {
-        unsigned int            body;
-        types::global_dof_index dof;
-        double                  value;
-      };
-
       /** Unit tangents completing n to an orthonormal frame. */
       template <int dim>
       std::array<Tensor<1, dim>, dim - 1>
@@ -81,15 +75,6 @@ namespace dualcontact
       {
         std::map<types::global_dof_index, SlaveNode<dim>>      nodes;
         std::vector<std::map<types::global_dof_index, double>> face_weights;
-      };
-
-
-      /** The master body's shape functions at a master point: the row
-       * entries (body, dof, phi) and each one's vector component. */
-      struct MasterEntries
-      {
-        std::vector<RowEntry>     entries;
-        std::vector<unsigned int> components;
       };
 
 
@@ -311,202 +296,6 @@ namespace dualcontact
       }
 
 
-      /**
-       * Places @p node on the master body: the closest point over the
-       * master faces, the node's normal (minus the master cell's outward
-       * normal there) and the master's shape functions at that point.
-       * False when the master is farther than the search distance.
-       */
-      template <int dim>
-      bool
-      place_on_master_body(const ContactPair<dim>      &pair,
-                           const fem::ElasticBody<dim> &master,
-                           const MasterSurface<dim>    &master_surface,
-                           ContactNode<dim>            &node,
-                           MasterEntries               &master_entries)
-      {
-        const typename MasterSurface<dim>::Projection projection =
-          master_surface.closest_face(node.position);
-        node.master_point = projection.point;
-        if (std::sqrt(projection.distance_square) > pair.search_distance)
-          return false;
-        node.normal = -projection.outward_normal;
-
-        const typename MasterSurface<dim>::Face &face =
-          master_surface.face(projection.face);
-        const Point<dim> unit =
-          master.cell_family().unit_point(master.mapping(),
-                                          face.cell,
-                                          node.master_point);
-        std::vector<types::global_dof_index> master_dofs(
-          master.fe().n_dofs_per_cell());
-        face.cell->get_dof_indices(master_dofs);
-        for (unsigned int k = 0; k < master.fe().n_dofs_per_cell(); ++k)
-        {
-          const double phi = master.fe().shape_value(k, unit);
-          if (std::abs(phi) > 1e-14)
-          {
-            master_entries.entries.push_back(
-              {pair.master_body, master_dofs[k], phi});
-            master_entries.components.push_back(
-              master.fe().system_to_component_index(k).first);
-          }
-        }
-        return true;
-      }
-
-
-      /** Where a slave node lies on the master body. */
-      template <int dim>
-      struct Placement
-      {
-        bool           found = false;
-        Point<dim>     master_point;
-        Tensor<1, dim> normal;
-        MasterEntries  entries;
-      };
-
-
-      /**
-       * place_on_master_body() for every node of @p nodes (@p positions) on
-       * a distributed master body: every process finds the closest of its
-       * own master faces, the closest over the processes wins (MPI_MINLOC;
-       * equal distances: the lowest process), and the winner places the
-       * node and sends the placement to all (one gather of the placements,
-       * not of the faces).  Collective.
-       */
-      template <int dim>
-      std::vector<Placement<dim>>
-      place_on_distributed_master(const ContactPair<dim>        &pair,
-                                  const fem::ElasticBody<dim>   &master,
-                                  const MasterSurface<dim>      &surface,
-                                  const std::vector<Point<dim>> &positions)
-      {
-        const MPI_Comm     comm = master.communicator();
-        const unsigned int rank = Utilities::MPI::this_mpi_process(comm);
-        struct Closest
-        {
-          double distance_square;
-          int    rank;
-        };
-        std::vector<Closest> closest(positions.size());
-        for (unsigned int i = 0; i < positions.size(); ++i)
-          closest[i] = {surface.n_faces() > 0 ?
-                          surface.closest_face(positions[i]).distance_square :
-                          std::numeric_limits<double>::max(),
-                        static_cast<int>(rank)};
-        const int ierr = MPI_Allreduce(MPI_IN_PLACE,
-                                       closest.data(),
-                                       closest.size(),
-                                       MPI_DOUBLE_INT,
-                                       MPI_MINLOC,
-                                       comm);
-        AssertThrowMPI(ierr);
-
-        // the won nodes: (node, found, master point, normal, entries)
-        std::vector<double> local;
-        for (unsigned int i = 0; i < positions.size(); ++i)
-          if (closest[i].rank == static_cast<int>(rank) &&
-              surface.n_faces() > 0)
-          {
-            ContactNode<dim> node;
-            node.position = positions[i];
-            MasterEntries entries;
-            const bool    found =
-              place_on_master_body(pair, master, surface, node, entries);
-            local.push_back(i);
-            local.push_back(found ? 1 : 0);
-            for (unsigned int d = 0; d < dim; ++d)
-              local.push_back(node.master_point[d]);
-            for (unsigned int d = 0; d < dim; ++d)
-              local.push_back(node.normal[d]);
-            local.push_back(entries.entries.size());
-            for (unsigned int e = 0; e < entries.entries.size(); ++e)
-            {
-              local.push_back(entries.entries[e].dof);
-              local.push_back(entries.entries[e].value);
-              local.push_back(entries.components[e]);
-            }
-          }
-        const std::vector<double> all =
-          util::concatenate_over_processes(local, comm);
-        std::vector<Placement<dim>> placements(positions.size());
-        for (std::size_t k = 0; k < all.size();)
-        {
-          Placement<dim> &placement =
-            placements[static_cast<unsigned int>(all[k++])];
-          placement.found = all[k++] > 0;
-          for (unsigned int d = 0; d < dim; ++d)
-            placement.master_point[d] = all[k++];
-          for (unsigned int d = 0; d < dim; ++d)
-            placement.normal[d] = all[k++];
-          const std::size_t n_entries = all[k++];
-          for (std::size_t e = 0; e < n_entries; ++e, k += 3)
-          {
-            placement.entries.entries.push_back(
-              {pair.master_body,
-               static_cast<types::global_dof_index>(all[k]),
-               all[k + 1]});
-            placement.entries.components.push_back(
-              static_cast<unsigned int>(all[k + 2]));
-          }
-        }
-        return placements;
-      }
-
-
-      /**
-       * Places @p node by its mortar integrals @p row (MortarCoupling):
-       * an obstacle's normal at the node's closest point (exact), a master
-       * body's the slave's averaged normal int phi n ds; the master entries
-       * M_jl / S_j (they sum to one: a rigid translation leaves the row at
-       * zero).  False for a node without enough master under its faces
-       * (`Mortar coverage') or, on an obstacle, beyond the search distance.
-       */
-      template <int dim>
-      bool
-      place_by_mortar(const ContactPair<dim>                  &pair,
-                      const SlaveNode<dim>                    &slave,
-                      const typename MortarCoupling<dim>::Row *row,
-                      ContactNode<dim>                        &node,
-                      MasterEntries                           &master)
-      {
-        if (row == nullptr ||
-            !(row->covered >= pair.mortar_coverage * row->support))
-          return false;
-        if (pair.obstacle)
-        {
-          Tensor<1, dim> outward;
-          pair.obstacle->project(node.position, node.master_point, outward);
-          node.normal = -outward;
-          return (node.position - node.master_point).norm() <=
-                 pair.search_distance;
-        }
-        node.normal = slave.normal / slave.normal.norm();
-        for (const auto &[key, m] : row->master)
-          for (unsigned int c = 0; c < dim; ++c)
-          {
-            master.entries.push_back(
-              {pair.master_body, m.dofs[c], m.value / row->covered});
-            master.components.push_back(c);
-          }
-        return true;
-      }
-
-
-      /** The weighted gap of a mortar node along its (final) normal,
-       * divided by S_j as its row [m]. */
-      template <int dim>
-      double
-      mortar_gap(const ContactPair<dim>                  &pair,
-                 const typename MortarCoupling<dim>::Row &row,
-                 const Tensor<1, dim>                    &normal)
-      {
-        return (pair.obstacle ? row.weighted_gap : normal * row.gap_vector) /
-               row.covered;
-      }
-
-
       /** The row of B for the relative displacement of @p node along
        * @p direction: slave minus master. */
       template <int dim>
@@ -518,7 +307,7 @@ namespace dualcontact
         std::vector<RowEntry> row;
         for (unsigned int c = 0; c < dim; ++c)
           if (direction[c] != 0.)
-            row.push_back({node.body, node.dofs[c], direction[c]});
+            row.push_back({node.body, node.dofs[c], master.own * direction[c]});
         for (unsigned int e = 0; e < master.entries.size(); ++e)
           if (direction[master.components[e]] != 0.)
             row.push_back(
@@ -685,30 +474,27 @@ namespace dualcontact
         summary.min_gap = std::numeric_limits<double>::max();
         summary.max_gap = -std::numeric_limits<double>::max();
         std::map<types::global_dof_index, unsigned int> node_of_key;
-        // a distributed master body: every node placed at once, over the
-        // processes' faces
-        std::vector<Placement<dim>> placements;
-        if (!pair.obstacle && bodies[pair.master_body]->is_distributed())
-        {
-          std::vector<Point<dim>> positions;
-          for (const auto &entry : side.nodes)
-            positions.push_back(support_points[entry.first]);
-          placements = place_on_distributed_master(pair,
-                                                   *bodies[pair.master_body],
-                                                   *master_surface,
-                                                   positions);
-        }
-        const bool mortar =
+        const bool                                      mortar =
           pair.discretization == ContactPair<dim>::Discretization::mortar;
-        const std::unique_ptr<MortarCoupling<dim>> coupling =
-          mortar ?
+        // one placement of the nodes per discretization
+        std::unique_ptr<MortarCoupling<dim>> coupling;
+        std::unique_ptr<NodeToSegment<dim>>  node_to_segment;
+        if (mortar)
+          coupling =
             std::make_unique<MortarCoupling<dim>>(pair,
                                                   slave,
                                                   pair.obstacle ?
                                                     nullptr :
                                                     bodies[pair.master_body],
-                                                  master_surface.get()) :
-            nullptr;
+                                                  master_surface.get());
+        else
+        {
+          std::vector<Point<dim>> positions;
+          for (const auto &entry : side.nodes)
+            positions.push_back(support_points[entry.first]);
+          node_to_segment = std::make_unique<NodeToSegment<dim>>(
+            pair, bodies, master_surface.get(), positions);
+        }
         unsigned int index = 0;
         for (const auto &[key, a] : side.nodes)
         {
@@ -719,37 +505,9 @@ namespace dualcontact
           node.dofs     = a.dofs;
           node.position = support_points[key];
           node.weight   = a.weight;
-          MasterEntries                            master;
-          const typename MortarCoupling<dim>::Row *row = nullptr;
-          if (mortar)
-          {
-            const auto found = coupling->rows().find(key);
-            row = found == coupling->rows().end() ? nullptr : &found->second;
-            if (!place_by_mortar(pair, a, row, node, master))
-              continue;
-          }
-          else if (pair.obstacle)
-          {
-            Tensor<1, dim> outward;
-            pair.obstacle->project(node.position, node.master_point, outward);
-            node.normal = -outward;
-            if ((node.position - node.master_point).norm() >
-                pair.search_distance)
-              continue;
-          }
-          else if (!placements.empty())
-          {
-            if (!placements[i].found)
-              continue;
-            node.master_point = placements[i].master_point;
-            node.normal       = placements[i].normal;
-            master            = placements[i].entries;
-          }
-          else if (!place_on_master_body(pair,
-                                         *bodies[pair.master_body],
-                                         *master_surface,
-                                         node,
-                                         master))
+          MasterEntries master;
+          if (mortar ? !coupling->place(key, a.normal, node, master) :
+                       !node_to_segment->place(i, node, master))
             continue;
           // an obstacle's normal is exact; a master facet's is one side's
           if (!pair.obstacle)
@@ -758,9 +516,9 @@ namespace dualcontact
                                                 slave.constraints());
           node.tangents =
             make_tangents<dim>(node.normal, pair.first_tangent_direction);
-          if (row != nullptr)
+          if (mortar)
           {
-            node.gap          = mortar_gap(pair, *row, node.normal);
+            node.gap          = coupling->gap(key, node.normal);
             node.master_point = node.position + node.gap * node.normal;
           }
           else

@@ -141,8 +141,6 @@ namespace dualcontact
       Assert(pair.obstacle || (master != nullptr && surface != nullptr),
              ExcInternalError());
       check_applicable(slave);
-      const AffineConstraints<double> &hanging =
-        slave.hanging_node_constraints();
       for (const auto &cell : slave.dof_handler().active_cell_iterators())
         for (const unsigned int f : cell->face_indices())
           if (cell->face(f)->at_boundary() &&
@@ -151,19 +149,15 @@ namespace dualcontact
             const auto                           face = cell->face(f);
             std::vector<Point<dim>>              vertices;
             std::vector<types::global_dof_index> keys;
+            // the active face's vertices, hanging ones included
             for (const unsigned int v : face->vertex_indices())
             {
               vertices.push_back(face->vertex(v));
               keys.push_back(face->vertex_dof_index(v, 0));
-              AssertThrow(!hanging.is_constrained(keys.back()),
-                          ExcMessage(
-                            "Contact pair `" + pair.name +
-                            "': Discretization = mortar does not take "
-                            "hanging nodes on the slave surface (a refined "
-                            "slave mesh next to a coarser part): refine the "
-                            "slave surface uniformly, or use Discretization "
-                            "= node to segment."));
-              rows_[keys.back()].position = face->vertex(v);
+              Row &row     = rows_[keys.back()];
+              row.position = face->vertex(v);
+              for (unsigned int c = 0; c < dim; ++c)
+                row.dofs[c] = face->vertex_dof_index(v, c);
             }
             const FaceGeometry<dim>   geometry(vertices);
             const Quadrature<dim - 1> quadrature =
@@ -186,8 +180,9 @@ namespace dualcontact
                              "': the slave body `" + slave.name() +
                              "' has no boundary with id " +
                              std::to_string(pair.slave_boundary) + "."));
-      if (!pair.obstacle)
-        for (auto &[key, row] : rows_)
+      for (auto &[key, row] : rows_)
+      {
+        if (!pair.obstacle)
         {
           row.covered = 0;
           for (const auto &[l, node] : row.master)
@@ -197,6 +192,56 @@ namespace dualcontact
           }
           row.gap_vector -= row.covered * row.position;
         }
+        row.slave[key] = {row.dofs, row.covered};
+      }
+      condense_hanging_nodes(slave.hanging_node_constraints());
+    }
+
+
+    template <int dim>
+    void
+    MortarCoupling<dim>::condense_hanging_nodes(
+      const AffineConstraints<double> &hanging)
+    {
+      for (auto it = rows_.begin(); it != rows_.end();)
+      {
+        const auto *line = hanging.get_constraint_entries(it->first);
+        if (!hanging.is_constrained(it->first) || line == nullptr)
+        {
+          ++it;
+          continue;
+        }
+        const Row &h = it->second;
+        for (const auto &[parent, c] : *line)
+        {
+          const auto to = rows_.find(parent);
+          // the parents are the vertices of the coarse face's edge: slave
+          // boundary vertices, never hanging themselves (1-irregular mesh)
+          AssertThrow(to != rows_.end() && !hanging.is_constrained(parent),
+                      ExcMessage("Contact pair `" + pair_.name +
+                                 "': a hanging slave node whose parent is no "
+                                 "slave vertex (Discretization = mortar)."));
+          Row &j = to->second;
+          j.support += c * h.support;
+          j.covered += c * h.covered;
+          j.gap_vector += c * h.gap_vector;
+          j.weighted_gap += c * h.weighted_gap;
+          for (const auto &[l, node] : h.master)
+          {
+            MasterNode &m = j.master[l];
+            m.dofs        = node.dofs;
+            m.position    = node.position;
+            m.value += c * node.value;
+          }
+          for (const auto &[k, term] : h.slave)
+          {
+            SlaveTerm &s = j.slave[k];
+            s.dofs       = term.dofs;
+            s.value += c * term.value;
+          }
+        }
+        it = rows_.erase(it);
+      }
     }
 
 
@@ -325,6 +370,62 @@ namespace dualcontact
           rows_[keys[j]].covered += psi_ds;
         }
       }
+    }
+
+
+    template <int dim>
+    bool
+    MortarCoupling<dim>::place(const types::global_dof_index key,
+                               const Tensor<1, dim>         &weighted_normal,
+                               ContactNode<dim>             &node,
+                               MasterEntries                &master) const
+    {
+      const auto found = rows_.find(key);
+      if (found == rows_.end())
+        return false;
+      const Row &row = found->second;
+      if (!(row.covered >= pair_.mortar_coverage * row.support))
+        return false;
+      // the slave side divided by S~_j: the node's own coefficient, the
+      // hanging nodes condensed into it (1 and none without them)
+      for (const auto &[k, term] : row.slave)
+        if (k == key)
+          master.own = term.value / row.covered;
+        else
+          for (unsigned int c = 0; c < dim; ++c)
+          {
+            master.entries.push_back(
+              {pair_.slave_body, term.dofs[c], -term.value / row.covered});
+            master.components.push_back(c);
+          }
+      if (pair_.obstacle)
+      {
+        Tensor<1, dim> outward;
+        pair_.obstacle->project(node.position, node.master_point, outward);
+        node.normal = -outward;
+        return (node.position - node.master_point).norm() <=
+               pair_.search_distance;
+      }
+      node.normal = weighted_normal / weighted_normal.norm();
+      for (const auto &[l, m] : row.master)
+        for (unsigned int c = 0; c < dim; ++c)
+        {
+          master.entries.push_back(
+            {pair_.master_body, m.dofs[c], m.value / row.covered});
+          master.components.push_back(c);
+        }
+      return true;
+    }
+
+
+    template <int dim>
+    double
+    MortarCoupling<dim>::gap(const types::global_dof_index key,
+                             const Tensor<1, dim>         &normal) const
+    {
+      const Row &row = rows_.at(key);
+      return (pair_.obstacle ? row.weighted_gap : normal * row.gap_vector) /
+             row.covered;
     }
 
 

@@ -3,10 +3,13 @@
 #include <deal.II/base/point.h>
 #include <deal.II/base/tensor.h>
 #include <deal.II/base/types.h>
+#include <deal.II/lac/affine_constraints.h>
 
+#include <contact/contact_discretization.h>
 #include <contact/contact_pair.h>
 #include <contact/face_geometry.h>
 #include <contact/master_surface.h>
+#include <contact/row_entries.h>
 #include <fem/elastic_body.h>
 
 #include <array>
@@ -53,10 +56,22 @@ namespace dualcontact
      * divide by a small or negative integral of psi_j (psi_j is negative
      * near the other vertices).
      *
+     * Hanging slave nodes (3D: the midpoint h of a coarse face's edge next
+     * to refined faces, u_h = sum_j c_hj u_j): the active slave faces are
+     * integrated as they are, h a vertex like any other, and then h's row
+     * is condensed into its parents' with the constraint's coefficients,
+     * row_j += c_hj row_h (D, S, M, G, g~ alike), which is the multiplier
+     * constrained as the displacement, lambda_h = sum_j c_hj lambda_j: a
+     * uniform pressure stays representable and is transferred exactly.
+     * The slave side of row j is then S_j u_j + sum_h c_hj S_h u_h (the
+     * terms in Row::slave); the u_h go through the body's constraints
+     * with the rest of the row (ContactDiscretization).  Node-to-segment
+     * moves the hanging node's weight to the same parents.
+     *
      * Limits, checked with messages naming the pair: degree-1 faces only
      * (Q2 faces need Popp's basis transformation: quadratic faces have
-     * vertex integrals of zero or negative sign), slave surfaces without
-     * hanging nodes, meshes that are not distributed.
+     * vertex integrals of zero or negative sign), meshes that are not
+     * distributed.
      */
     template <int dim>
     class MortarCoupling
@@ -71,10 +86,22 @@ namespace dualcontact
         double value = 0;
       };
 
-      /** Slave node j's integrals. */
+      /** A slave node in node j's row: j itself with S_j, and the
+       * hanging nodes h condensed into it with c_hj S_h. */
+      struct SlaveTerm
+      {
+        std::array<dealii::types::global_dof_index, dim> dofs;
+        /** [m^2; m in 2D] */
+        double value = 0;
+      };
+
+      /** Slave node j's integrals (after the condensation of the hanging
+       * nodes: sums over j and c_hj times the hanging nodes h of j). */
       struct Row
       {
         dealii::Point<dim> position;
+        /** The node's dofs, one per component. */
+        std::array<dealii::types::global_dof_index, dim> dofs;
         /** D_j = int phi_j ds over the slave faces of the node [m^2]. */
         double support = 0;
         /** S_j = sum_l M_jl (an obstacle: D_j) [m^2]. */
@@ -85,6 +112,9 @@ namespace dualcontact
         double weighted_gap = 0;
         /** Body master: M_jl by the master node's first-component dof. */
         std::map<dealii::types::global_dof_index, MasterNode> master;
+        /** The slave side: S_j at j, c_hj S_h at the hanging nodes h, by
+         * the node's first-component dof (they sum to S_j). */
+        std::map<dealii::types::global_dof_index, SlaveTerm> slave;
       };
 
       /**
@@ -97,9 +127,33 @@ namespace dualcontact
                      const fem::ElasticBody<dim> *master,
                      const MasterSurface<dim>    *surface);
 
-      /** The rows by slave node (the node's first-component dof). */
+      /** The rows by slave node (the node's first-component dof); none
+       * for a hanging node (condensed into its parents'). */
       const std::map<dealii::types::global_dof_index, Row> &
       rows() const;
+
+      /**
+       * Places the contact node @p node (slave node @p key, its position
+       * set; @p weighted_normal int phi n ds) by its row: an obstacle's
+       * normal at the node's closest point (exact), a master body's the
+       * averaged normal; @p master's entries M_jl / S~_j (they sum to one:
+       * a rigid translation leaves the row at zero) and the slave terms of
+       * the hanging nodes condensed into it, c_hj S_h / S~_j, the node's
+       * own coefficient S_j / S~_j.  False for a node without a row or
+       * without enough master under its faces (`Mortar coverage') or, on
+       * an obstacle, beyond the search distance.
+       */
+      bool
+      place(const dealii::types::global_dof_index key,
+            const dealii::Tensor<1, dim>         &weighted_normal,
+            ContactNode<dim>                     &node,
+            MasterEntries                        &master) const;
+
+      /** The weighted gap of slave node @p key along its (final) normal
+       * @p normal, divided by S~_j as its row [m]. */
+      double
+      gap(const dealii::types::global_dof_index key,
+          const dealii::Tensor<1, dim>         &normal) const;
 
     private:
       /** Adds the integrals of one slave face against the master body. */
@@ -113,6 +167,10 @@ namespace dualcontact
       integrate_on_obstacle(
         const FaceGeometry<dim>                            &face,
         const std::vector<dealii::types::global_dof_index> &keys);
+      /** Condenses the rows of the slave body's hanging nodes into their
+       * parents' (row_j += c_hj row_h) and removes them. */
+      void
+      condense_hanging_nodes(const dealii::AffineConstraints<double> &hanging);
       /** Throws, naming the pair, where the mortar integrals do not apply. */
       void
       check_applicable(const fem::ElasticBody<dim> &slave) const;

@@ -120,9 +120,9 @@ namespace dualcontact
         "patch test on non-matching meshes). mortar: dual mortar, the "
         "slave's biorthogonal basis integrated against the master over the "
         "slave faces cut by the projected master faces, weighted gaps and "
-        "averaged slave normals (passes the patch test to round-off; "
-        "degree-1 faces, replicated meshes and slave surfaces without "
-        "hanging nodes only).");
+        "averaged slave normals, hanging slave nodes condensed into their "
+        "parents' rows (passes the patch test to round-off; degree-1 faces "
+        "and replicated meshes only).");
       prm.declare_entry("Mortar coverage",
                         "0.2",
                         dealii::Patterns::Double(0, 1),
