@@ -1,7 +1,9 @@
+#include <deal.II/base/mpi.h>
 #include <deal.II/base/quadrature_lib.h>
 #include <deal.II/fe/fe_values.h>
 
 #include <contact/contact_extent.h>
+#include <util/machine.h>
 
 #include <algorithm>
 #include <cmath>
@@ -33,7 +35,10 @@ namespace dualcontact
 
       /**
        * Calls @p visit(cell, f, cell_dofs) for every face f of @p body on
-       * @p boundary, cell_dofs being the dof indices of its cell.
+       * @p boundary, cell_dofs being the dof indices of its cell: on a
+       * distributed mesh the faces of this process' owned cells only (each
+       * boundary face is one cell's, so the processes' faces partition the
+       * surface; the ghost layer's would be counted twice).
        */
       template <int dim, typename Visitor>
       void
@@ -44,7 +49,9 @@ namespace dualcontact
         std::vector<types::global_dof_index> cell_dofs(
           body.fe().n_dofs_per_cell());
         for (const auto &cell : body.dof_handler().active_cell_iterators())
-          if (!cell->is_artificial() && cell->at_boundary())
+          if ((body.is_distributed() ? cell->is_locally_owned() :
+                                       !cell->is_artificial()) &&
+              cell->at_boundary())
             for (const unsigned int f : cell->face_indices())
               if (cell->face(f)->at_boundary() &&
                   cell->face(f)->boundary_id() == boundary)
@@ -86,6 +93,26 @@ namespace dualcontact
               if (a != b)
                 neighbours_[a].push_back(b);
         });
+      // a distributed mesh: the neighbour pairs of every process' faces
+      // (the nodes are the pair's gathered ones, numbered alike on every
+      // process), so that psi is the same everywhere, also at the nodes of
+      // faces two cells beyond this process' ghost layer, which the far
+      // neighbours reach
+      if (slave.is_distributed())
+      {
+        std::vector<double> pairs;
+        for (unsigned int a = 0; a < neighbours_.size(); ++a)
+          for (const unsigned int b : neighbours_[a])
+          {
+            pairs.push_back(a);
+            pairs.push_back(b);
+          }
+        const std::vector<double> all =
+          util::concatenate_over_processes(pairs, slave.communicator());
+        for (std::size_t k = 0; k + 1 < all.size(); k += 2)
+          neighbours_[static_cast<unsigned int>(all[k])].push_back(
+            static_cast<unsigned int>(all[k + 1]));
+      }
       for (auto &list : neighbours_)
       {
         std::sort(list.begin(), list.end());
@@ -214,6 +241,7 @@ namespace dualcontact
                                        const std::vector<Node> &nodes)
     {
       measure_ = 0;
+      // (the nodes and so this test are the same on every process)
       if (std::none_of(nodes.begin(),
                        nodes.end(),
                        [](const Node &node) { return node.in_contact; }))
@@ -294,6 +322,9 @@ namespace dualcontact
               measure_ += cut.JxW(q);
           }
         });
+      // this process' faces are its share of the zone (collective)
+      if (slave.is_distributed())
+        measure_ = Utilities::MPI::sum(measure_, slave.communicator());
     }
 
 

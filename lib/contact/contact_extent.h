@@ -72,7 +72,11 @@ namespace dualcontact
 
       /**
        * Compute the contact zone of the nodes @p nodes, which lie on the
-       * faces of @p slave with boundary id @p slave_boundary.
+       * faces of @p slave with boundary id @p slave_boundary.  On a
+       * distributed mesh @p nodes are the pair's nodes of all processes
+       * (the same list everywhere), each process integrates the faces of
+       * its owned cells and the measure is their sum (collective over the
+       * slave's communicator).
        */
       ContactExtent(const fem::ElasticBody<dim>     &slave,
                     const dealii::types::boundary_id slave_boundary,
